@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// The algorithm's internal view of people in images: observations in undistorted pixels, 2D
+/// tracklets cropped by a sliding window, and 3D tracklets produced per window. Pure data.
+
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+#include "core/types.h"
+
+namespace mvtrack::core {
+
+/// One person seen by one camera at one frame, in *undistorted* pixel coordinates (the pinhole
+/// image of CameraModel::ProjectionMatrix). Box mode has one point (see TrackerOptions); pose
+/// mode has one point per joint of the tracker's layout.
+struct Observation2D {
+  std::vector<Vec2> points_px;
+  /// Per-point confidence in [0, 1]; 0 means the point is missing and must not be used.
+  std::vector<double> confidence;
+  /// |w + h| of the box that encloses the person, in pixels (the normaliser of Eq. 2). > 0.
+  double scale_px = 1.0;
+};
+
+/// A 2D tracklet: the observations of one camera's 2D track inside one window (Eq. 3, T_{k,i}).
+struct Tracklet2D {
+  CameraId camera_id = 0;
+  TrackId2D track_id = 0;
+  std::vector<FrameIndex> frames;            ///< strictly increasing
+  std::vector<Observation2D> observations;   ///< parallel to `frames`
+
+  /// Index into frames/observations of `frame`, or -1.
+  int IndexOf(FrameIndex frame) const {
+    auto it = std::lower_bound(frames.begin(), frames.end(), frame);
+    if (it == frames.end() || *it != frame) return -1;
+    return static_cast<int>(it - frames.begin());
+  }
+};
+
+/// A short-term 3D tracklet of one person in one window (U_{k,p}).
+struct Tracklet3D {
+  std::vector<FrameIndex> frames;                        ///< strictly increasing
+  /// points[f][k]: point k (box mode: k = 0) at frames[f], world frame, metres.
+  std::vector<std::vector<std::optional<Vec3>>> points;
+  std::vector<CameraId> cameras;                         ///< cameras that supported it, sorted
+  std::vector<int> source_tracklets;                     ///< indices of its 2D tracklets
+
+  int IndexOf(FrameIndex frame) const {
+    auto it = std::lower_bound(frames.begin(), frames.end(), frame);
+    if (it == frames.end() || *it != frame) return -1;
+    return static_cast<int>(it - frames.begin());
+  }
+};
+
+}  // namespace mvtrack::core

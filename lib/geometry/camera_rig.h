@@ -1,0 +1,43 @@
+#pragma once
+/// @file
+/// A set of calibrated cameras with precomputed projection and fundamental matrices for every
+/// ordered pair. Immutable after construction; thread-compatible (const methods only).
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "geometry/camera_model.h"
+
+namespace mvtrack::geometry {
+
+class CameraRig {
+ public:
+  CameraRig() = default;
+  /// Cameras must have distinct ids and pass Validate(); otherwise `why` is set and the rig is
+  /// empty (check `ok()`).
+  explicit CameraRig(std::vector<CameraModel> cameras, std::string* why = nullptr);
+
+  bool ok() const { return !cameras_.empty(); }
+  int size() const { return static_cast<int>(cameras_.size()); }
+  const std::vector<CameraModel>& cameras() const { return cameras_; }
+
+  /// Dense index (0..size-1, in ascending id order) of camera `id`, or nullopt if unknown.
+  std::optional<int> IndexOf(CameraId id) const;
+  const CameraModel& camera(int index) const { return cameras_[static_cast<std::size_t>(index)]; }
+  const Mat34& projection(int index) const { return projections_[static_cast<std::size_t>(index)]; }
+  /// F mapping undistorted points of camera index `from` to epipolar lines in camera `to`.
+  const Mat3& fundamental(int from, int to) const {
+    return fundamentals_[static_cast<std::size_t>(from * size() + to)];
+  }
+
+ private:
+  std::vector<CameraModel> cameras_;
+  std::vector<Mat34> projections_;
+  std::vector<Mat3> fundamentals_;
+  std::map<CameraId, int> index_of_;
+};
+
+}  // namespace mvtrack::geometry

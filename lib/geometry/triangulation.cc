@@ -1,0 +1,75 @@
+#include "geometry/triangulation.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+namespace mvtrack::geometry {
+namespace {
+
+/// Solves A X = 0 for homogeneous X (Eq. 5) and dehomogenises; nullopt when degenerate.
+template <typename Matrix>
+std::optional<Vec3> SolveHomogeneous(const Matrix& a) {
+  // The null vector of A is the eigenvector of A^T A with the smallest eigenvalue; the 4x4
+  // self-adjoint solver is much cheaper than an SVD of A and equally accurate here because the
+  // rows are normalised to unit length before.
+  const Eigen::Matrix4d ata = a.transpose() * a;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> solver(ata);
+  if (solver.info() != Eigen::Success) return std::nullopt;
+  const Eigen::Vector4d x = solver.eigenvectors().col(0);
+  // Rank check: the two smallest eigenvalues must be separated, otherwise the rays are
+  // (nearly) parallel and the point is undetermined.
+  const Eigen::Vector4d ev = solver.eigenvalues();
+  if (!(ev(1) > 1e-14 * std::max(1.0, ev(3)))) return std::nullopt;
+  if (!(std::abs(x(3)) > 1e-12)) return std::nullopt;
+  const Vec3 point = x.head<3>() / x(3);
+  if (!point.allFinite()) return std::nullopt;
+  return point;
+}
+
+void FillRows(const Mat34& p, const Vec2& x, double w, Eigen::Ref<Eigen::Matrix<double, 2, 4>> rows) {
+  Eigen::RowVector4d r0 = x.x() * p.row(2) - p.row(0);
+  Eigen::RowVector4d r1 = x.y() * p.row(2) - p.row(1);
+  const double n0 = r0.norm(), n1 = r1.norm();
+  rows.row(0) = n0 > 0.0 ? Eigen::RowVector4d(w * r0 / n0) : r0;
+  rows.row(1) = n1 > 0.0 ? Eigen::RowVector4d(w * r1 / n1) : r1;
+}
+
+}  // namespace
+
+std::optional<Vec3> TriangulateTwoView(const Mat34& p_a, const Vec2& x_a, const Mat34& p_b,
+                                       const Vec2& x_b) {
+  if (!x_a.allFinite() || !x_b.allFinite()) return std::nullopt;
+  Eigen::Matrix4d a;
+  FillRows(p_a, x_a, 1.0, a.topRows<2>());
+  FillRows(p_b, x_b, 1.0, a.bottomRows<2>());
+  return SolveHomogeneous(a);
+}
+
+std::optional<Vec3> TriangulateDlt(std::span<const Mat34> projections,
+                                   std::span<const Vec2> points_px,
+                                   std::span<const double> weights) {
+  const std::size_t n = projections.size();
+  if (n < 2 || points_px.size() != n || (!weights.empty() && weights.size() != n)) {
+    return std::nullopt;
+  }
+  Eigen::MatrixXd a(2 * static_cast<Eigen::Index>(n), 4);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!points_px[i].allFinite()) return std::nullopt;
+    const double w = weights.empty() ? 1.0 : weights[i];
+    if (!std::isfinite(w) || w < 0.0) return std::nullopt;
+    FillRows(projections[i], points_px[i], w, a.middleRows<2>(2 * static_cast<Eigen::Index>(i)));
+  }
+  return SolveHomogeneous(a);
+}
+
+bool InFront(const Mat34& p, const Vec3& point) {
+  // For P = K [R | t] with det(K) > 0 the third homogeneous coordinate is the depth.
+  return p.row(2).dot(point.homogeneous()) > 0.0;
+}
+
+double ReprojectionErrorPx(const Mat34& p, const Vec3& point, const Vec2& x) {
+  const Vec3 h = p * point.homogeneous();
+  return (h.head<2>() / h.z() - x).norm();
+}
+
+}  // namespace mvtrack::geometry

@@ -1,0 +1,28 @@
+#pragma once
+/// @file
+/// Linear (DLT) triangulation, two-view and N-view (Eq. 5). Stateless.
+
+#include <optional>
+#include <span>
+
+#include "core/types.h"
+
+namespace mvtrack::geometry {
+
+/// Two-view DLT in undistorted pixels. nullopt if degenerate (rank deficiency, point at
+/// infinity) or non-finite.
+std::optional<Vec3> TriangulateTwoView(const Mat34& p_a, const Vec2& x_a, const Mat34& p_b,
+                                       const Vec2& x_b);
+
+/// N-view DLT (N >= 2) with optional per-view weights (empty = all 1). nullopt if degenerate.
+std::optional<Vec3> TriangulateDlt(std::span<const Mat34> projections,
+                                   std::span<const Vec2> points_px,
+                                   std::span<const double> weights = {});
+
+/// Whether `point` is in front of the camera with projection `p` (positive depth).
+bool InFront(const Mat34& p, const Vec3& point);
+
+/// Reprojection error in pixels of `point` in the view (p, x).
+double ReprojectionErrorPx(const Mat34& p, const Vec3& point, const Vec2& x);
+
+}  // namespace mvtrack::geometry

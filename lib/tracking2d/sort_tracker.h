@@ -1,0 +1,107 @@
+#pragma once
+/// @file
+/// SORT single-camera multi-person tracker (Bewley et al., ICIP 2016), the "Multiple-frame
+/// Single-view Multi-person Tracking" stage of the paper (Sec. "Method", Fig. 3): it links each
+/// camera's detections into 2D tracks, which the sliding window later crops into the 2D
+/// tracklets T_{k,i}. One instance per camera; single-owner, single-threaded, no I/O.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/detection.h"
+#include "core/types.h"
+#include "tracking2d/kalman_box_tracker.h"
+
+namespace mvtrack::tracking2d {
+
+/// SortTracker settings.
+struct SortOptions {
+  /// Number of consecutive frames (processed or skipped) a track survives without a match; it
+  /// can still be matched in the frame after those. SORT's default is 1 (tuned for MOT
+  /// benchmarks); 5 bridges the short occlusions of people crossing (2-5 frames at 25-30 fps),
+  /// while a 5-frame constant-velocity extrapolation (about 0.2 s, ~0.25 m at walking speed)
+  /// stays on the occluded person, so stale tracks expire before they can drift onto someone
+  /// else. A broken track only starts a new 2D tracklet, which cross-view clustering can still
+  /// assign to the right person, whereas an identity switch contaminates a tracklet.
+  int max_age = 5;
+  /// Consecutive matched frames (the creating detection counts as the first) before a track is
+  /// confirmed and reported; once confirmed it stays confirmed until it dies. 1 reports every
+  /// detection from its first frame: the 3D stage (cross-view clustering, robust
+  /// triangulation) already rejects detector false positives, and every withheld observation
+  /// is lost to the sliding window. Must be >= 1.
+  int min_hits = 1;
+  /// Minimum IoU between a track's predicted box and a detection for them to be matched
+  /// (SORT's value). In (0, 1].
+  double iou_threshold = 0.3;
+
+  /// Checks the ranges above; on failure writes a reason to `why` (if not null).
+  bool Validate(std::string* why) const;
+};
+
+/// One detection of this frame with the 2D track it was assigned to.
+struct TrackedDetection {
+  /// Unique within this SortTracker, starts at 1, never reused.
+  TrackId2D track_id = 0;
+  /// Index into the `boxes` vector passed to SortTracker::Update.
+  int detection_index = -1;
+};
+
+/// A read-only view of one live track (diagnostics and visualisation).
+struct TrackSnapshot {
+  TrackId2D track_id = 0;
+  /// The Kalman estimate at the last processed frame: the posterior when matched there,
+  /// otherwise the prediction.
+  core::BoxPx box;
+  /// Last frame at which a detection was matched (or the track was created).
+  FrameIndex last_matched_frame = 0;
+  /// True once the track has met SortOptions::min_hits.
+  bool confirmed = false;
+};
+
+/// SORT (Bewley et al. 2016, Sec. 3): per frame, predict every track with its constant-velocity
+/// Kalman filter (KalmanBoxTracker), match tracks to detections by optimal linear assignment
+/// (core::SolveAssignment) on the cost 1 - IoU with pairs below `iou_threshold` forbidden,
+/// update matched tracks, start a track for each unmatched detection and delete tracks unmatched
+/// for more than `max_age` frames.
+///
+/// Single-owner, single-threaded; one instance per camera.
+class SortTracker {
+ public:
+  /// `options` must be valid (checked; validate configuration beforehand).
+  explicit SortTracker(SortOptions options = {});
+
+  /// Processes one frame. Frames must be strictly increasing; a gap of g frames predicts g
+  /// steps and counts g frames towards max_age. Boxes that are not IsUsableBox (non-finite,
+  /// non-positive size) are ignored: never matched, never start a track, never reported.
+  ///
+  /// Returns the detections of THIS frame that belong to confirmed tracks (observed boxes only,
+  /// never Kalman predictions), sorted by track id. When `frame` is not greater than the
+  /// previous frame, returns an empty vector and changes nothing (the caller validates).
+  std::vector<TrackedDetection> Update(FrameIndex frame, const std::vector<core::BoxPx>& boxes);
+
+  /// Number of live tracks (confirmed or not).
+  int num_tracks() const { return static_cast<int>(tracks_.size()); }
+
+  /// The live tracks in increasing id order.
+  std::vector<TrackSnapshot> Tracks() const;
+
+  /// The options in use.
+  const SortOptions& options() const { return options_; }
+
+ private:
+  struct Track {
+    TrackId2D id = 0;
+    KalmanBoxTracker filter;
+    FrameIndex last_matched_frame = 0;
+    int hit_streak = 0;
+    bool confirmed = false;
+  };
+
+  SortOptions options_;
+  std::vector<Track> tracks_;  // increasing id order
+  std::optional<FrameIndex> last_frame_;
+  TrackId2D next_id_ = 1;
+};
+
+}  // namespace mvtrack::tracking2d

@@ -1,0 +1,445 @@
+// Tests of the normalized epipolar distance as used by the association (Eq. 2), the tracklet
+// distance of Eq. 3-4 with its empty and infinite cases, DistanceMatrix and the options.
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "association/association.h"
+#include "association/association_scene.h"
+#include "geometry/camera_rig.h"
+#include "geometry/epipolar.h"
+#include "support/synthetic_cameras.h"
+
+namespace mvtrack::association {
+namespace {
+
+using testing::BoxPerson;
+using testing::LookAtCamera;
+using testing::ObserveBoxPerson;
+
+// Two ceiling cameras 3 m apart (baseline along world x), 2.5 m high, looking down the room
+// (+y); 1920x1080 images, fx = 1000 px.
+std::vector<geometry::CameraModel> TwoCameras() {
+  return {LookAtCamera(0, Vec3(-1.5, 0.0, 2.5), Vec3(0.0, 8.0, 0.9), 1000.0, 1920, 1080),
+          LookAtCamera(1, Vec3(1.5, 0.0, 2.5), Vec3(0.0, 8.0, 0.9), 1000.0, 1920, 1080)};
+}
+
+core::Observation2D PointObservation(const Vec2& x, double scale_px, double confidence = 1.0) {
+  core::Observation2D o;
+  o.points_px = {x};
+  o.confidence = {confidence};
+  o.scale_px = scale_px;
+  return o;
+}
+
+core::Tracklet2D TrackletAt(CameraId camera, std::vector<FrameIndex> frames) {
+  core::Tracklet2D t;
+  t.camera_id = camera;
+  t.frames = std::move(frames);
+  for (std::size_t i = 0; i < t.frames.size(); ++i) {
+    t.observations.push_back(PointObservation(Vec2(100.0 + 10.0 * static_cast<double>(i), 200.0), 300.0));
+  }
+  return t;
+}
+
+TEST_CASE("normalized epipolar distance does not depend on the person-to-camera distance",
+          "[unit]") {
+  // The paper's claim for Eq. 2: the same 3D detection bias gives (almost) the same normalized
+  // distance whether the person is near or far, while the raw Eq. 1 distance in pixels shrinks
+  // with 1/depth. The person is a 0.5 x 0.3 x 1.8 m box; its image box (hence |w + h|) comes
+  // from projecting the 8 corners. Camera 1 sees the box centre 0.1 m too high (a vertical bias;
+  // a bias along the baseline would stay inside the epipolar plane and be invisible to any
+  // epipolar distance).
+  const std::vector<geometry::CameraModel> cameras = TwoCameras();
+  const Mat3 f = geometry::FundamentalMatrix(cameras[0], cameras[1]);
+  const BoxPerson person;
+  const Vec3 bias(0.0, 0.0, 0.1);
+  std::vector<double> normalized, raw;
+  for (int y = 2; y <= 15; ++y) {
+    const Vec3 foot(0.0, static_cast<double>(y), 0.0);
+    const auto o0 = ObserveBoxPerson(cameras[0], person, foot, Vec3::Zero());
+    const auto o1 = ObserveBoxPerson(cameras[1], person, foot, bias);
+    REQUIRE(o0);
+    REQUIRE(o1);
+    // Without the bias both distances vanish: the construction is consistent.
+    const auto clean = ObserveBoxPerson(cameras[1], person, foot, Vec3::Zero());
+    REQUIRE(geometry::SymmetricEpipolarDistance(o0->points_px[0], clean->points_px[0], f) <
+            1e-6);
+    normalized.push_back(geometry::NormalizedEpipolarDistance(
+        o0->points_px[0], o0->scale_px, o1->points_px[0], o1->scale_px, f));
+    raw.push_back(geometry::SymmetricEpipolarDistance(o0->points_px[0], o1->points_px[0], f));
+  }
+  const auto [n_min, n_max] = std::minmax_element(normalized.begin(), normalized.end());
+  const auto [r_min, r_max] = std::minmax_element(raw.begin(), raw.end());
+  INFO("normalized in [" << *n_min << ", " << *n_max << "], raw px in [" << *r_min << ", "
+                         << *r_max << "]");
+  CHECK(*n_max / *n_min < 1.5);
+  CHECK(*r_max / *r_min > 3.0);
+  // And the tracklet distance (Eq. 3-4) over the whole walk is the mean of those values.
+  core::Tracklet2D a, b;
+  a.camera_id = 0;
+  b.camera_id = 1;
+  for (int y = 2; y <= 15; ++y) {
+    const Vec3 foot(0.0, static_cast<double>(y), 0.0);
+    a.frames.push_back(y);
+    b.frames.push_back(y);
+    a.observations.push_back(*ObserveBoxPerson(cameras[0], person, foot, Vec3::Zero()));
+    b.observations.push_back(*ObserveBoxPerson(cameras[1], person, foot, bias));
+  }
+  double mean = 0.0;
+  for (double v : normalized) mean += v / static_cast<double>(normalized.size());
+  const TrackletDistance d = ComputeTrackletDistance(a, b, f, AssociationOptions{});
+  REQUIRE(d.is_value());
+  CHECK(d.value == Approx(mean).epsilon(1e-12));
+}
+
+TEST_CASE("Eq. 4: same camera with a common frame is infinite", "[unit]") {
+  const Mat3 f = Mat3::Zero();  // never used for a same-camera pair
+  const core::Tracklet2D a = TrackletAt(3, {0, 1, 2, 3});
+  const core::Tracklet2D b = TrackletAt(3, {3, 4, 5});
+  CHECK(ComputeTrackletDistance(a, b, f, AssociationOptions{}).is_infinite());
+  CHECK(ComputeTrackletDistance(b, a, f, AssociationOptions{}).is_infinite());
+  // Coexisting in time is what matters, not whether the points are usable.
+  core::Tracklet2D hidden = b;
+  for (core::Observation2D& o : hidden.observations) o.confidence = {0.0};
+  CHECK(ComputeTrackletDistance(a, hidden, f, AssociationOptions{}).is_infinite());
+}
+
+TEST_CASE("Eq. 4: no common frame is empty, for the same or different cameras", "[unit]") {
+  const std::vector<geometry::CameraModel> cameras = TwoCameras();
+  const Mat3 f = geometry::FundamentalMatrix(cameras[0], cameras[1]);
+  const AssociationOptions options;
+  SECTION("disjoint frame ranges") {
+    CHECK(ComputeTrackletDistance(TrackletAt(0, {0, 1, 2}), TrackletAt(0, {3, 4}), f, options)
+              .is_empty());
+    CHECK(ComputeTrackletDistance(TrackletAt(0, {0, 1, 2}), TrackletAt(1, {3, 4}), f, options)
+              .is_empty());
+  }
+  SECTION("interleaved frames without a common one") {
+    CHECK(ComputeTrackletDistance(TrackletAt(0, {0, 2, 4, 6}), TrackletAt(0, {1, 3, 5}), f,
+                                  options)
+              .is_empty());
+    CHECK(ComputeTrackletDistance(TrackletAt(0, {0, 2, 4, 6}), TrackletAt(1, {1, 3, 5}), f,
+                                  options)
+              .is_empty());
+  }
+  SECTION("an empty tracklet") {
+    CHECK(ComputeTrackletDistance(TrackletAt(0, {}), TrackletAt(0, {1, 2}), f, options)
+              .is_empty());
+    CHECK(ComputeTrackletDistance(TrackletAt(0, {1, 2}), TrackletAt(1, {}), f, options)
+              .is_empty());
+  }
+  SECTION("common frames but no common usable point") {
+    core::Tracklet2D a = TrackletAt(0, {0, 1, 2});
+    core::Tracklet2D b = TrackletAt(1, {1, 2, 3});
+    a.observations[1].confidence = {0.05};  // below min_confidence = 0.1
+    b.observations[1].confidence = {0.0};   // frame 2 of b
+    CHECK(ComputeTrackletDistance(a, b, f, options).is_empty());
+  }
+}
+
+TEST_CASE("Eq. 3-4: different cameras with overlap give the mean over common frames", "[unit]") {
+  const std::vector<geometry::CameraModel> cameras = TwoCameras();
+  const geometry::CameraRig rig(cameras);
+  REQUIRE(rig.ok());
+  const BoxPerson person;
+  auto walk = [](FrameIndex f) { return Vec3(-1.0 + 0.1 * static_cast<double>(f), 5.0, 0.0); };
+  std::mt19937 rng(11);
+  // a: frames 0..9, b: frames 5..14; 2 px of noise so every frame has its own value.
+  const core::Tracklet2D a =
+      testing::MakeBoxTracklet(cameras[0], 1, person, 0, 9, walk, Vec3::Zero(), 2.0, &rng);
+  const core::Tracklet2D b =
+      testing::MakeBoxTracklet(cameras[1], 2, person, 5, 14, walk, Vec3::Zero(), 2.0, &rng);
+  REQUIRE(a.frames.size() == 10);
+  REQUIRE(b.frames.size() == 10);
+  double expected = 0.0;
+  for (FrameIndex frame = 5; frame <= 9; ++frame) {
+    const core::Observation2D& oa = a.observations[static_cast<std::size_t>(a.IndexOf(frame))];
+    const core::Observation2D& ob = b.observations[static_cast<std::size_t>(b.IndexOf(frame))];
+    expected += geometry::NormalizedEpipolarDistance(oa.points_px[0], oa.scale_px,
+                                                     ob.points_px[0], ob.scale_px,
+                                                     rig.fundamental(0, 1)) /
+                5.0;
+  }
+  REQUIRE(expected > 0.0);
+  const TrackletDistance ab =
+      ComputeTrackletDistance(a, b, rig.fundamental(0, 1), AssociationOptions{});
+  const TrackletDistance ba =
+      ComputeTrackletDistance(b, a, rig.fundamental(1, 0), AssociationOptions{});
+  REQUIRE(ab.is_value());
+  REQUIRE(ba.is_value());
+  CHECK(ab.value == Approx(expected).epsilon(1e-12));
+  CHECK(ba.value == Approx(expected).epsilon(1e-9));  // Eq. 2 is symmetric
+}
+
+TEST_CASE("pose mode: joints averaged per frame, low-confidence joints and empty frames skipped",
+          "[unit]") {
+  const std::vector<geometry::CameraModel> cameras = TwoCameras();
+  const Mat3 f = geometry::FundamentalMatrix(cameras[0], cameras[1]);
+  // Three joints of a person at 6 m; 3 px of noise per joint and view.
+  const std::vector<Vec3> joints = {Vec3(0.0, 6.0, 1.7), Vec3(-0.2, 6.0, 1.4), Vec3(0.2, 6.0, 1.0)};
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 3.0);
+  core::Tracklet2D a, b;
+  a.camera_id = 0;
+  b.camera_id = 1;
+  for (FrameIndex frame = 0; frame < 4; ++frame) {
+    core::Observation2D oa, ob;
+    for (const Vec3& j : joints) {
+      const Vec3 moved = j + Vec3(0.05 * static_cast<double>(frame), 0.0, 0.0);
+      oa.points_px.push_back(*cameras[0].ProjectUndistorted(moved) + Vec2(noise(rng), noise(rng)));
+      ob.points_px.push_back(*cameras[1].ProjectUndistorted(moved) + Vec2(noise(rng), noise(rng)));
+    }
+    oa.confidence = {0.9, 0.8, 0.7};
+    ob.confidence = {0.9, 0.8, 0.7};
+    oa.scale_px = 300.0 + 5.0 * static_cast<double>(frame);
+    ob.scale_px = 280.0 - 5.0 * static_cast<double>(frame);
+    a.frames.push_back(frame);
+    b.frames.push_back(frame);
+    a.observations.push_back(oa);
+    b.observations.push_back(ob);
+  }
+  // Frame 0: all joints usable. Frame 1: joint 1 of a below min_confidence (0.1).
+  // Frame 2: only joint 1 usable in both (b's joint 0 missing, joint 2 below the threshold).
+  // Frame 3: no joint usable in both views -> frame skipped.
+  a.observations[1].confidence[1] = 0.05;
+  b.observations[2].confidence[0] = 0.0;
+  b.observations[2].confidence[2] = 0.09;
+  a.observations[3].confidence[0] = 0.0;
+  b.observations[3].confidence[1] = 0.0;
+  b.observations[3].confidence[2] = 0.0;
+  const std::vector<std::vector<std::size_t>> used = {{0, 1, 2}, {0, 2}, {1}};
+  auto joint_distance = [&](std::size_t frame, std::size_t k) {
+    const core::Observation2D& oa = a.observations[frame];
+    const core::Observation2D& ob = b.observations[frame];
+    return geometry::NormalizedEpipolarDistance(oa.points_px[k], oa.scale_px, ob.points_px[k],
+                                                ob.scale_px, f);
+  };
+  double expected = 0.0;
+  for (std::size_t frame = 0; frame < used.size(); ++frame) {
+    double frame_sum = 0.0;
+    for (std::size_t k : used[frame]) frame_sum += joint_distance(frame, k);
+    expected += frame_sum / static_cast<double>(used[frame].size()) / 3.0;
+  }
+  // What ignoring the confidences would give: all joints of all four frames.
+  double unfiltered = 0.0;
+  for (std::size_t frame = 0; frame < 4; ++frame) {
+    for (std::size_t k = 0; k < 3; ++k) unfiltered += joint_distance(frame, k) / 12.0;
+  }
+  REQUIRE(std::abs(unfiltered - expected) > 1e-3 * expected);
+
+  const TrackletDistance d = ComputeTrackletDistance(a, b, f, AssociationOptions{});
+  REQUIRE(d.is_value());
+  CHECK(d.value == Approx(expected).epsilon(1e-12));
+
+  SECTION("a confidence equal to min_confidence is usable; 0 never is") {
+    AssociationOptions options;
+    options.min_confidence = 0.09;  // b's joint 2 in frame 2 becomes usable
+    double expected_09 = 0.0;
+    const std::vector<std::vector<std::size_t>> used_09 = {{0, 1, 2}, {0, 2}, {1, 2}};
+    for (std::size_t frame = 0; frame < used_09.size(); ++frame) {
+      double frame_sum = 0.0;
+      for (std::size_t k : used_09[frame]) frame_sum += joint_distance(frame, k);
+      expected_09 += frame_sum / static_cast<double>(used_09[frame].size()) / 3.0;
+    }
+    const TrackletDistance d09 = ComputeTrackletDistance(a, b, f, options);
+    REQUIRE(d09.is_value());
+    CHECK(d09.value == Approx(expected_09).epsilon(1e-12));
+    options.min_confidence = 0.0;  // frame 3 still has no joint with a non-zero confidence in both
+    const std::vector<std::vector<std::size_t>> used_0 = {{0, 1, 2}, {0, 1, 2}, {1, 2}};
+    double expected_0 = 0.0;
+    for (std::size_t frame = 0; frame < used_0.size(); ++frame) {
+      double frame_sum = 0.0;
+      for (std::size_t k : used_0[frame]) frame_sum += joint_distance(frame, k);
+      expected_0 += frame_sum / static_cast<double>(used_0[frame].size()) / 3.0;
+    }
+    const TrackletDistance d0 = ComputeTrackletDistance(a, b, f, options);
+    REQUIRE(d0.is_value());
+    CHECK(d0.value == Approx(expected_0).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("DistanceMatrix starts empty, is symmetric and keeps the three kinds", "[unit]") {
+  DistanceMatrix m(4);
+  CHECK(m.size() == 4);
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      if (i != j) CHECK(m.at(i, j).is_empty());
+    }
+  }
+  m.set(2, 0, TrackletDistance::Value(0.25));
+  m.set(1, 3, TrackletDistance::Infinite());
+  m.set(3, 2, TrackletDistance::Value(0.0));
+  CHECK(m.at(0, 2) == TrackletDistance::Value(0.25));
+  CHECK(m.at(2, 0) == TrackletDistance::Value(0.25));
+  CHECK(m.at(3, 1).is_infinite());
+  CHECK(m.at(2, 3) == TrackletDistance::Value(0.0));
+  CHECK(m.at(0, 1).is_empty());
+  CHECK(m.at(0, 3).is_empty());
+  m.set(0, 2, TrackletDistance::Empty());
+  CHECK(m.at(2, 0).is_empty());
+  CHECK(DistanceMatrix().size() == 0);
+  CHECK(DistanceMatrix(1).size() == 1);
+}
+
+TEST_CASE("ComputeDistanceMatrix applies Eq. 4 to every pair with the rig's F", "[unit]") {
+  std::vector<geometry::CameraModel> cameras =
+      testing::RingOfCameras(3, 6.0, 2.5, Vec3(0.0, 0.0, 0.9), 1000.0, 1920, 1080, 10);
+  const geometry::CameraRig rig(cameras);
+  REQUIRE(rig.ok());
+  const BoxPerson person;
+  std::mt19937 rng(3);
+  auto walk = [](FrameIndex f) { return Vec3(0.05 * static_cast<double>(f), -0.5, 0.0); };
+  std::vector<core::Tracklet2D> tracklets = {
+      testing::MakeBoxTracklet(cameras[2], 1, person, 0, 9, walk, Vec3::Zero(), 1.0, &rng),
+      testing::MakeBoxTracklet(cameras[0], 1, person, 3, 12, walk, Vec3::Zero(), 1.0, &rng),
+      testing::MakeBoxTracklet(cameras[1], 1, person, 11, 20, walk, Vec3::Zero(), 1.0, &rng),
+      testing::MakeBoxTracklet(cameras[2], 2, person, 5, 7, walk, Vec3(0.0, 0.0, 0.3), 1.0, &rng),
+  };
+  const DistanceMatrix m = ComputeDistanceMatrix(rig, tracklets, AssociationOptions{});
+  REQUIRE(m.size() == 4);
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      if (i == j) continue;
+      const core::Tracklet2D& a = tracklets[static_cast<std::size_t>(i)];
+      const core::Tracklet2D& b = tracklets[static_cast<std::size_t>(j)];
+      const Mat3& f = rig.fundamental(*rig.IndexOf(a.camera_id), *rig.IndexOf(b.camera_id));
+      const TrackletDistance expected = ComputeTrackletDistance(a, b, f, AssociationOptions{});
+      INFO("pair " << i << ", " << j);
+      CHECK(m.at(i, j).kind == expected.kind);
+      if (expected.is_value()) CHECK(m.at(i, j).value == Approx(expected.value).epsilon(1e-9));
+    }
+  }
+  CHECK(m.at(0, 1).is_value());
+  CHECK(m.at(0, 2).is_empty());     // frames 0-9 vs 11-20
+  CHECK(m.at(0, 3).is_infinite());  // same camera, frames 5-7 in common
+  CHECK(m.at(2, 3).is_empty());
+  CHECK(ComputeDistanceMatrix(rig, {}, AssociationOptions{}).size() == 0);
+}
+
+// Random pose-mode tracklets (5 joints, random confidences, some observations with fewer
+// joints, random frame sets) of 3 people in 4 cameras.
+std::vector<core::Tracklet2D> RandomPoseTracklets(const std::vector<geometry::CameraModel>& cameras,
+                                                  std::mt19937* rng) {
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 4.0);
+  std::vector<core::Tracklet2D> tracklets;
+  for (const geometry::CameraModel& camera : cameras) {
+    for (int person = 0; person < 3; ++person) {
+      core::Tracklet2D t;
+      t.camera_id = camera.id;
+      t.track_id = person;
+      const FrameIndex first = static_cast<FrameIndex>((*rng)() % 20);
+      for (FrameIndex f = first; f < first + 12; ++f) {
+        if (uniform(*rng) < 0.2) continue;  // gaps
+        core::Observation2D o;
+        const std::size_t joints = uniform(*rng) < 0.1 ? 3 : 5;
+        for (std::size_t k = 0; k < joints; ++k) {
+          const Vec3 joint(-1.0 + 1.0 * person + 0.03 * static_cast<double>(f),
+                           0.5 * person - 0.5, 0.3 + 0.3 * static_cast<double>(k));
+          o.points_px.push_back(*camera.ProjectUndistorted(joint) + Vec2(noise(*rng), noise(*rng)));
+          const double u = uniform(*rng);
+          o.confidence.push_back(u < 0.15 ? 0.0 : (u < 0.3 ? 0.05 : u));
+        }
+        o.scale_px = 150.0 + 100.0 * uniform(*rng);
+        t.frames.push_back(f);
+        t.observations.push_back(o);
+      }
+      tracklets.push_back(t);
+    }
+  }
+  return tracklets;
+}
+
+TEST_CASE("the all-pairs computation equals the pairwise definition in pose mode", "[unit]") {
+  const std::vector<geometry::CameraModel> cameras =
+      testing::RingOfCameras(4, 5.0, 2.5, Vec3(0.0, 0.0, 0.9), 900.0, 1280, 720, 7);
+  const geometry::CameraRig rig(cameras);
+  REQUIRE(rig.ok());
+  std::mt19937 rng(17);
+  int values = 0, empties = 0, infinities = 0;
+  for (int round = 0; round < 5; ++round) {
+    std::vector<core::Tracklet2D> tracklets = RandomPoseTracklets(cameras, &rng);
+    std::shuffle(tracklets.begin(), tracklets.end(), rng);  // cameras interleaved in the input
+    const AssociationOptions options;
+    const DistanceMatrix m = ComputeDistanceMatrix(rig, tracklets, options);
+    const DistanceMatrix fast = ComputeDistanceMatrixForClustering(rig, tracklets, options);
+    const int n = static_cast<int>(tracklets.size());
+    for (int i = 0; i < n; ++i) {
+      for (int j = i + 1; j < n; ++j) {
+        const core::Tracklet2D& a = tracklets[static_cast<std::size_t>(i)];
+        const core::Tracklet2D& b = tracklets[static_cast<std::size_t>(j)];
+        const Mat3& f = rig.fundamental(*rig.IndexOf(a.camera_id), *rig.IndexOf(b.camera_id));
+        const TrackletDistance expected = ComputeTrackletDistance(a, b, f, options);
+        INFO("round " << round << " pair " << i << ", " << j);
+        REQUIRE(m.at(i, j).kind == expected.kind);
+        REQUIRE(fast.at(i, j).kind == expected.kind);
+        if (expected.is_value()) {
+          ++values;
+          CHECK(m.at(i, j).value == Approx(expected.value).epsilon(1e-9));
+          // The clustering variant is exact below lambda and a lower bound >= lambda above.
+          if (expected.value < options.lambda) {
+            CHECK(fast.at(i, j).value == m.at(i, j).value);
+          } else {
+            CHECK(fast.at(i, j).value >= options.lambda);
+            CHECK(fast.at(i, j).value <= m.at(i, j).value * (1.0 + 1e-12));
+          }
+        }
+        empties += expected.is_empty() ? 1 : 0;
+        infinities += expected.is_infinite() ? 1 : 0;
+      }
+    }
+    for (ClusteringMethod method :
+         {ClusteringMethod::kPdnc, ClusteringMethod::kCompleteLinkageEmptyAsZero,
+          ClusteringMethod::kCompleteLinkageEmptyAsUpper,
+          ClusteringMethod::kSingleLinkageEmptyAsUpper}) {
+      AssociationOptions o = options;
+      o.method = method;
+      CHECK(ClusterTracklets(fast, o) == ClusterTracklets(m, o));
+    }
+  }
+  // The random scenes exercised all three kinds.
+  CHECK(values > 100);
+  CHECK(empties > 0);
+  CHECK(infinities > 10);
+}
+
+TEST_CASE("AssociationOptions validation and method names", "[unit]") {
+  std::string why;
+  CHECK(AssociationOptions{}.Validate(&why));
+  AssociationOptions o;
+  o.lambda = 0.0;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK_THAT(why, Catch::Contains("lambda"));
+  o = AssociationOptions{};
+  o.lambda = std::nan("");
+  CHECK_FALSE(o.Validate(&why));
+  o = AssociationOptions{};
+  o.min_confidence = 1.5;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK_THAT(why, Catch::Contains("min_confidence"));
+  o = AssociationOptions{};
+  o.empty_upper_bound = -1.0;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK_THAT(why, Catch::Contains("empty_upper_bound"));
+  o = AssociationOptions{};
+  o.method = static_cast<ClusteringMethod>(42);
+  CHECK_FALSE(o.Validate(&why));
+  CHECK_THAT(why, Catch::Contains("method"));
+  CHECK(o.Validate(nullptr) == false);
+  for (ClusteringMethod m :
+       {ClusteringMethod::kPdnc, ClusteringMethod::kCompleteLinkageEmptyAsZero,
+        ClusteringMethod::kCompleteLinkageEmptyAsUpper,
+        ClusteringMethod::kSingleLinkageEmptyAsUpper}) {
+    CHECK(ClusteringMethodFromName(ClusteringMethodName(m)) == m);
+  }
+  CHECK(ClusteringMethodName(ClusteringMethod::kPdnc) == "pdnc");
+  CHECK_FALSE(ClusteringMethodFromName("average_linkage").has_value());
+}
+
+}  // namespace
+}  // namespace mvtrack::association

@@ -1,0 +1,69 @@
+# Helpers in the spirit of colmap's: one call creates a target with its alias, include root,
+# language level and warning flags. Flags are target-scoped only; CMAKE_CXX_FLAGS is never edited.
+
+# --- Warnings: one INTERFACE target, linked PRIVATE to our own targets only. ------------------
+add_library(mvtrack_warnings INTERFACE)
+target_compile_options(mvtrack_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Woverloaded-virtual -Wconversion
+  $<$<BOOL:${MVTRACK_WERROR}>:-Werror>)
+
+# --- Sanitizers (address+thread together is rejected, as ceres does). -----------------------
+add_library(mvtrack_sanitizers INTERFACE)
+if(MVTRACK_SANITIZE)
+  if("address" IN_LIST MVTRACK_SANITIZE AND "thread" IN_LIST MVTRACK_SANITIZE)
+    message(FATAL_ERROR "MVTRACK_SANITIZE: 'address' and 'thread' cannot be combined")
+  endif()
+  foreach(s IN LISTS MVTRACK_SANITIZE)
+    if(NOT s MATCHES "^(address|undefined|thread|leak)$")
+      message(FATAL_ERROR "MVTRACK_SANITIZE: unknown sanitizer '${s}'")
+    endif()
+  endforeach()
+  string(REPLACE ";" "," _mvtrack_san "${MVTRACK_SANITIZE}")
+  target_compile_options(mvtrack_sanitizers INTERFACE
+    -fsanitize=${_mvtrack_san} -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(mvtrack_sanitizers INTERFACE -fsanitize=${_mvtrack_san})
+endif()
+
+# mvtrack_add_library(NAME <module> SRCS ... DEPS ... [PRIVATE_DEPS ...])
+#   creates mvtrack_<module> with alias mvtrack::<module>; lib/ is the include root.
+function(mvtrack_add_library)
+  cmake_parse_arguments(A "" "NAME" "SRCS;DEPS;PRIVATE_DEPS" ${ARGN})
+  set(t mvtrack_${A_NAME})
+  add_library(${t} STATIC ${A_SRCS})
+  add_library(mvtrack::${A_NAME} ALIAS ${t})
+  target_include_directories(${t} PUBLIC ${PROJECT_SOURCE_DIR}/lib)
+  target_compile_features(${t} PUBLIC cxx_std_20)
+  set_target_properties(${t} PROPERTIES CXX_EXTENSIONS OFF POSITION_INDEPENDENT_CODE ON)
+  target_link_libraries(${t} PUBLIC ${A_DEPS} mvtrack_sanitizers PRIVATE ${A_PRIVATE_DEPS} mvtrack_warnings)
+endfunction()
+
+# mvtrack_add_executable(NAME <name> SRCS ... DEPS ...)
+function(mvtrack_add_executable)
+  cmake_parse_arguments(A "" "NAME" "SRCS;DEPS" ${ARGN})
+  add_executable(${A_NAME} ${A_SRCS})
+  target_compile_features(${A_NAME} PRIVATE cxx_std_20)
+  set_target_properties(${A_NAME} PROPERTIES CXX_EXTENSIONS OFF)
+  target_link_libraries(${A_NAME} PRIVATE ${A_DEPS} mvtrack_sanitizers mvtrack_warnings)
+endfunction()
+
+# mvtrack_add_test(NAME <module> SRCS ... DEPS ... [LABELS ...])
+#   one test executable per module (mvtrack_<module>_tests); CTest names read "<module>/<case>"
+#   and the Catch2 seed is pinned.
+function(mvtrack_add_test)
+  cmake_parse_arguments(A "" "NAME" "SRCS;DEPS;LABELS" ${ARGN})
+  set(t mvtrack_${A_NAME}_tests)
+  add_executable(${t} ${A_SRCS})
+  target_compile_features(${t} PRIVATE cxx_std_20)
+  set_target_properties(${t} PROPERTIES CXX_EXTENSIONS OFF)
+  target_include_directories(${t} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+  target_link_libraries(${t} PRIVATE ${A_DEPS} mvtrack_test_main mvtrack_sanitizers mvtrack_warnings)
+  set(labels ${A_LABELS})
+  if(NOT labels)
+    set(labels unit)
+  endif()
+  catch_discover_tests(${t}
+    TEST_PREFIX "${A_NAME}/"
+    EXTRA_ARGS --rng-seed 12345
+    PROPERTIES LABELS "${labels}"
+    DISCOVERY_TIMEOUT 60)
+endfunction()

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages mvtrack needs, and nothing else. Idempotent: when everything is
+# present it only runs dpkg-query (well under a second). Needs root (or sudo) to install.
+# Usage: tools/dev/install_deps.sh [--check]   (--check: only report what is missing, exit 1 if any)
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build ccache pkg-config git
+  # algorithm and runtime libraries
+  libeigen3-dev libopencv-core-dev libopencv-calib3d-dev
+  libyaml-cpp-dev libspdlog-dev libsystemd-dev
+  # LCM: C/C++ library, lcm-gen and the logger, Java bindings; lcm.pc needs glib
+  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev
+  # Java types jar and lcm-spy (jchart2d draws its plots)
+  default-jdk-headless libjchart2d-java
+  # tests
+  catch2 python3
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+if [ "${1:-}" = "--check" ]; then
+  echo "install_deps: missing: ${missing[*]}"
+  exit 1
+fi
+
+echo "install_deps: installing ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null; then sudo="sudo"; else
+    echo "install_deps: not root and no sudo; install these packages: ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "install_deps: done"

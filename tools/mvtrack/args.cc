@@ -1,0 +1,129 @@
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+#include "mvtrack/cli.h"
+
+namespace mvtrack::cli {
+
+Args& Args::Option(const std::string& name, const std::string& help,
+                   const std::string& default_value) {
+  options_[name] = Spec{help, default_value, false};
+  option_order_.push_back(name);
+  values_[name] = default_value;
+  return *this;
+}
+
+Args& Args::Flag(const std::string& name, const std::string& help) {
+  options_[name] = Spec{help, "", true};
+  option_order_.push_back(name);
+  return *this;
+}
+
+Args& Args::Positional(const std::string& name, const std::string& help, bool required) {
+  positional_specs_.emplace_back(name, help);
+  positional_required_.push_back(required);
+  return *this;
+}
+
+std::string Args::Help(const std::string& usage_line, const std::string& description) const {
+  std::ostringstream os;
+  os << "usage: " << usage_line << "\n\n" << description << "\n";
+  if (!positional_specs_.empty()) {
+    os << "\narguments:\n";
+    for (const auto& [name, help] : positional_specs_) os << "  " << name << "\n      " << help << "\n";
+  }
+  os << "\noptions:\n";
+  for (const std::string& name : option_order_) {
+    const Spec& s = options_.at(name);
+    os << "  --" << name << (s.is_flag ? "" : " VALUE") << "\n      " << s.help;
+    if (!s.is_flag && !s.default_value.empty()) os << " (default: " << s.default_value << ")";
+    os << "\n";
+  }
+  os << "  --help\n      show this help and exit\n";
+  return os.str();
+}
+
+bool Args::Parse(int argc, char** argv, const std::string& usage_line,
+                 const std::string& description) {
+  std::vector<std::string> positionals;
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::cout << Help(usage_line, description);
+      return false;
+    }
+    if (arg.rfind("--", 0) == 0) {
+      std::string name = arg.substr(2);
+      std::optional<std::string> value;
+      const auto eq = name.find('=');
+      if (eq != std::string::npos) {
+        value = name.substr(eq + 1);
+        name = name.substr(0, eq);
+      }
+      auto it = options_.find(name);
+      if (it == options_.end()) throw UsageError("unknown option --" + name + " (see --help)");
+      if (it->second.is_flag) {
+        if (value) throw UsageError("--" + name + " takes no value");
+        given_[name] = true;
+        continue;
+      }
+      if (!value) {
+        if (i + 1 >= argc) throw UsageError("--" + name + " needs a value");
+        value = argv[++i];
+      }
+      values_[name] = *value;
+      given_[name] = true;
+      continue;
+    }
+    positionals.push_back(arg);
+  }
+  if (positionals.size() > positional_specs_.size()) {
+    throw UsageError("unexpected argument '" + positionals[positional_specs_.size()] + "'");
+  }
+  for (std::size_t i = 0; i < positional_specs_.size(); ++i) {
+    if (i < positionals.size()) {
+      values_[positional_specs_[i].first] = positionals[i];
+      given_[positional_specs_[i].first] = true;
+    } else if (positional_required_[i]) {
+      throw UsageError("missing argument " + positional_specs_[i].first);
+    }
+  }
+  return true;
+}
+
+std::string Args::Get(const std::string& name) const {
+  auto it = values_.find(name);
+  return it == values_.end() ? std::string() : it->second;
+}
+
+bool Args::Has(const std::string& name) const {
+  auto it = given_.find(name);
+  return it != given_.end() && it->second;
+}
+
+double Args::GetDouble(const std::string& name) const {
+  const std::string s = Get(name);
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || end == s.c_str() || *end != '\0' || errno != 0 || !std::isfinite(v)) {
+    throw UsageError("--" + name + ": '" + s + "' is not a finite number");
+  }
+  return v;
+}
+
+std::int64_t Args::GetInt(const std::string& name) const {
+  const std::string s = Get(name);
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(s.c_str(), &end, 10);
+  if (s.empty() || end == s.c_str() || *end != '\0' || errno != 0) {
+    throw UsageError("--" + name + ": '" + s + "' is not an integer");
+  }
+  return v;
+}
+
+}  // namespace mvtrack::cli

@@ -1,0 +1,57 @@
+#pragma once
+/// @file
+/// The `mvtrack` command-line program: a thin dispatcher over one file per subcommand (as
+/// colmap's exe/). Each subcommand is `int Run<Name>(int argc, char** argv)` with argv[0] being
+/// the subcommand name; it prints its own --help and returns a process exit code.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mvtrack::cli {
+
+/// Bad command-line usage: printed with the subcommand's usage line, exit code 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A small strict argument parser: `--name value`, `--name=value`, `--flag`, positionals.
+/// Unknown options are errors. Not thread-safe (used from main only).
+class Args {
+ public:
+  /// Declares an option taking a value, or a boolean flag.
+  Args& Option(const std::string& name, const std::string& help, const std::string& default_value = "");
+  Args& Flag(const std::string& name, const std::string& help);
+  Args& Positional(const std::string& name, const std::string& help, bool required = true);
+
+  /// Parses argv[1..argc); returns false if --help was given (help already printed).
+  /// @throws UsageError on unknown options, missing values or missing positionals.
+  bool Parse(int argc, char** argv, const std::string& usage_line, const std::string& description);
+
+  std::string Get(const std::string& name) const;
+  bool Has(const std::string& name) const;  ///< flag given, or option given explicitly
+  double GetDouble(const std::string& name) const;
+  std::int64_t GetInt(const std::string& name) const;
+  std::string Help(const std::string& usage_line, const std::string& description) const;
+
+ private:
+  struct Spec {
+    std::string help;
+    std::string default_value;
+    bool is_flag = false;
+  };
+  std::map<std::string, Spec> options_;
+  std::vector<std::string> option_order_;
+  std::vector<std::pair<std::string, std::string>> positional_specs_;
+  std::vector<bool> positional_required_;
+  std::map<std::string, std::string> values_;
+  std::map<std::string, bool> given_;
+};
+
+int RunDemo(int argc, char** argv);
+
+}  // namespace mvtrack::cli

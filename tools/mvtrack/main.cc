@@ -1,0 +1,57 @@
+// mvtrack: the command-line program. A thin dispatcher: one file per subcommand.
+
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "mvtrack/cli.h"
+
+namespace {
+
+struct Command {
+  const char* name;
+  const char* summary;
+  int (*run)(int, char**);
+};
+
+constexpr Command kCommands[] = {
+    {"demo", "simulate a small scene, track it, print tracks and accuracy", mvtrack::cli::RunDemo},
+};
+
+void PrintUsage(std::ostream& os) {
+  os << "usage: mvtrack <command> [options]   (mvtrack <command> --help for details)\n\n"
+        "Multi-view multi-person 3D tracking (Yang et al., the unified MM-tracking framework).\n\n"
+        "commands:\n";
+  for (const Command& c : kCommands) os << "  " << c.name << std::string(14 - std::strlen(c.name), ' ') << c.summary << "\n";
+  os << "  version       print the version\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0 ||
+      std::strcmp(argv[1], "help") == 0) {
+    PrintUsage(argc < 2 ? std::cerr : std::cout);
+    return argc < 2 ? 2 : 0;
+  }
+  if (std::strcmp(argv[1], "version") == 0 || std::strcmp(argv[1], "--version") == 0) {
+    std::cout << "mvtrack " << MVTRACK_VERSION << "\n";
+    return 0;
+  }
+  for (const Command& c : kCommands) {
+    if (std::strcmp(argv[1], c.name) != 0) continue;
+    try {
+      return c.run(argc - 1, argv + 1);
+    } catch (const mvtrack::cli::UsageError& e) {
+      std::cerr << "mvtrack " << c.name << ": " << e.what() << "\n";
+      return 2;
+    } catch (const std::exception& e) {
+      std::cerr << "mvtrack " << c.name << ": error: " << e.what() << "\n";
+      return 1;
+    }
+  }
+  std::cerr << "mvtrack: unknown command '" << argv[1] << "'\n\n";
+  PrintUsage(std::cerr);
+  return 2;
+}
