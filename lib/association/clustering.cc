@@ -175,7 +175,7 @@ std::vector<std::vector<int>> ClusterInPlace(int n,
                                              const AssociationOptions& options,
                                              std::vector<MergeStep>* trace) {
   std::string why;
-  MVTRACK_CHECK_MSG(options.Validate(&why), "ClusterTracklets: invalid AssociationOptions");
+  MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
   if (trace != nullptr) trace->clear();
   Clusterer clusterer(n, packed, options);
   clusterer.Run(trace);

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 
 #include "core/check.h"
+#include "geometry/epipolar.h"
 
 namespace mvtrack::association {
 namespace {
@@ -19,21 +21,6 @@ bool Usable(const core::Observation2D& o, std::size_t k, double min_confidence) 
   return c > 0.0 && c >= min_confidence;
 }
 
-/// Eq. 2 for one pair of points. Same value as geometry::NormalizedEpipolarDistance, computed
-/// with the algebraic residual r = x_b^T F x_a that both one-sided distances share:
-/// d(x_a, F^T x_b) / s_a + d(x_b, F x_a) / s_b = |r| / (|(F^T x_b)_xy| s_a) + |r| / (|(F x_a)_xy| s_b).
-/// Not finite when a point is exactly at an epipole (a degenerate line).
-double NormalizedEpipolar(const Vec2& x_a, double s_a, const Vec2& x_b, double s_b, const Mat3& f) {
-  const double lb_x = f(0, 0) * x_a.x() + f(0, 1) * x_a.y() + f(0, 2);  // F x_a: line in b
-  const double lb_y = f(1, 0) * x_a.x() + f(1, 1) * x_a.y() + f(1, 2);
-  const double lb_z = f(2, 0) * x_a.x() + f(2, 1) * x_a.y() + f(2, 2);
-  const double la_x = f(0, 0) * x_b.x() + f(1, 0) * x_b.y() + f(2, 0);  // F^T x_b: line in a
-  const double la_y = f(0, 1) * x_b.x() + f(1, 1) * x_b.y() + f(2, 1);
-  const double r = std::abs(lb_x * x_b.x() + lb_y * x_b.y() + lb_z);
-  return r / (std::sqrt(la_x * la_x + la_y * la_y) * std::abs(s_a)) +
-         r / (std::sqrt(lb_x * lb_x + lb_y * lb_y) * std::abs(s_b));
-}
-
 /// Eq. 2 averaged over the points usable in both observations; nullopt if there is none.
 std::optional<double> FrameDistance(const core::Observation2D& a,
                                     const core::Observation2D& b,
@@ -45,14 +32,22 @@ std::optional<double> FrameDistance(const core::Observation2D& a,
   int used = 0;
   for (std::size_t k = 0; k < num_points; ++k) {
     if (!Usable(a, k, min_confidence) || !Usable(b, k, min_confidence)) continue;
-    const double d =
-        NormalizedEpipolar(a.points_px[k], a.scale_px, b.points_px[k], b.scale_px, f_a_to_b);
+    const double d = geometry::NormalizedEpipolarDistance(a.points_px[k], a.scale_px,
+                                                          b.points_px[k], b.scale_px, f_a_to_b);
     if (!std::isfinite(d)) continue;
     sum += d;
     ++used;
   }
   if (used == 0) return std::nullopt;
   return sum / static_cast<double>(used);
+}
+
+/// Eq. 4's mean(S) as a value. Sums of finite non-negative terms can only overflow to +inf
+/// (absurd inputs, e.g. a scale of 1e-300 px); that is clamped to the largest finite double so
+/// that the result stays a valid kValue (and far above any lambda).
+TrackletDistance MeanValue(double sum, int frames) {
+  return TrackletDistance::Value(
+      std::min(sum / static_cast<double>(frames), std::numeric_limits<double>::max()));
 }
 
 bool DisjointRanges(const core::Tracklet2D& a, const core::Tracklet2D& b) {
@@ -71,6 +66,8 @@ class AllPairs {
            const std::vector<core::Tracklet2D>& tracklets,
            const AssociationOptions& options)
       : rig_(rig), n_(tracklets.size()) {
+    std::string why;
+    MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
     // Group tracklets by camera (rig order), keeping input order inside a camera.
     std::vector<int> camera_index(n_);
     for (std::size_t i = 0; i < n_; ++i) {
@@ -142,7 +139,7 @@ class AllPairs {
       // Same camera: ∞ with a common frame, else ∅ (Eq. 4).
       for (std::size_t a = group_begin_[g]; a < group_begin_[g + 1]; ++a) {
         for (std::size_t b = a + 1; b < group_begin_[g + 1]; ++b) {
-          if (CountCommonFrames(a, b, 1) > 0) Set(&matrix, a, b, TrackletDistance::Infinite());
+          if (HaveCommonFrame(a, b)) Set(&matrix, a, b, TrackletDistance::Infinite());
         }
       }
       for (std::size_t h = g + 1; h < num_groups; ++h) {
@@ -185,23 +182,20 @@ class AllPairs {
     }
   }
 
-  /// Common frames of flat tracklets a and b, counting at most `limit`.
-  std::size_t CountCommonFrames(std::size_t a, std::size_t b, std::size_t limit) const {
-    std::size_t count = 0;
+  /// Whether flat tracklets a and b share a frame.
+  bool HaveCommonFrame(std::size_t a, std::size_t b) const {
     std::size_t ia = frame_begin_[a], ib = frame_begin_[b];
     const std::size_t ea = frame_begin_[a + 1], eb = frame_begin_[b + 1];
-    while (ia < ea && ib < eb && count < limit) {
+    while (ia < ea && ib < eb) {
       if (frames_[ia] < frames_[ib]) {
         ++ia;
       } else if (frames_[ib] < frames_[ia]) {
         ++ib;
       } else {
-        ++count;
-        ++ia;
-        ++ib;
+        return true;
       }
     }
-    return count;
+    return false;
   }
 
   /// Eq. 3-4 for a in group g and b in group h (different cameras); lines_a_ / lines_b_ hold
@@ -209,8 +203,8 @@ class AllPairs {
   TrackletDistance CrossCamera(std::size_t g, std::size_t a, std::size_t h, std::size_t b,
                                double cutoff) const {
     const std::size_t ea = frame_begin_[a + 1], eb = frame_begin_[b + 1];
-    if (frame_begin_[a] == ea || frame_begin_[b] == eb || frames_[ea - 1] < frames_[frame_begin_[b]] ||
-        frames_[eb - 1] < frames_[frame_begin_[a]]) {
+    if (frame_begin_[a] == ea || frame_begin_[b] == eb ||
+        frames_[ea - 1] < frames_[frame_begin_[b]] || frames_[eb - 1] < frames_[frame_begin_[a]]) {
       return TrackletDistance::Empty();  // Ψ_a ∩ Ψ_b = ∅
     }
     // Upper bound of |Ψ_a ∩ Ψ_b| (frames are distinct integers): the early exit's denominator.
@@ -261,14 +255,16 @@ class AllPairs {
         sum += frame_sum / static_cast<double>(used_points);
         ++used_frames;
         if (bound_frames > 0.0 && sum >= stop_sum) {
-          return TrackletDistance::Value(std::max(cutoff, sum / bound_frames));  // <= mean
+          // Proven: mean >= sum / bound_frames >= cutoff. Report that lower bound.
+          return TrackletDistance::Value(std::min(std::max(cutoff, sum / bound_frames),
+                                                  std::numeric_limits<double>::max()));
         }
       }
       ++ia;
       ++ib;
     }
     if (used_frames == 0) return TrackletDistance::Empty();  // no common usable point
-    return TrackletDistance::Value(sum / static_cast<double>(used_frames));  // Eq. 4, mean(S)
+    return MeanValue(sum, used_frames);  // Eq. 4, mean(S)
   }
 
   const geometry::CameraRig& rig_;
@@ -358,7 +354,7 @@ TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
     }
   }
   if (used_frames == 0) return TrackletDistance::Empty();  // no common (usable) frame
-  return TrackletDistance::Value(sum / static_cast<double>(used_frames));  // Eq. 4, mean(S)
+  return MeanValue(sum, used_frames);  // Eq. 4, mean(S)
 }
 
 DistanceMatrix ComputeDistanceMatrix(const geometry::CameraRig& rig,

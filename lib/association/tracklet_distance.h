@@ -91,12 +91,12 @@ TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
 
 /// Eq. 4 for every pair of `tracklets`: ComputeTrackletDistance of each pair (with the rig's
 /// F), up to rounding. Every tracklet's camera must be in `rig` (checked with MVTRACK_CHECK: the
-/// caller builds tracklets from the rig's cameras, so an unknown camera is a programmer error).
-/// Computed camera pair by camera pair on a flat copy of the tracklets, with each point's
-/// epipolar line in the other camera computed once per camera pair, so Eq. 2 costs two dot
-/// products per point pair. Pairs whose frame ranges do not intersect are ∅ in O(1). Time
-/// O(n^2) plus O(common frames x points) per overlapping pair of different cameras; memory the
-/// matrix plus O(total observations x points).
+/// caller builds tracklets from the rig's cameras, so an unknown camera is a programmer error);
+/// `options` must pass Validate() (checked). Computed camera pair by camera pair on a flat copy
+/// of the tracklets, with each point's epipolar line in the other camera computed once per
+/// camera pair, so Eq. 2 costs two dot products per point pair. Pairs whose frame ranges do not
+/// intersect are ∅ in O(1). Time O(n^2) plus O(common frames x points) per overlapping pair of
+/// different cameras; memory the matrix plus O(total observations x points).
 DistanceMatrix ComputeDistanceMatrix(const geometry::CameraRig& rig,
                                      const std::vector<core::Tracklet2D>& tracklets,
                                      const AssociationOptions& options);

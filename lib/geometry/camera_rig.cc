@@ -7,6 +7,10 @@
 namespace mvtrack::geometry {
 
 CameraRig::CameraRig(std::vector<CameraModel> cameras, std::string* why) {
+  if (cameras.empty()) {
+    if (why != nullptr) *why = "the camera rig has no cameras";
+    return;
+  }
   std::sort(cameras.begin(), cameras.end(),
             [](const CameraModel& a, const CameraModel& b) { return a.id < b.id; });
   for (std::size_t i = 0; i < cameras.size(); ++i) {

@@ -1,6 +1,7 @@
 #include "geometry/epipolar.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -23,6 +24,10 @@ Mat3 FundamentalMatrix(const CameraModel& from, const CameraModel& to) {
                   to.cam_from_world.rotation * world_from_from.translation +
                       to.cam_from_world.translation};
   }();
+  // Without a baseline there is no epipolar geometry: return 0, whose lines are all "at
+  // infinity", so every epipolar distance is +inf instead of round-off noise scaled to unit norm.
+  const double scale = std::max({1.0, from.CenterInWorld().norm(), to.CenterInWorld().norm()});
+  if (to_from_from.translation.norm() <= 1e-9 * scale) return Mat3::Zero();
   const Mat3 e = Skew(to_from_from.translation) * to_from_from.rotation;
   const Mat3 f = to.K.inverse().transpose() * e * from.K.inverse();
   const double norm = f.norm();

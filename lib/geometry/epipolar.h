@@ -9,6 +9,8 @@ namespace mvtrack::geometry {
 
 /// Fundamental matrix F with x_to^T F x_from = 0 for undistorted pixels: F * x_from is the
 /// epipolar line of x_from in camera `to` (F_{c_from, c_to} in the paper's notation).
+/// Normalised to unit Frobenius norm. Cameras with (numerically) coincident centres have no
+/// epipolar geometry: the zero matrix is returned, and every distance computed with it is +inf.
 Mat3 FundamentalMatrix(const CameraModel& from, const CameraModel& to);
 
 /// Euclidean distance in pixels from point `x` to the line (a, b, c): a x + b y + c = 0.

@@ -19,7 +19,8 @@ std::optional<Vec3> TriangulateDlt(std::span<const Mat34> projections,
                                    std::span<const Vec2> points_px,
                                    std::span<const double> weights = {});
 
-/// Whether `point` is in front of the camera with projection `p` (positive depth).
+/// Whether `point` is in front of the camera with projection `p` (positive depth). Assumes
+/// p = K [R | t] with det(K) > 0, as CameraModel::ProjectionMatrix returns.
 bool InFront(const Mat34& p, const Vec3& point);
 
 /// Reprojection error in pixels of `point` in the view (p, x).

@@ -41,7 +41,8 @@ core::Tracklet2D TrackletAt(CameraId camera, std::vector<FrameIndex> frames) {
   t.camera_id = camera;
   t.frames = std::move(frames);
   for (std::size_t i = 0; i < t.frames.size(); ++i) {
-    t.observations.push_back(PointObservation(Vec2(100.0 + 10.0 * static_cast<double>(i), 200.0), 300.0));
+    const Vec2 x(100.0 + 10.0 * static_cast<double>(i), 200.0);
+    t.observations.push_back(PointObservation(x, 300.0));
   }
   return t;
 }
@@ -67,6 +68,7 @@ TEST_CASE("normalized epipolar distance does not depend on the person-to-camera 
     REQUIRE(o1);
     // Without the bias both distances vanish: the construction is consistent.
     const auto clean = ObserveBoxPerson(cameras[1], person, foot, Vec3::Zero());
+    REQUIRE(clean);
     REQUIRE(geometry::SymmetricEpipolarDistance(o0->points_px[0], clean->points_px[0], f) <
             1e-6);
     normalized.push_back(geometry::NormalizedEpipolarDistance(

@@ -3,6 +3,7 @@
 // suites rely on them, so they must themselves be right.
 
 #include <catch2/catch.hpp>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 #include <random>

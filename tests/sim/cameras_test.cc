@@ -2,6 +2,7 @@
 // ceiling grid (every camera above the room, pitched down, the floor covered).
 
 #include <catch2/catch.hpp>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <numbers>
 #include <set>

@@ -142,7 +142,7 @@ TEST_CASE("an empty room yields only false positives", "[unit][sim]") {
   CHECK(false_positives > 200);  // Poisson(2) x 150 camera-frames: 300 expected
 }
 
-TEST_CASE("same options give the identical scene; another seed a different one",
+TEST_CASE("same options give the identical scene, another seed a different one",
           "[unit][sim]") {
   const Scene a = GenerateScene(Busy());
   const Scene b = GenerateScene(Busy());

@@ -1,4 +1,5 @@
 #pragma once
+#include <Eigen/Geometry>
 /// @file
 /// Synthetic scene for the triangulation tests: four calibrated cameras in the corners of a
 /// 6 m x 6 m room and walking 14-joint skeletons (Shelf/Campus joint order) whose 2D
