@@ -16,6 +16,8 @@ packages=(
   default-jdk-headless libjchart2d-java
   # tests
   catch2 python3
+  # lcm-spy GUI smoke test and screenshots (virtual X server)
+  xvfb xauth
 )
 
 missing=()
