@@ -52,6 +52,18 @@ class Args {
   std::map<std::string, bool> given_;
 };
 
+/// `mvtrack demo`: simulate a scene, track it, print tracks and accuracy (demo.cc).
 int RunDemo(int argc, char** argv);
+/// `mvtrack replay`: track a recorded detections log deterministically (replay.cc).
+int RunReplay(int argc, char** argv);
+/// `mvtrack eval`: score a track output against ground truth (eval.cc).
+int RunEval(int argc, char** argv);
+/// `mvtrack diff`: compare two track outputs frame by frame (diff.cc).
+int RunDiff(int argc, char** argv);
+/// `mvtrack check-config`: validate an options file (and a calibration) (check_config.cc).
+int RunCheckConfig(int argc, char** argv);
+/// `mvtrack convert`: datasets and JSON-lines detections -> detections log, calibration,
+/// ground truth (convert.cc).
+int RunConvert(int argc, char** argv);
 
 }  // namespace mvtrack::cli

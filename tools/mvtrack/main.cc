@@ -17,6 +17,13 @@ struct Command {
 
 constexpr Command kCommands[] = {
     {"demo", "simulate a small scene, track it, print tracks and accuracy", mvtrack::cli::RunDemo},
+    {"replay", "track a recorded detections log (deterministic, offline)", mvtrack::cli::RunReplay},
+    {"eval", "score tracks against ground truth (MOTA, IDF1, MPJPE, PCP)", mvtrack::cli::RunEval},
+    {"diff", "compare two track outputs frame by frame", mvtrack::cli::RunDiff},
+    {"check-config", "validate a tracker options file (and a calibration)",
+     mvtrack::cli::RunCheckConfig},
+    {"convert", "convert a dataset or JSON-lines detections into a detections log",
+     mvtrack::cli::RunConvert},
 };
 
 void PrintUsage(std::ostream& os) {

@@ -1,0 +1,306 @@
+#include "datasets/wildtrack.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <utility>
+
+#include "core/check.h"
+#include "datasets/internal/common.h"
+#include "datasets/internal/json_document.h"
+
+namespace mvtrack::datasets {
+namespace {
+
+using internal::JsonValue;
+
+constexpr double kWildtrackFps = 2.0;  // annotated frames: every 5th image of a 10 fps video
+constexpr double kCmToM = 0.01;
+// Largest allowed difference between the file's R and Rodrigues(rvec).
+constexpr double kRotationTolerance = 1e-6;
+
+// One MVDeTr box: [left, top, width, height, -1, cam].
+struct MvdetrBox {
+  core::BoxPx box;
+  std::size_t camera = 0;  // index into the camera list
+};
+
+// frame -> boxes in file order.
+std::map<FrameIndex, std::vector<MvdetrBox>> LoadMvdetrBoxes(const std::filesystem::path& file,
+                                                             std::size_t num_cameras) {
+  const JsonValue root = internal::LoadJsonFile(file);
+  std::map<FrameIndex, std::vector<MvdetrBox>> out;
+  for (const auto& [key, value] : root.Items()) {
+    if (key.empty() || key.size() > 9 || key.find_first_not_of("0123456789") != std::string::npos) {
+      value.Fail("frame key \"" + key + "\" is not a non-negative integer");
+    }
+    const FrameIndex frame = static_cast<FrameIndex>(std::stoll(key));
+    std::vector<MvdetrBox> boxes;
+    for (std::size_t i = 0; i < value.Size(); ++i) {
+      const JsonValue entry = value.At(i);
+      const std::vector<double> v = entry.AsDoubles(6);
+      if (!(v[2] > 0.0 && v[3] > 0.0)) entry.Fail("box width and height must be positive");
+      const double cam = v[5];
+      if (cam != std::floor(cam) || cam < 0.0 || cam >= static_cast<double>(num_cameras)) {
+        entry.Fail("camera index " + std::to_string(cam) + " is not one of the " +
+                   std::to_string(num_cameras) + " cameras");
+      }
+      MvdetrBox b;
+      b.box = core::BoxPx{v[0], v[1], v[0] + v[2], v[1] + v[3]};
+      b.camera = static_cast<std::size_t>(cam);
+      boxes.push_back(b);
+    }
+    if (!out.emplace(frame, std::move(boxes)).second) value.Fail("frame " + key + " appears twice");
+  }
+  if (out.empty()) throw DatasetError(file.string(), "no frames");
+  return out;
+}
+
+std::vector<geometry::CameraModel> LoadWildtrackCalibration(const std::filesystem::path& file) {
+  const JsonValue root = internal::LoadJsonFile(file);
+  const std::string units = root["world_units"].AsString();
+  if (units != "cm") root["world_units"].Fail("expected \"cm\", got \"" + units + "\"");
+  const JsonValue size = root["image_size"];
+  const std::int64_t width = size.At(0).AsInt();
+  const std::int64_t height = size.At(1).AsInt();
+  if (size.Size() != 2 || width <= 0 || height <= 0 || width > 100000 || height > 100000) {
+    size.Fail("expected [width, height] with positive sizes");
+  }
+  const JsonValue cams = root["cameras"];
+  std::vector<geometry::CameraModel> cameras;
+  for (std::size_t i = 0; i < cams.Size(); ++i) {
+    const JsonValue cam = cams.At(i);
+    if (cam["index"].AsInt() != static_cast<std::int64_t>(i)) {
+      cam["index"].Fail("cameras must be listed in index order 0, 1, ...");
+    }
+    const Mat3 K = internal::Mat3FromRowMajor(cam["K"].AsMatrix(3, 3));
+    const std::vector<double> dist = cam["dist"].AsDoubles(5);
+    const std::vector<double> rvec = cam["rvec"].AsDoubles(3);
+    const std::vector<double> tvec = cam["tvec_cm"].AsDoubles(3);
+    const Mat3 file_rotation = internal::Mat3FromRowMajor(cam["R"].AsMatrix(3, 3));
+    // Rodrigues: rotation by |rvec| about rvec / |rvec|.
+    const Vec3 r(rvec[0], rvec[1], rvec[2]);
+    const double angle = r.norm();
+    const Mat3 rotation =
+        angle > 0.0 ? Mat3(Eigen::AngleAxisd(angle, r / angle)) : Mat3(Mat3::Identity());
+    if ((rotation - file_rotation).cwiseAbs().maxCoeff() > kRotationTolerance) {
+      cam["R"].Fail("R differs from Rodrigues(rvec) by more than 1e-6");
+    }
+    geometry::Distortion distortion;
+    distortion.k1 = dist[0];
+    distortion.k2 = dist[1];
+    distortion.p1 = dist[2];
+    distortion.p2 = dist[3];
+    distortion.k3 = dist[4];
+    cameras.push_back(internal::MakeCamera(
+        file.string(), "camera " + std::to_string(i), static_cast<CameraId>(i),
+        static_cast<int>(width), static_cast<int>(height), K, rotation,
+        kCmToM * Vec3(tvec[0], tvec[1], tvec[2]), distortion));
+  }
+  if (cameras.empty()) throw DatasetError(file.string(), "no cameras");
+  return cameras;
+}
+
+}  // namespace
+
+Dataset LoadWildtrack(const std::filesystem::path& data_root) {
+  const std::filesystem::path dir = data_root / "wildtrack";
+  Dataset ds;
+  ds.name = "wildtrack";
+  ds.fps = kWildtrackFps;
+  ds.cameras = LoadWildtrackCalibration(dir / "derived" / "calibration_wildtrack.json");
+  const std::map<FrameIndex, std::vector<MvdetrBox>> boxes =
+      LoadMvdetrBoxes(dir / "rest" / "MVDeTr_test.json", ds.cameras.size());
+  std::vector<FrameIndex> frames;
+  for (const auto& [frame, list] : boxes) frames.push_back(frame);
+  internal::InitDetectionGrid(frames, ds.cameras, ds.fps, &ds.detections, &ds.source_ids);
+  std::size_t f = 0;
+  for (const auto& [frame, list] : boxes) {
+    for (const MvdetrBox& b : list) {
+      core::Detection2D d;
+      d.box = b.box;
+      d.score = 1.0;
+      d.layout = core::KeypointLayoutId::kNone;
+      ds.detections[f][b.camera].detections.push_back(d);
+      ds.source_ids[f][b.camera].push_back(kUnknownSourceId);
+    }
+    ++f;
+  }
+  ds.gt_layout = core::KeypointLayoutId::kNone;
+  ds.protocol_notes =
+      "WILDTRACK (Chavdarova et al., CVPR 2018): 7 cameras (C1-C7 = ids 0-6), 1920x1080, "
+      "official calibration (intrinsic_zero, undistorted images; cm -> m; ground z = 0). "
+      "Detections: MVDeTr's boxes for the test frames " +
+      std::to_string(frames.front()) + "-" + std::to_string(frames.back()) +
+      " (annotated-frame indices, image file = 5 x index, 2 fps) from ReST's "
+      "MVDeTr_test.json, box-only, score 1. They are ground-plane detections drawn into every "
+      "view, not independent per-view detections. No ground truth: no MOTA/IDF1.";
+  return ds;
+}
+
+bool WildtrackGroundOptions::Validate(std::string* why) const {
+  if (!(std::isfinite(cluster_radius_m) && cluster_radius_m >= 0.0)) {
+    if (why != nullptr) *why = "wildtrack ground options: cluster_radius_m must be finite and >= 0";
+    return false;
+  }
+  return true;
+}
+
+std::vector<Mat3> WildtrackHomographies(const std::filesystem::path& data_root) {
+  const std::filesystem::path file = data_root / "wildtrack" / "rest" / "metainfo.json";
+  const JsonValue root = internal::LoadJsonFile(file);
+  const JsonValue seq = root["sequence1"];
+  const JsonValue list = seq["homography"];
+  const std::int64_t cam_nbr = seq["cam_nbr"].AsInt();
+  if (static_cast<std::int64_t>(list.Size()) != cam_nbr) {
+    list.Fail(std::to_string(list.Size()) + " homographies for cam_nbr " +
+              std::to_string(cam_nbr));
+  }
+  std::vector<Mat3> out;
+  for (std::size_t i = 0; i < list.Size(); ++i) {
+    const Mat3 h = internal::Mat3FromRowMajor(list.At(i).AsMatrix(3, 3));
+    if (!(std::abs(h.determinant()) > 0.0)) list.At(i).Fail("singular homography");
+    out.push_back(h);
+  }
+  return out;
+}
+
+std::vector<WildtrackGroundPoint> MergeGroundPoints(const std::vector<Vec2>& points_m,
+                                                    const std::vector<int>& cameras,
+                                                    double radius_m) {
+  MVTRACK_CHECK(points_m.size() == cameras.size());
+  const std::vector<Vec2>& points = points_m;
+  struct Cluster {
+    Vec2 sum = Vec2::Zero();
+    int count = 0;
+    std::uint64_t camera_mask = 0;
+    Vec2 mean() const { return sum / static_cast<double>(count); }
+  };
+  std::vector<Cluster> clusters(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    clusters[i].sum = points[i];
+    clusters[i].count = 1;
+    MVTRACK_CHECK(cameras[i] >= 0 && cameras[i] < 64);
+    clusters[i].camera_mask = std::uint64_t{1} << static_cast<unsigned>(cameras[i]);
+  }
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const auto distance = [&](std::size_t a, std::size_t b) {
+    if ((clusters[a].camera_mask & clusters[b].camera_mask) != 0) return kInf;
+    return (clusters[a].mean() - clusters[b].mean()).norm();
+  };
+  // Clusters stay in the order of their first point, so "lowest indices" is well defined.
+  // d[a * n + b] (a < b) holds the current distance; row_best[a] caches the minimum of row a
+  // over living b > a (the first such b on ties), so each merge costs O(n) plus the rows whose
+  // cached minimum pointed at one of the two merged clusters.
+  const std::size_t n = clusters.size();
+  std::vector<double> d(n * n, kInf);
+  std::vector<bool> alive(n, true);
+  std::vector<double> row_best(n, kInf);
+  std::vector<std::size_t> row_arg(n, n);
+  const auto recompute_row = [&](std::size_t a) {
+    row_best[a] = kInf;
+    row_arg[a] = n;
+    for (std::size_t b = a + 1; b < n; ++b) {
+      if (alive[b] && d[a * n + b] < row_best[a]) {
+        row_best[a] = d[a * n + b];
+        row_arg[a] = b;
+      }
+    }
+  };
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = a + 1; b < n; ++b) d[a * n + b] = distance(a, b);
+  }
+  for (std::size_t a = 0; a < n; ++a) recompute_row(a);
+  while (true) {
+    // The smallest distance; ties go to the lowest row, then (row_arg) the lowest column.
+    double best = kInf;
+    std::size_t best_a = n;
+    for (std::size_t a = 0; a < n; ++a) {
+      if (alive[a] && row_best[a] < best) {
+        best = row_best[a];
+        best_a = a;
+      }
+    }
+    if (best_a == n || !(best <= radius_m)) break;
+    const std::size_t best_b = row_arg[best_a];
+    clusters[best_a].sum += clusters[best_b].sum;
+    clusters[best_a].count += clusters[best_b].count;
+    clusters[best_a].camera_mask |= clusters[best_b].camera_mask;
+    alive[best_b] = false;
+    for (std::size_t o = 0; o < n; ++o) {
+      if (!alive[o] || o == best_a) continue;
+      const std::size_t lo = std::min(o, best_a);
+      const std::size_t hi = std::max(o, best_a);
+      d[lo * n + hi] = distance(lo, hi);
+    }
+    for (std::size_t o = 0; o < n; ++o) {
+      if (!alive[o]) continue;
+      if (o == best_a || row_arg[o] == best_a || row_arg[o] == best_b) {
+        recompute_row(o);
+      } else if (o < best_a) {
+        const double v = d[o * n + best_a];
+        if (v < row_best[o] || (v == row_best[o] && best_a < row_arg[o])) {
+          row_best[o] = v;
+          row_arg[o] = best_a;
+        }
+      }
+    }
+  }
+  std::vector<WildtrackGroundPoint> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!alive[i]) continue;
+    WildtrackGroundPoint p;
+    const Vec2 m = clusters[i].mean();
+    p.position_m = Vec3(m.x(), m.y(), 0.0);
+    p.num_views = clusters[i].count;
+    out.push_back(p);
+  }
+  std::sort(out.begin(), out.end(),
+            [](const WildtrackGroundPoint& a, const WildtrackGroundPoint& b) {
+              if (a.position_m.x() != b.position_m.x()) return a.position_m.x() < b.position_m.x();
+              return a.position_m.y() < b.position_m.y();
+            });
+  return out;
+}
+
+std::vector<WildtrackGroundFrame> WildtrackGroundPoints(const std::filesystem::path& data_root,
+                                                        const WildtrackGroundOptions& options) {
+  std::string why;
+  if (!options.Validate(&why)) throw DatasetError((data_root / "wildtrack").string(), why);
+  const std::vector<Mat3> homographies = WildtrackHomographies(data_root);
+  if (homographies.size() > 64) {
+    throw DatasetError((data_root / "wildtrack" / "rest" / "metainfo.json").string(),
+                       "more than 64 cameras");
+  }
+  std::vector<Mat3> ground_from_image;
+  for (const Mat3& h : homographies) ground_from_image.push_back(h.inverse());
+  const std::filesystem::path box_file = data_root / "wildtrack" / "rest" / "MVDeTr_test.json";
+  const std::map<FrameIndex, std::vector<MvdetrBox>> boxes =
+      LoadMvdetrBoxes(box_file, homographies.size());
+  std::vector<WildtrackGroundFrame> out;
+  for (const auto& [frame, list] : boxes) {
+    std::vector<Vec2> points;
+    std::vector<int> cameras;
+    for (const MvdetrBox& b : list) {
+      const Vec2 foot = b.box.bottom_center();
+      const Vec3 g = ground_from_image[b.camera] * Vec3(foot.x(), foot.y(), 1.0);
+      if (!(std::abs(g.z()) > 0.0)) {
+        throw DatasetError(box_file.string(), "frame " + std::to_string(frame) +
+                                                  ": a box's bottom centre maps to infinity");
+      }
+      points.push_back(kCmToM * g.head<2>() / g.z());
+      cameras.push_back(static_cast<int>(b.camera));
+    }
+    WildtrackGroundFrame gf;
+    gf.frame = frame;
+    gf.points = MergeGroundPoints(points, cameras, options.cluster_radius_m);
+    out.push_back(std::move(gf));
+  }
+  return out;
+}
+
+}  // namespace mvtrack::datasets

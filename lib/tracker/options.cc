@@ -1,0 +1,47 @@
+#include "tracker/options.h"
+
+#include <cmath>
+
+namespace mvtrack::tracker {
+
+bool TrackerOptions::Validate(std::string* why) const {
+  auto fail = [&](const std::string& reason) {
+    if (why != nullptr) *why = reason;
+    return false;
+  };
+  if (window_size < 2 || window_size > 10000) return fail("window_size (ν) must be in [2, 10000]");
+  if (window_step < 1 || window_step > window_size) {
+    return fail("window_step (δ) must be in [1, window_size]");
+  }
+  if (mode == InputMode::kPoses &&
+      (layout == core::KeypointLayoutId::kNone || core::GetKeypointLayout(layout).num_joints() == 0)) {
+    return fail("pose mode needs a keypoint layout");
+  }
+  if (!std::isfinite(ground_height_m)) return fail("ground_height_m must be finite");
+  if (!(min_detection_score >= 0.0 && min_detection_score <= 1.0)) {
+    return fail("min_detection_score must be in [0, 1]");
+  }
+  if (!(min_keypoint_confidence >= 0.0 && min_keypoint_confidence <= 1.0)) {
+    return fail("min_keypoint_confidence must be in [0, 1]");
+  }
+  if (min_pose_keypoints < 1) return fail("min_pose_keypoints must be >= 1");
+  if (min_tracklet_length < 1) return fail("min_tracklet_length must be >= 1");
+  if (max_frame_jump < window_size) return fail("max_frame_jump must be >= window_size");
+  if (!(box_margin_fraction >= 0.0 && box_margin_fraction <= 10.0)) {
+    return fail("box_margin_fraction must be in [0, 10]");
+  }
+  if (max_detections_per_frame < 1) return fail("max_detections_per_frame must be >= 1");
+  std::string nested;
+  if (!sort.Validate(&nested)) return fail("sort: " + nested);
+  if (!association.Validate(&nested)) return fail("association: " + nested);
+  if (!triangulation.Validate(&nested)) return fail("triangulation: " + nested);
+  if (!linking.Validate(&nested)) return fail("linking: " + nested);
+  return true;
+}
+
+int NumPoints(const TrackerOptions& options) {
+  return options.mode == InputMode::kPoses ? core::GetKeypointLayout(options.layout).num_joints()
+                                           : 1;
+}
+
+}  // namespace mvtrack::tracker

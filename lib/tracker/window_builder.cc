@@ -1,0 +1,155 @@
+#include "tracker/window_builder.h"
+
+#include <algorithm>
+#include <iterator>
+#include <utility>
+
+#include "core/check.h"
+
+namespace mvtrack::tracker {
+
+WindowBuilder::WindowBuilder(const geometry::CameraRig& rig, const TrackerOptions& options)
+    : window_size_(options.window_size),
+      window_step_(options.window_step),
+      min_tracklet_length_(options.min_tracklet_length),
+      max_missed_windows_(options.linking.max_missed_windows) {
+  for (int i = 0; i < rig.size(); ++i) camera_ids_.push_back(rig.camera(i).id);
+  tracks_.resize(camera_ids_.size());
+}
+
+std::size_t WindowBuilder::num_stored_observations() const {
+  std::size_t n = 0;
+  for (const auto& camera : tracks_) {
+    for (const auto& [id, observations] : camera) n += observations.size();
+  }
+  return n;
+}
+
+void WindowBuilder::Add(const FrameEvents& events, TrackedCameraFrame frame,
+                        std::vector<BuilderOutput>* out) {
+  MVTRACK_CHECK(out != nullptr);
+  MVTRACK_CHECK(frame.camera_index >= 0 &&
+                frame.camera_index < static_cast<int>(camera_ids_.size()));
+  if (events.close_open_frame) {
+    MVTRACK_CHECK_MSG(open_frame_ && frame.frame > *open_frame_,
+                      "close_open_frame needs an open frame older than this camera-frame");
+    CloseOpenFrame(out);
+  }
+  if (events.reanchor) {
+    MVTRACK_CHECK_MSG(last_closed_frame_ && !open_frame_, "reanchor needs a closed stream");
+    EndStream(out);
+  }
+  if (events.open_frame) {
+    MVTRACK_CHECK_MSG(!open_frame_, "open_frame while a frame is open");
+    open_frame_ = frame.frame;
+    open_utime_ = frame.utime;
+    if (!grid_origin_) grid_origin_ = frame.frame;
+    // Frames skipped since the last closed one complete the windows that end before this one.
+    EmitWindowsUpTo(frame.frame - 1, /*flushing=*/false, out);
+  } else {
+    MVTRACK_CHECK_MSG(open_frame_ && *open_frame_ == frame.frame,
+                      "a camera-frame of another frame than the open one without events");
+  }
+  open_utime_ = std::min(open_utime_, frame.utime);
+  auto& camera_tracks = tracks_[static_cast<std::size_t>(frame.camera_index)];
+  for (auto& [track_id, observation] : frame.observations) {
+    camera_tracks[track_id].push_back(TimedObservation{frame.frame, std::move(observation)});
+  }
+}
+
+void WindowBuilder::Flush(std::vector<BuilderOutput>* out) {
+  MVTRACK_CHECK(out != nullptr);
+  if (open_frame_) {
+    // Closed without the non-flushing pass: at a flush every window is emitted by EndStream.
+    out->push_back(ClosedFrame{*open_frame_, open_utime_});
+    last_closed_frame_ = *open_frame_;
+    open_frame_.reset();
+  }
+  if (last_closed_frame_) EndStream(out);
+}
+
+void WindowBuilder::CloseOpenFrame(std::vector<BuilderOutput>* out) {
+  const FrameIndex f = *open_frame_;
+  out->push_back(ClosedFrame{f, open_utime_});
+  last_closed_frame_ = f;
+  open_frame_.reset();
+  EmitWindowsUpTo(f, /*flushing=*/false, out);
+}
+
+void WindowBuilder::EmitWindowsUpTo(FrameIndex complete_through, bool flushing,
+                                    std::vector<BuilderOutput>* out) {
+  if (!grid_origin_) return;
+  const FrameIndex origin = *grid_origin_;
+  const std::int64_t nu = window_size_;
+  const std::int64_t delta = window_step_;
+  const std::int64_t half_overlap = (nu - delta) / 2;
+  while (true) {
+    const FrameIndex begin = origin + next_window_ * delta;
+    const FrameIndex end = begin + nu;
+    const bool complete = end - 1 <= complete_through;
+    if (!complete) {
+      if (!flushing || !last_closed_frame_ || begin > *last_closed_frame_) break;
+    }
+    const FrameIndex finalize_from = next_window_ == 0 ? begin : begin + half_overlap;
+    FrameIndex finalize_to = begin + half_overlap + delta;
+    if (flushing && last_closed_frame_ && begin + delta > *last_closed_frame_) {
+      finalize_to = *last_closed_frame_ + 1;  // the last window finalizes the tail
+    }
+    EmitWindow(window_id_offset_ + next_window_, begin, complete ? end : *last_closed_frame_ + 1,
+               finalize_from, finalize_to, out);
+    ++next_window_;
+  }
+}
+
+void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIndex end,
+                               FrameIndex finalize_from, FrameIndex finalize_to,
+                               std::vector<BuilderOutput>* out) {
+  WindowJob job;
+  job.window_id = window_id;
+  job.begin = begin;
+  job.end = end;
+  job.finalize_from = finalize_from;
+  job.finalize_to = finalize_to;
+  // Crop every camera's 2D tracks to the window (cameras in rig order, tracks by id).
+  for (std::size_t c = 0; c < tracks_.size(); ++c) {
+    for (const auto& [track_id, observations] : tracks_[c]) {
+      core::Tracklet2D t;
+      t.camera_id = camera_ids_[c];
+      t.track_id = track_id;
+      for (const TimedObservation& o : observations) {
+        if (o.frame < begin || o.frame >= end) continue;
+        t.frames.push_back(o.frame);
+        t.observations.push_back(o.observation);
+      }
+      if (static_cast<int>(t.frames.size()) >= min_tracklet_length_) {
+        job.tracklets.push_back(std::move(t));
+      }
+    }
+  }
+  out->push_back(std::move(job));
+
+  // Trim observations no later window needs (the next window begins at begin + δ).
+  const FrameIndex keep_from = begin + window_step_;
+  for (auto& camera_tracks : tracks_) {
+    for (auto it = camera_tracks.begin(); it != camera_tracks.end();) {
+      auto& obs = it->second;
+      obs.erase(obs.begin(), std::find_if(obs.begin(), obs.end(), [&](const TimedObservation& o) {
+                  return o.frame >= keep_from;
+                }));
+      it = obs.empty() ? camera_tracks.erase(it) : std::next(it);
+    }
+  }
+}
+
+void WindowBuilder::EndStream(std::vector<BuilderOutput>* out) {
+  EmitWindowsUpTo(last_closed_frame_ ? *last_closed_frame_ : 0, /*flushing=*/true, out);
+  out->push_back(StreamEnd{});
+  // A gap of more than max_missed_windows windows ends every live track in the linker.
+  window_id_offset_ += next_window_ + max_missed_windows_ + 2;
+  next_window_ = 0;
+  grid_origin_.reset();
+  last_closed_frame_.reset();
+  for (auto& camera_tracks : tracks_) camera_tracks.clear();
+}
+
+}  // namespace mvtrack::tracker

@@ -1,0 +1,127 @@
+#include "tracker/window_finalizer.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "core/check.h"
+#include "core/keypoint_layout.h"
+
+namespace mvtrack::tracker {
+namespace {
+
+int JointIndex(const core::KeypointLayout& layout, const char* name) {
+  for (int i = 0; i < layout.num_joints(); ++i) {
+    if (layout.joints[static_cast<std::size_t>(i)] == name) return i;
+  }
+  return -1;
+}
+
+}  // namespace
+
+WindowFinalizer::WindowFinalizer(const TrackerOptions& options)
+    : mode_(options.mode),
+      ground_height_m_(options.ground_height_m),
+      num_points_(NumPoints(options)),
+      linker_(options.linking) {
+  if (mode_ == InputMode::kPoses) {
+    const core::KeypointLayout& layout = core::GetKeypointLayout(options.layout);
+    left_hip_ = JointIndex(layout, "l_hip");
+    right_hip_ = JointIndex(layout, "r_hip");
+  }
+}
+
+void WindowFinalizer::AddClosedFrame(const ClosedFrame& frame) {
+  pending_[frame.frame] = PendingFrame{frame.frame, frame.utime, {}, false};
+}
+
+Vec3 WindowFinalizer::FootprintOf(const std::vector<std::optional<Vec3>>& points) const {
+  Vec3 p = Vec3::Zero();
+  if (mode_ == InputMode::kPoses) {
+    const int lh = left_hip_;
+    const int rh = right_hip_;
+    if (lh >= 0 && rh >= 0 && points[static_cast<std::size_t>(lh)] &&
+        points[static_cast<std::size_t>(rh)]) {
+      p = 0.5 * (*points[static_cast<std::size_t>(lh)] + *points[static_cast<std::size_t>(rh)]);
+    } else {
+      int n = 0;
+      for (const auto& q : points) {
+        if (q) {
+          p += *q;
+          ++n;
+        }
+      }
+      if (n > 0) p /= n;
+    }
+  } else if (!points.empty() && points.front()) {
+    p = *points.front();
+  }
+  p.z() = ground_height_m_;
+  return p;
+}
+
+linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
+                                              std::vector<Frame3D>* out) {
+  MVTRACK_CHECK(out != nullptr);
+  // Link to long-term tracks (Eq. 8-9).
+  linking::LinkResult link = linker_.Link(result.window_id, result.persons);
+  counters_.windows_processed += 1;
+  counters_.tracks_born += static_cast<std::int64_t>(link.born.size());
+  std::map<TrackId3D, const linking::LinkedTrack*> alive;
+  for (const linking::LinkedTrack& t : linker_.tracks()) alive[t.id] = &t;
+  for (std::size_t i = 0; i < result.persons.size(); ++i) {
+    const core::Tracklet3D& person = result.persons[i];
+    const TrackId3D id = link.track_of_tracklet[i];
+    auto first = first_frame_of_track_.try_emplace(id, person.frames.front()).first;
+    first->second = std::min(first->second, person.frames.front());
+    auto it = alive.find(id);
+    if (it == alive.end() || it->second->state == linking::TrackState::kTentative) continue;
+    for (std::size_t f = 0; f < person.frames.size(); ++f) {
+      const FrameIndex frame = person.frames[f];
+      if (frame < result.finalize_from || frame >= result.finalize_to) continue;
+      auto pending = pending_.find(frame);
+      if (pending == pending_.end() || pending->second.final) continue;
+      Track3D track;
+      track.id = id;
+      const auto& points = person.points[f];
+      int valid = 0;
+      for (const auto& p : points) valid += p ? 1 : 0;
+      if (valid == 0) continue;
+      if (mode_ == InputMode::kPoses) track.joints = points;
+      track.position = FootprintOf(points);
+      track.confidence = static_cast<double>(valid) / static_cast<double>(num_points_);
+      track.cameras = person.cameras;
+      track.age_frames = frame - first->second;
+      track.state = it->second->state;
+      pending->second.tracks.push_back(std::move(track));
+    }
+  }
+  for (TrackId3D id : link.died) first_frame_of_track_.erase(id);
+  for (auto& [frame, p] : pending_) {
+    if (frame >= result.finalize_from && frame < result.finalize_to) p.final = true;
+  }
+  EmitFinal(result.finalize_to, out);
+  return link;
+}
+
+void WindowFinalizer::EndStream(std::vector<Frame3D>* out) {
+  MVTRACK_CHECK(out != nullptr);
+  if (pending_.empty()) return;
+  EmitFinal(pending_.rbegin()->first + 1, out);
+}
+
+void WindowFinalizer::EmitFinal(FrameIndex up_to, std::vector<Frame3D>* out) {
+  while (!pending_.empty() && pending_.begin()->first < up_to) {
+    PendingFrame& p = pending_.begin()->second;
+    Frame3D f;
+    f.frame = p.frame;
+    f.utime = p.utime;
+    f.tracks = std::move(p.tracks);
+    std::sort(f.tracks.begin(), f.tracks.end(),
+              [](const Track3D& a, const Track3D& b) { return a.id < b.id; });
+    out->push_back(std::move(f));
+    ++counters_.frames_finalized;
+    pending_.erase(pending_.begin());
+  }
+}
+
+}  // namespace mvtrack::tracker

@@ -1,0 +1,84 @@
+#pragma once
+/// @file
+/// WindowFinalizer: the last stage. It links each window's persons to long-term 3D tracks
+/// (linking::WindowLinker, paper Eq. 8-9) strictly in window order, and turns the closed frames
+/// into finalized Frame3D outputs (footprints, 3D joints, confidence, age). Pure, single-owner,
+/// single-threaded object.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "core/types.h"
+#include "linking/window_linker.h"
+#include "tracker/options.h"
+#include "tracker/types.h"
+#include "tracker/window_builder.h"
+#include "tracker/window_job.h"
+
+namespace mvtrack::tracker {
+
+/// Cumulative counters of a WindowFinalizer.
+struct FinalizerCounters {
+  std::int64_t frames_finalized = 0;   ///< Frame3D emitted
+  std::int64_t windows_processed = 0;  ///< WindowResults linked
+  std::int64_t tracks_born = 0;        ///< long-term tracks started
+};
+
+/// Consumes, in the order of the WindowBuilder's output sequence, closed frames
+/// (AddClosedFrame), window results (Finalize; a result of ProcessWindowJob on that position's
+/// WindowJob) and stream ends (EndStream), and emits finalized frames in increasing frame order.
+/// A frame is output when the window that finalizes it has been linked (docs/DECISIONS.md
+/// "Tracker facade"): it holds the confirmed tracks of that window's persons at that frame.
+/// Footprint: box mode the triangulated point dropped onto z = ground_height_m; pose mode the
+/// hip midpoint (else the centroid of the triangulated joints) dropped onto the floor.
+///
+/// Single-owner, single-threaded; deterministic.
+class WindowFinalizer {
+ public:
+  /// `options` must be valid (checked by the caller: Tracker::Create / Pipeline::Create).
+  explicit WindowFinalizer(const TrackerOptions& options);
+
+  /// Registers a closed frame (a ClosedFrame of the builder's output).
+  void AddClosedFrame(const ClosedFrame& frame);
+
+  /// Links the next window's persons (Eq. 8-9), assigns their points in the window's finalize
+  /// range to the closed frames, and appends every frame that became final to `out` (in
+  /// increasing order). Results must come in increasing window_id (checked by the linker).
+  /// Returns the linker's decisions.
+  linking::LinkResult Finalize(const WindowResult& result, std::vector<Frame3D>* out);
+
+  /// A StreamEnd of the builder's output: appends every closed frame not yet output to `out`.
+  void EndStream(std::vector<Frame3D>* out);
+
+  /// Cumulative counters.
+  const FinalizerCounters& counters() const { return counters_; }
+  /// The long-term tracks (diagnostics).
+  const linking::WindowLinker& linker() const { return linker_; }
+  /// Number of closed frames waiting to be output.
+  std::size_t num_pending_frames() const { return pending_.size(); }
+
+ private:
+  struct PendingFrame {
+    FrameIndex frame;
+    Utime utime;
+    std::vector<Track3D> tracks;  // filled when its finalizing window is linked
+    bool final = false;
+  };
+
+  Vec3 FootprintOf(const std::vector<std::optional<Vec3>>& points) const;
+  void EmitFinal(FrameIndex up_to, std::vector<Frame3D>* out);
+
+  InputMode mode_ = InputMode::kBoxes;
+  double ground_height_m_ = 0.0;
+  int num_points_ = 1;
+  int left_hip_ = -1;   // pose mode: joint index of l_hip, -1 if the layout has none
+  int right_hip_ = -1;  // pose mode: joint index of r_hip, -1 if the layout has none
+  linking::WindowLinker linker_;
+  std::map<TrackId3D, FrameIndex> first_frame_of_track_;
+  std::map<FrameIndex, PendingFrame> pending_;  // closed frames not yet emitted
+  FinalizerCounters counters_;
+};
+
+}  // namespace mvtrack::tracker

@@ -1,0 +1,80 @@
+#pragma once
+/// @file
+/// One sliding window's work: the immutable job the WindowBuilder emits when a window closes,
+/// and ProcessWindowJob, which runs cross-view association (Eq. 2-4, PDNC, Algorithm 1) and
+/// CMMT (Algorithm 2, Eq. 5-7) on it. Window linking (Eq. 8-9) is not part of the job: it
+/// depends on the previous windows and runs in window order in the WindowFinalizer.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/observation.h"
+#include "core/types.h"
+#include "geometry/camera_rig.h"
+#include "tracker/options.h"
+#include "triangulation/triangulation.h"
+
+namespace mvtrack::tracker {
+
+/// The input of one window, immutable once built (the pipeline shares it across threads as
+/// `std::shared_ptr<const WindowJob>`).
+struct WindowJob {
+  /// Strictly increasing over a Tracker's or Pipeline's life (gaps after a re-anchor or flush).
+  std::int64_t window_id = 0;
+  FrameIndex begin = 0;          ///< first frame of the window
+  FrameIndex end = 0;            ///< one past the last frame ([begin, end); shorter at a flush)
+  FrameIndex finalize_from = 0;  ///< this window finalizes the frames [finalize_from,
+  FrameIndex finalize_to = 0;    ///<   finalize_to) (see docs/DECISIONS.md "Tracker facade")
+  /// Every camera's confirmed 2D tracks cropped to [begin, end), cameras in rig order, tracks
+  /// by id; only tracklets with at least min_tracklet_length observations.
+  std::vector<core::Tracklet2D> tracklets;
+};
+
+/// The output of ProcessWindowJob: the window's persons, not yet linked.
+struct WindowResult {
+  std::int64_t window_id = 0;    ///< copied from the job
+  FrameIndex begin = 0;          ///< copied from the job
+  FrameIndex end = 0;            ///< copied from the job
+  FrameIndex finalize_from = 0;  ///< copied from the job
+  FrameIndex finalize_to = 0;    ///< copied from the job
+  /// PDNC clusters of indices into the job's tracklets (association::AssociateTracklets).
+  std::vector<std::vector<int>> clusters;
+  /// One short-term 3D tracklet per cluster seen by >= 2 cameras with at least one
+  /// triangulated frame, in cluster order.
+  std::vector<core::Tracklet3D> persons;
+};
+
+/// A result with the job's window and frame ranges and no persons: what a window that could
+/// not be processed contributes (the linker then sees a window without tracklets).
+WindowResult EmptyWindowResult(const WindowJob& job);
+
+/// Reusable per-thread scratch space for ProcessWindowJob (the CMMT workspace). Results do not
+/// depend on what the workspace was used for before. Single-owner, single-threaded object:
+/// one per worker thread.
+class WindowWorkspace {
+ public:
+  /// `options` must be valid.
+  explicit WindowWorkspace(const triangulation::TriangulationOptions& options);
+
+  /// The triangulation workspace.
+  triangulation::PersonTriangulator& triangulator() { return triangulator_; }
+
+ private:
+  triangulation::PersonTriangulator triangulator_;
+};
+
+/// Processes one window: association (Eq. 2-4 + PDNC) of the job's tracklets, then CMMT
+/// (Algorithm 2) of every cluster whose tracklets come from at least two cameras.
+///
+/// Pure and thread-compatible: it reads `rig`, `options` and `job` only (any number of threads
+/// may run it concurrently on shared immutable inputs) and writes only `workspace` and its
+/// result. `options` must be the valid options the job was built with and `workspace` must
+/// have been made for options.triangulation (checked).
+WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,
+                              const WindowJob& job, WindowWorkspace* workspace);
+
+/// As above with a fresh workspace.
+WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,
+                              const WindowJob& job);
+
+}  // namespace mvtrack::tracker

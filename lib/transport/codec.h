@@ -1,0 +1,181 @@
+#pragma once
+/// @file
+/// Conversion between the LCM wire types of package `mvtrack` (lcmtypes/*.lcm) and the
+/// tracker's own types, with safe decoding of untrusted bytes.
+///
+/// Why not the generated `decode()` alone: the C++ code that lcm-gen 1.3.1 emits sizes vectors
+/// from the message's counts before it checks the buffer length, so a negative count or a
+/// string length of 0 throws std::length_error and a huge count allocates that many elements
+/// before failing (memory exhaustion on hostile input). The Decode* functions below therefore
+/// first walk the encoded structure themselves (fingerprint, fixed fields, every count and
+/// string length checked against the remaining bytes and the DecodeLimits), so no allocation is
+/// ever driven by an unchecked count, and only then call the generated decoder, inside
+/// try/catch. They never throw and never allocate more than a small multiple of the message
+/// size.
+///
+/// Receiving from LCM: subscribe with the raw-bytes overload
+/// `lcm::LCM::subscribeFunction(channel, &Handler, context)` whose handler has the signature
+/// `void(const lcm::ReceiveBuffer*, const std::string&, Context)` and pass `rbuf->data` /
+/// `rbuf->data_size` to DecodeCameraDetections(). Do not use the typed overloads: they call the
+/// generated decode() on untrusted bytes, and an exception would unwind through LCM's C code.
+/// Do not use LCM 1.3.1's member-function `subscribe()` overloads either: under GCC 12
+/// `-fsanitize=undefined` their callbacks crash (vptr check); a free or static function with
+/// subscribeFunction() or the C API `lcm_subscribe` works.
+///
+/// Encoding: the generated encoder trusts the `num_*` fields; the Encode* functions set every
+/// count from the container sizes.
+///
+/// All functions are stateless and thread-compatible (no shared state).
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/detection.h"
+#include "core/keypoint_layout.h"
+#include "core/types.h"
+#include "tracker/types.h"
+
+namespace mvtrack::transport {
+
+/// Bounds applied while decoding untrusted bytes. Counts are checked before anything is
+/// allocated; a count above its limit gives DecodeStatus::kLimitExceeded.
+struct DecodeLimits {
+  /// Messages larger than this are rejected unread (kTooLarge), bytes. At most INT32_MAX (the
+  /// generated decoder indexes with int).
+  std::size_t max_message_bytes = std::size_t{4} << 20;
+  /// camera_detections_t.num_detections.
+  int max_detections = 1000;
+  /// detection_t.num_keypoints.
+  int max_keypoints = 64;
+  /// detection_t.num_embedding (floats).
+  int max_embedding = 4096;
+  /// Any string (keypoint_layout, embedding_model), bytes without the NUL terminator.
+  int max_string = 64;
+  /// tracks3d_t.num_tracks.
+  int max_tracks = 1000;
+  /// track3d_t.num_cameras.
+  int max_cameras = 256;
+  /// track3d_t.num_joints.
+  int max_joints = 64;
+
+  /// True when usable: 8 <= max_message_bytes <= INT32_MAX and every count limit >= 0.
+  /// Otherwise false, with the first violated condition in `why` (when not null).
+  bool Validate(std::string* why) const;
+};
+
+/// Outcome of decoding one message.
+enum class DecodeStatus {
+  kOk,              ///< decoded; the payload fields are valid
+  kTooLarge,        ///< more bytes than DecodeLimits::max_message_bytes; not read
+  kBadFingerprint,  ///< the first 8 bytes are not this type's fingerprint (other type/version)
+  kTruncated,       ///< the bytes end before the structure does
+  kMalformed,       ///< structurally invalid: negative count, bad string, unknown layout name,
+                    ///< unknown enum value, trailing bytes
+  kLimitExceeded,   ///< a count or string length exceeds its DecodeLimits bound
+};
+
+/// "ok", "too large", "bad fingerprint", "truncated", "malformed", "limit exceeded".
+const char* ToString(DecodeStatus status);
+
+/// Result of DecodeCameraDetections().
+struct DecodeResult {
+  DecodeStatus status = DecodeStatus::kMalformed;
+  /// Empty when kOk; otherwise what failed, where and why, e.g.
+  /// "detection 3: num_keypoints -5 is negative (byte 123)".
+  std::string reason;
+  /// The detections (valid only when kOk). Only the structure is checked: the geometry is
+  /// validated by the tracker (core::ValidateDetection). Each detection's layout comes from
+  /// its keypoint_layout ("" -> kNone). detection_t.embedding_model has no place in
+  /// core::Detection2D and is dropped.
+  core::CameraFrame frame;
+  /// camera_detections_t.image_width / image_height, pixels; 0 = unknown. Passed through
+  /// unchecked (negative values are the consumer's to reject).
+  int image_width_px = 0;
+  int image_height_px = 0;
+
+  /// status == kOk.
+  bool ok() const { return status == DecodeStatus::kOk; }
+};
+
+/// Decodes a camera_detections_t from untrusted bytes `data[0, size)` (the whole LCM payload;
+/// trailing bytes are kMalformed). Never throws; `data` may be null when `size` is 0.
+/// @pre limits.Validate() (checked; aborts otherwise: a programmer error).
+DecodeResult DecodeCameraDetections(const void* data,
+                                    std::size_t size,
+                                    const DecodeLimits& limits = {});
+
+/// Encodes `frame` as a camera_detections_t (all num_* set from the container sizes; doubles
+/// become floats, values beyond the float range become +-infinity; keypoint_layout is the
+/// layout's name, "" for kNone; embedding_model is "" as Detection2D does not carry one).
+/// @pre at most INT32_MAX detections, INT16_MAX keypoints and INT16_MAX embedding values per
+///      detection (checked; aborts otherwise).
+std::vector<std::uint8_t> EncodeCameraDetections(const core::CameraFrame& frame,
+                                                 int image_width_px,
+                                                 int image_height_px);
+
+/// track3d_t::STATE_* as an enum (the wire has one state more than linking::TrackState).
+enum class WireTrackState : std::int8_t {
+  kTentative = 0,  ///< STATE_TENTATIVE
+  kConfirmed = 1,  ///< STATE_CONFIRMED
+  kLost = 2,       ///< STATE_LOST
+  kEnded = 3,      ///< STATE_ENDED (last message for this id)
+};
+
+/// Wire fields of one track that tracker::Track3D has no place for.
+struct WireTrackInfo {
+  WireTrackState state = WireTrackState::kConfirmed;
+  /// track3d_t.missed_frames, frames.
+  std::int32_t missed_frames = 0;
+};
+
+/// A decoded tracks3d_t.
+struct TracksMessage {
+  /// frame, utime and the tracks, in message order (producers sort by ascending id). Per track:
+  /// id, position, confidence, cameras (camera_ids), age_frames, state (STATE_ENDED maps to
+  /// linking::TrackState::kLost; the exact state is in `info`) and joints (valid joints as
+  /// positions, invalid ones as nullopt; per-joint confidences are dropped).
+  tracker::Frame3D frame;
+  /// Layout of every track's joints; kNone in box mode.
+  core::KeypointLayoutId layout = core::KeypointLayoutId::kNone;
+  /// tracks3d_t.publish_utime, µs, tracker host clock.
+  Utime publish_utime = 0;
+  /// tracks3d_t.latency_us, µs.
+  std::int64_t latency_us = 0;
+  /// info[i] describes frame.tracks[i].
+  std::vector<WireTrackInfo> info;
+};
+
+/// Result of DecodeTracks().
+struct TracksDecodeResult {
+  DecodeStatus status = DecodeStatus::kMalformed;
+  std::string reason;  ///< empty when kOk; otherwise what, where, why
+  TracksMessage message;  ///< valid only when kOk
+
+  /// status == kOk.
+  bool ok() const { return status == DecodeStatus::kOk; }
+};
+
+/// Decodes a tracks3d_t from untrusted bytes (same guarantees as DecodeCameraDetections()).
+/// Beyond the structure it checks what the message's own contract makes checkable without
+/// geometry: a known keypoint_layout name ("" = box mode), a state that is one of STATE_*, and
+/// num_joints equal to 0 or to the layout's joint count (always 0 in box mode).
+TracksDecodeResult DecodeTracks(const void* data,
+                                std::size_t size,
+                                const DecodeLimits& limits = {});
+
+/// Encodes one output frame as a tracks3d_t. Tracks are written sorted by ascending id (stable
+/// for equal ids), camera ids ascending without duplicates, all num_* from sizes. State maps
+/// kTentative/kConfirmed/kLost to STATE_TENTATIVE/CONFIRMED/LOST. missed_frames is written as
+/// 0: Track3D carries no missed-frame count (the tracker only emits tracks supported in their
+/// window). Joints: a valid joint has confidence 1 (the tracker estimates no per-joint
+/// confidence), an invalid one is (0, 0, 0) with confidence 0 and valid = false. age_frames
+/// saturates to the int32 range; doubles beyond the float range become +-infinity.
+/// @pre every track has at most INT16_MAX cameras and joints (checked; aborts otherwise).
+std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
+                                       core::KeypointLayoutId layout,
+                                       Utime publish_utime,
+                                       std::int64_t latency_us);
+
+}  // namespace mvtrack::transport

@@ -1,0 +1,274 @@
+// tracks3d_t <-> tracker::Frame3D.
+
+#include <algorithm>
+#include <climits>
+#include <cstdint>
+#include <exception>
+#include <mvtrack/joint3d_t.hpp>
+#include <mvtrack/track3d_t.hpp>
+#include <mvtrack/tracks3d_t.hpp>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/check.h"
+#include "core/keypoint_layout.h"
+#include "transport/codec.h"
+#include "transport/internal/wire_walker.h"
+
+namespace mvtrack::transport {
+namespace {
+
+using internal::kDoubleBytes;
+using internal::kFloatBytes;
+using internal::kInt16Bytes;
+using internal::kInt32Bytes;
+using internal::kInt64Bytes;
+using internal::kInt8Bytes;
+using internal::WireWalker;
+
+// Encoded sizes (lcmtypes/README.md): joint3d_t = 3 doubles, a float and a boolean; the
+// smallest track3d_t has no cameras and no joints.
+constexpr std::size_t kJointBytes = 3 * kDoubleBytes + kFloatBytes + kInt8Bytes;
+constexpr std::size_t kMinTrackBytes = kInt64Bytes + kInt8Bytes + 3 * kDoubleBytes +
+                                       kFloatBytes + 2 * kInt32Bytes + 2 * kInt16Bytes;
+
+std::optional<core::KeypointLayoutId> LayoutOfName(std::string_view name) {
+  if (name.empty()) return core::KeypointLayoutId::kNone;
+  return core::KeypointLayoutFromName(name);
+}
+
+bool IsWireState(std::int8_t state) {
+  return state >= mvtrack::track3d_t::STATE_TENTATIVE && state <= mvtrack::track3d_t::STATE_ENDED;
+}
+
+// Walks one track3d_t; `layout_joints` is the joint count of the message's layout (0 in box
+// mode).
+bool WalkTrack(WireWalker* w, const DecodeLimits& limits, int layout_joints, std::int32_t index) {
+  std::int64_t id = 0;
+  if (!w->ReadInt64("id", &id)) return false;
+  w->set_context("track " + std::to_string(index) + " (id " + std::to_string(id) + ")");
+  const std::size_t state_at = w->position();
+  std::int8_t state = 0;
+  if (!w->ReadInt8("state", &state)) return false;
+  if (!IsWireState(state)) {
+    return w->Fail(DecodeStatus::kMalformed,
+                   "state " + std::to_string(static_cast<int>(state)) +
+                       " is not one of track3d_t::STATE_* (0..3)",
+                   state_at);
+  }
+  w->Skip("position", 3 * kDoubleBytes);
+  w->Skip("confidence", kFloatBytes);
+  w->Skip("age_frames", kInt32Bytes);
+  w->Skip("missed_frames", kInt32Bytes);
+  std::int32_t num_cameras = 0;
+  if (!w->ReadCount16("num_cameras", limits.max_cameras, kInt32Bytes, &num_cameras)) {
+    return false;
+  }
+  w->Skip("camera_ids", static_cast<std::size_t>(num_cameras) * kInt32Bytes);
+  const std::size_t joints_at = w->position();
+  std::int32_t num_joints = 0;
+  if (!w->ReadCount16("num_joints", limits.max_joints, kJointBytes, &num_joints)) return false;
+  if (num_joints != 0 && num_joints != layout_joints) {
+    return w->Fail(DecodeStatus::kMalformed,
+                   "num_joints " + std::to_string(num_joints) + " is neither 0 nor the " +
+                       std::to_string(layout_joints) + " joints of the message's layout",
+                   joints_at);
+  }
+  return w->Skip("joints", static_cast<std::size_t>(num_joints) * kJointBytes);
+}
+
+bool WalkTracks(WireWalker* w, const DecodeLimits& limits) {
+  if (!internal::WalkFingerprint(w, mvtrack::tracks3d_t::getHash(),
+                                 mvtrack::tracks3d_t::getTypeName())) {
+    return false;
+  }
+  w->Skip("utime", kInt64Bytes);
+  w->Skip("frame", kInt64Bytes);
+  w->Skip("publish_utime", kInt64Bytes);
+  w->Skip("latency_us", kInt64Bytes);
+  const std::size_t layout_at = w->position();
+  std::string_view layout_name;
+  if (!w->ReadString("keypoint_layout", limits.max_string, &layout_name)) return false;
+  const std::optional<core::KeypointLayoutId> layout = LayoutOfName(layout_name);
+  if (!layout) {
+    return w->Fail(DecodeStatus::kMalformed,
+                   "unknown keypoint_layout \"" + std::string(layout_name) + "\"", layout_at);
+  }
+  const int layout_joints = core::GetKeypointLayout(*layout).num_joints();
+  std::int32_t num_tracks = 0;
+  if (!w->ReadCount32("num_tracks", limits.max_tracks, kMinTrackBytes, &num_tracks)) {
+    return false;
+  }
+  for (std::int32_t i = 0; i < num_tracks; ++i) {
+    w->set_context("track " + std::to_string(i));
+    if (!WalkTrack(w, limits, layout_joints, i)) return false;
+  }
+  w->set_context("");
+  if (w->remaining() > 0) {
+    return w->Fail(DecodeStatus::kMalformed,
+                   std::to_string(w->remaining()) + " trailing bytes after the message",
+                   w->position());
+  }
+  return true;
+}
+
+linking::TrackState ToTrackState(WireTrackState state) {
+  switch (state) {
+    case WireTrackState::kTentative:
+      return linking::TrackState::kTentative;
+    case WireTrackState::kConfirmed:
+      return linking::TrackState::kConfirmed;
+    case WireTrackState::kLost:
+    case WireTrackState::kEnded:
+      return linking::TrackState::kLost;
+  }
+  return linking::TrackState::kLost;
+}
+
+std::int8_t ToWireState(linking::TrackState state) {
+  switch (state) {
+    case linking::TrackState::kTentative:
+      return mvtrack::track3d_t::STATE_TENTATIVE;
+    case linking::TrackState::kConfirmed:
+      return mvtrack::track3d_t::STATE_CONFIRMED;
+    case linking::TrackState::kLost:
+      return mvtrack::track3d_t::STATE_LOST;
+  }
+  return mvtrack::track3d_t::STATE_LOST;
+}
+
+std::int32_t SaturateToInt32(std::int64_t value) {
+  return static_cast<std::int32_t>(
+      std::clamp<std::int64_t>(value, std::int64_t{INT32_MIN}, std::int64_t{INT32_MAX}));
+}
+
+}  // namespace
+
+TracksDecodeResult DecodeTracks(const void* data, std::size_t size, const DecodeLimits& limits) {
+  TracksDecodeResult result;
+  if (!internal::CheckEnvelope(data, size, limits, &result.status, &result.reason)) {
+    return result;
+  }
+  WireWalker walker(static_cast<const std::uint8_t*>(data), size);
+  if (!WalkTracks(&walker, limits)) {
+    result.status = walker.status();
+    result.reason = walker.reason();
+    return result;
+  }
+  try {
+    mvtrack::tracks3d_t msg;
+    const int consumed = msg.decode(data, 0, static_cast<int>(size));
+    if (consumed < 0 || static_cast<std::size_t>(consumed) != size) {
+      result.status = DecodeStatus::kMalformed;
+      result.reason = "the generated decoder disagrees with the structure walk (returned " +
+                      std::to_string(consumed) + " for " + std::to_string(size) + " bytes)";
+      return result;
+    }
+    TracksMessage& out = result.message;
+    out.frame.frame = msg.frame;
+    out.frame.utime = msg.utime;
+    out.publish_utime = msg.publish_utime;
+    out.latency_us = msg.latency_us;
+    out.layout = LayoutOfName(msg.keypoint_layout).value_or(core::KeypointLayoutId::kNone);
+    out.frame.tracks.reserve(msg.tracks.size());
+    out.info.reserve(msg.tracks.size());
+    for (const mvtrack::track3d_t& t : msg.tracks) {
+      WireTrackInfo info;
+      info.state = static_cast<WireTrackState>(t.state);  // the walk checked the range
+      info.missed_frames = t.missed_frames;
+      tracker::Track3D track;
+      track.id = t.id;
+      track.state = ToTrackState(info.state);
+      track.position = Vec3(t.position[0], t.position[1], t.position[2]);
+      track.confidence = static_cast<double>(t.confidence);
+      track.age_frames = t.age_frames;
+      track.cameras.assign(t.camera_ids.begin(), t.camera_ids.end());
+      track.joints.reserve(t.joints.size());
+      for (const mvtrack::joint3d_t& j : t.joints) {
+        if (j.valid != 0) {
+          track.joints.emplace_back(Vec3(j.position[0], j.position[1], j.position[2]));
+        } else {
+          track.joints.emplace_back(std::nullopt);
+        }
+      }
+      out.frame.tracks.push_back(std::move(track));
+      out.info.push_back(info);
+    }
+  } catch (const std::exception& e) {
+    result = TracksDecodeResult{};
+    result.status = DecodeStatus::kMalformed;
+    result.reason = std::string("the generated decoder threw: ") + e.what();
+    return result;
+  }
+  result.status = DecodeStatus::kOk;
+  return result;
+}
+
+std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
+                                       core::KeypointLayoutId layout,
+                                       Utime publish_utime,
+                                       std::int64_t latency_us) {
+  using internal::NarrowToFloat;
+  MVTRACK_CHECK_MSG(frame.tracks.size() <= static_cast<std::size_t>(INT32_MAX),
+                    "too many tracks for tracks3d_t");
+  mvtrack::tracks3d_t msg;
+  msg.utime = frame.utime;
+  msg.frame = frame.frame;
+  msg.publish_utime = publish_utime;
+  msg.latency_us = latency_us;
+  msg.keypoint_layout = layout == core::KeypointLayoutId::kNone
+                            ? std::string()
+                            : core::GetKeypointLayout(layout).name;
+  msg.num_tracks = static_cast<std::int32_t>(frame.tracks.size());
+
+  std::vector<std::size_t> order(frame.tracks.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&frame](std::size_t a, std::size_t b) {
+    return frame.tracks[a].id < frame.tracks[b].id;
+  });
+  msg.tracks.reserve(frame.tracks.size());
+  for (std::size_t index : order) {
+    const tracker::Track3D& track = frame.tracks[index];
+    std::vector<CameraId> cameras = track.cameras;
+    std::sort(cameras.begin(), cameras.end());
+    cameras.erase(std::unique(cameras.begin(), cameras.end()), cameras.end());
+    MVTRACK_CHECK_MSG(cameras.size() <= static_cast<std::size_t>(INT16_MAX),
+                      "too many cameras for track3d_t");
+    MVTRACK_CHECK_MSG(track.joints.size() <= static_cast<std::size_t>(INT16_MAX),
+                      "too many joints for track3d_t");
+    mvtrack::track3d_t t;
+    t.id = track.id;
+    t.state = ToWireState(track.state);
+    t.position[0] = track.position.x();
+    t.position[1] = track.position.y();
+    t.position[2] = track.position.z();
+    t.confidence = NarrowToFloat(track.confidence);
+    t.age_frames = SaturateToInt32(track.age_frames);
+    t.missed_frames = 0;
+    t.num_cameras = static_cast<std::int16_t>(cameras.size());
+    t.camera_ids = std::move(cameras);
+    t.num_joints = static_cast<std::int16_t>(track.joints.size());
+    t.joints.reserve(track.joints.size());
+    for (const std::optional<Vec3>& joint : track.joints) {
+      mvtrack::joint3d_t j;
+      j.position[0] = joint ? joint->x() : 0.0;
+      j.position[1] = joint ? joint->y() : 0.0;
+      j.position[2] = joint ? joint->z() : 0.0;
+      j.confidence = joint ? 1.0f : 0.0f;
+      j.valid = joint ? 1 : 0;
+      t.joints.push_back(j);
+    }
+    msg.tracks.push_back(std::move(t));
+  }
+  const int size = msg.getEncodedSize();
+  MVTRACK_CHECK_MSG(size > 0, "tracks3d_t too large to encode");
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+  const int written = msg.encode(bytes.data(), 0, size);
+  MVTRACK_CHECK_MSG(written == size, "tracks3d_t encode failed");
+  return bytes;
+}
+
+}  // namespace mvtrack::transport

@@ -1,0 +1,52 @@
+#pragma once
+/// @file
+/// The canonical JSON-lines form of the tracker's output: the regression format written by
+/// `mvtrack replay --jsonl` and compared by `mvtrack diff` / `mvtrack eval`. One line per
+/// finalized frame:
+///
+///   {"frame": F, "layout": "<name>", "tracks": [T, ...], "utime": U}
+///   T = {"id": I, "joints": [J, ...], "position": [x, y, z]}
+///   J = [x, y, z] or null
+///
+/// Canonical means byte-for-byte reproducible: keys sorted alphabetically at every level,
+/// tracks sorted by id, ", " and ": " as separators, integers in plain decimal, coordinates in
+/// metres with exactly kTracksJsonDecimals digits after the point (std::to_chars: no locale),
+/// "-0.0000" written as "0.0000", the line ends with a single "\n". The layout is the layout's
+/// name ("coco17", ...) or "none" in box mode, where every track has "joints": [].
+///
+/// JSON has no NaN or infinity: a joint with a non-finite coordinate is written as null (not
+/// triangulated) and a non-finite footprint as "position": null.
+///
+/// Stateless functions.
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "core/keypoint_layout.h"
+#include "tracker/types.h"
+
+namespace mvtrack::transport {
+
+/// Digits after the decimal point of every coordinate (0.1 mm).
+inline constexpr int kTracksJsonDecimals = 4;
+
+/// The canonical line of `frame` (terminated by "\n"). Writes id, footprint and joints of each
+/// track; confidence, cameras, age and state are not part of the format. Tracks with equal ids
+/// keep their order. The joints are written as given (the tracker's invariant: none in box
+/// mode, one per joint of `layout` in pose mode).
+std::string TracksJsonLine(const tracker::Frame3D& frame, core::KeypointLayoutId layout);
+
+/// Parses one line of the format above (whitespace between tokens is free, a trailing "\n" or
+/// "\r\n" is allowed, keys may come in any order). Returns the frame with tracks sorted by id
+/// (id, position, joints set; the other Track3D fields keep their defaults; "position": null
+/// gives NaN coordinates) and sets `layout` (when not null). Returns nullopt with `why` set
+/// (when not null; column numbers are 1-based bytes) when the line is not exactly this schema:
+/// syntax errors, a missing, duplicate or unknown key, a value of the wrong type, an integer
+/// beyond int64, a number beyond double, an unknown layout name, duplicate track ids, or a
+/// track whose joint count is neither 0 nor the layout's (always 0 for "none").
+std::optional<tracker::Frame3D> ParseTracksJsonLine(std::string_view line,
+                                                    core::KeypointLayoutId* layout,
+                                                    std::string* why);
+
+}  // namespace mvtrack::transport

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# mvtrack replay --threads N: the output (JSONL and LCM log) is byte-identical for inline window
+# jobs (0) and for pools of 1, 2 and 8 workers.
+source "$(dirname "$0")/common.sh"
+P=$WORK/poses
+for n in 0 1 2 8; do
+  expect_exit 0 "$OUT/t$n.log" "$MVTRACK" replay --quiet --threads "$n" \
+    --calibration "$P/calibration.yaml" --mode poses \
+    --out "$OUT/t$n.lcmlog" --jsonl "$OUT/t$n.jsonl" "$P/detections.lcmlog"
+  expect_grep "output: 240 frame\(s\)" "$OUT/t$n.log"
+done
+expect_grep "inline window jobs" "$OUT/t0.log"
+expect_grep "8 worker thread" "$OUT/t8.log"
+for n in 1 2 8; do
+  cmp "$OUT/t0.jsonl" "$OUT/t$n.jsonl" || fail "--threads $n JSONL differs from --threads 0"
+  cmp "$OUT/t0.lcmlog" "$OUT/t$n.lcmlog" || fail "--threads $n LCM log differs from --threads 0"
+done
+cmp "$P/reference.jsonl" "$OUT/t0.jsonl" || fail "--threads 0 differs from tracker::Tracker"
+echo "ok"

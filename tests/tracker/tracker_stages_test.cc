@@ -1,0 +1,322 @@
+// The pure stages the Tracker is composed of (FrameGate, CameraStage, WindowBuilder,
+// ProcessWindowJob, WindowFinalizer), tested on their own and recomposed by hand.
+
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <variant>
+
+#include "tracker/frame3d_equal.h"
+#include "tracker/scene_eval.h"
+
+namespace mvtrack {
+namespace {
+
+sim::Scene SmallScene(int frames, bool poses, int people = 2) {
+  sim::SceneOptions o;
+  o.seed = 5;
+  o.num_cameras = 3;
+  o.num_people = people;
+  o.num_frames = frames;
+  o.poses = poses;
+  o.occlusion = false;
+  o.miss_rate = 0.05;
+  o.false_positives_per_frame = 0.2;
+  return sim::GenerateScene(o);
+}
+
+core::CameraFrame Header(CameraId camera, FrameIndex frame, std::size_t detections = 0) {
+  core::CameraFrame cf;
+  cf.camera_id = camera;
+  cf.frame = frame;
+  cf.utime = 1000 * frame + camera;
+  cf.detections.resize(detections);
+  return cf;
+}
+
+TEST_CASE("FrameGate decides admission and frame sequencing from headers", "[unit][tracker]") {
+  const sim::Scene scene = SmallScene(10, false);
+  const geometry::CameraRig rig(scene.cameras);
+  tracker::TrackerOptions options;
+  options.max_frame_jump = 1000;
+  options.max_detections_per_frame = 5;
+  tracker::FrameGate gate(rig, options);
+
+  tracker::FrameAdmission a = gate.Admit(Header(0, 10));
+  CHECK(a.rejection == tracker::FrameRejection::kNone);
+  CHECK(a.camera_index == 0);
+  CHECK((!a.events.close_open_frame && !a.events.reanchor && a.events.open_frame));
+  CHECK(a.stream_epoch == 0);
+
+  a = gate.Admit(Header(2, 10));
+  CHECK(a.camera_index == 2);
+  CHECK((!a.events.close_open_frame && !a.events.reanchor && !a.events.open_frame));
+
+  CHECK(gate.Admit(Header(2, 10)).rejection == tracker::FrameRejection::kDuplicateCamera);
+  CHECK(gate.Admit(Header(1, 9)).rejection == tracker::FrameRejection::kStaleFrame);
+  a = gate.Admit(Header(99, 10));
+  CHECK(a.rejection == tracker::FrameRejection::kUnknownCamera);
+  CHECK(a.camera_index == -1);
+  CHECK(gate.Admit(Header(1, 10, 6)).rejection == tracker::FrameRejection::kTooManyDetections);
+  CHECK(gate.open_frame() == 10);  // rejections changed nothing
+
+  a = gate.Admit(Header(1, 12));
+  CHECK((a.events.close_open_frame && !a.events.reanchor && a.events.open_frame));
+  CHECK(gate.last_closed_frame() == 10);
+  CHECK(gate.Admit(Header(0, 11)).rejection == tracker::FrameRejection::kStaleFrame);
+
+  // More than max_frame_jump past the last closed frame (12): the stream restarts.
+  a = gate.Admit(Header(0, 12 + 1001));
+  CHECK((a.events.close_open_frame && a.events.reanchor && a.events.open_frame));
+  CHECK(a.stream_epoch == 1);
+  a = gate.Admit(Header(1, 1013 + 1000));  // exactly max_frame_jump past 1013: no restart
+  CHECK((a.events.close_open_frame && !a.events.reanchor && a.events.open_frame));
+  CHECK(a.stream_epoch == 1);
+
+  CHECK(gate.Flush());
+  CHECK(gate.stream_epoch() == 2);
+  CHECK_FALSE(gate.Flush());  // nothing left to end
+  CHECK(gate.stream_epoch() == 2);
+  a = gate.Admit(Header(0, 5));  // after a flush any frame starts a new stream
+  CHECK(a.rejection == tracker::FrameRejection::kNone);
+  CHECK((!a.events.close_open_frame && !a.events.reanchor && a.events.open_frame));
+  CHECK(a.stream_epoch == 2);
+}
+
+TEST_CASE("FrameGate never looks at detection contents", "[unit][tracker]") {
+  const sim::Scene scene = SmallScene(40, true);
+  const geometry::CameraRig rig(scene.cameras);
+  tracker::FrameGate with(rig, {});
+  tracker::FrameGate without(rig, {});
+  for (const auto& cams : scene.detections) {
+    for (const core::CameraFrame& cf : cams) {
+      const tracker::FrameAdmission a = with.Admit(cf);
+      const tracker::FrameAdmission b = without.Admit(Header(cf.camera_id, cf.frame,
+                                                             cf.detections.size()));
+      CHECK(a.rejection == b.rejection);
+      CHECK(a.events.close_open_frame == b.events.close_open_frame);
+      CHECK(a.events.open_frame == b.events.open_frame);
+      CHECK(a.events.reanchor == b.events.reanchor);
+    }
+  }
+}
+
+// Runs gate + builder over headers only (no detections) and returns the builder's outputs.
+std::vector<tracker::BuilderOutput> BuildHeadersOnly(const geometry::CameraRig& rig,
+                                                     const tracker::TrackerOptions& options,
+                                                     const std::vector<FrameIndex>& frames,
+                                                     bool flush) {
+  tracker::FrameGate gate(rig, options);
+  tracker::WindowBuilder builder(rig, options);
+  std::vector<tracker::BuilderOutput> out;
+  for (FrameIndex f : frames) {
+    for (int c = rig.size() - 1; c >= 0; --c) {
+      const core::CameraFrame cf = Header(rig.camera(c).id, f);
+      const tracker::FrameAdmission a = gate.Admit(cf);
+      REQUIRE(a.rejection == tracker::FrameRejection::kNone);
+      tracker::TrackedCameraFrame t;
+      t.camera_index = a.camera_index;
+      t.frame = cf.frame;
+      t.utime = cf.utime;
+      builder.Add(a.events, std::move(t), &out);
+    }
+  }
+  if (flush) {
+    gate.Flush();
+    builder.Flush(&out);
+  }
+  return out;
+}
+
+TEST_CASE("WindowBuilder: window grid, finalize ranges partition the closed frames",
+          "[unit][tracker]") {
+  const sim::Scene scene = SmallScene(10, false);
+  const geometry::CameraRig rig(scene.cameras);
+  tracker::TrackerOptions options;  // ν = 30, δ = 20
+  const std::int64_t nu = options.window_size;
+  const std::int64_t delta = options.window_step;
+  const std::int64_t half = (nu - delta) / 2;
+  const FrameIndex first = 7;
+  const FrameIndex last = 106;  // 100 frames
+  std::vector<FrameIndex> frames;
+  for (FrameIndex f = first; f <= last; ++f) frames.push_back(f);
+  const std::vector<tracker::BuilderOutput> out = BuildHeadersOnly(rig, options, frames, true);
+
+  std::vector<tracker::WindowJob> jobs;
+  std::map<FrameIndex, std::size_t> closed_at;  // frame -> position in the output
+  std::size_t stream_ends = 0;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (const auto* c = std::get_if<tracker::ClosedFrame>(&out[i])) {
+      CHECK(closed_at.emplace(c->frame, i).second);
+      CHECK(c->utime == 1000 * c->frame);  // the smallest utime of the frame (camera 0)
+    } else if (const auto* j = std::get_if<tracker::WindowJob>(&out[i])) {
+      jobs.push_back(*j);
+      // A complete window is emitted after its last frame closed.
+      if (j->end == j->begin + nu) CHECK(closed_at.count(j->end - 1) == 1);
+    } else {
+      ++stream_ends;
+      CHECK(i + 1 == out.size());
+    }
+  }
+  CHECK(stream_ends == 1);
+  CHECK(closed_at.size() == frames.size());
+  // Window k covers [F0 + kδ, F0 + kδ + ν) (cut at the last frame) and finalizes its middle δ.
+  REQUIRE(jobs.size() == 5);  // begins 7, 27, 47, 67, 87 (<= 106)
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    const auto ki = static_cast<std::int64_t>(k);
+    INFO("window " << k);
+    CHECK(jobs[k].window_id == ki);
+    CHECK(jobs[k].begin == first + ki * delta);
+    CHECK(jobs[k].end == std::min(first + ki * delta + nu, last + 1));
+    CHECK(jobs[k].finalize_from == (k == 0 ? first : first + ki * delta + half));
+    CHECK(jobs[k].finalize_to ==
+          (k + 1 == jobs.size() ? last + 1 : first + ki * delta + half + delta));
+  }
+  // Every closed frame is finalized by exactly one window.
+  for (FrameIndex f : frames) {
+    int n = 0;
+    for (const auto& j : jobs) n += (f >= j.finalize_from && f < j.finalize_to) ? 1 : 0;
+    CHECK(n == 1);
+  }
+}
+
+TEST_CASE("WindowBuilder: skipped frames and a new stream after a flush", "[unit][tracker]") {
+  const sim::Scene scene = SmallScene(10, false);
+  const geometry::CameraRig rig(scene.cameras);
+  tracker::TrackerOptions options;
+  // Frames 0..25, then 60: opening 60 completes every window ending at or before 59.
+  std::vector<FrameIndex> frames;
+  for (FrameIndex f = 0; f <= 25; ++f) frames.push_back(f);
+  frames.push_back(60);
+  std::vector<tracker::BuilderOutput> out = BuildHeadersOnly(rig, options, frames, false);
+  std::vector<std::int64_t> begins;
+  for (const auto& o : out) {
+    if (const auto* j = std::get_if<tracker::WindowJob>(&o)) begins.push_back(j->begin);
+  }
+  CHECK(begins == std::vector<std::int64_t>{0, 20});  // [0,30) and [20,50); [40,70) is open
+
+  // After a flush, window ids continue with a gap of max_missed_windows + 2.
+  tracker::FrameGate gate(rig, options);
+  tracker::WindowBuilder builder(rig, options);
+  out.clear();
+  std::int64_t windows_first_stream = 0;
+  for (FrameIndex f : {0, 1, 2, 3}) {
+    const tracker::FrameAdmission a = gate.Admit(Header(0, f));
+    builder.Add(a.events, tracker::TrackedCameraFrame{0, f, 0, {}}, &out);
+  }
+  gate.Flush();
+  builder.Flush(&out);
+  for (const auto& o : out) windows_first_stream += std::holds_alternative<tracker::WindowJob>(o);
+  CHECK(windows_first_stream == 1);
+  out.clear();
+  for (FrameIndex f = 0; f < 40; ++f) {
+    const tracker::FrameAdmission a = gate.Admit(Header(1, f));
+    builder.Add(a.events, tracker::TrackedCameraFrame{1, f, 0, {}}, &out);
+  }
+  const auto* j = std::get_if<tracker::WindowJob>(&out[30]);  // 30 closed frames, then window
+  REQUIRE(j != nullptr);
+  CHECK(j->window_id == 1 + options.linking.max_missed_windows + 2);
+}
+
+TEST_CASE("CameraStage: a newer stream epoch restarts SORT", "[unit][tracker]") {
+  const sim::Scene scene = SmallScene(12, false);
+  const geometry::CameraRig rig(scene.cameras);
+  const tracker::TrackerOptions options;
+  tracker::CameraStage stage(rig.camera(1), 1, options);
+  tracker::CameraStageCounters counters;
+  for (int f = 0; f < 10; ++f) {
+    stage.Process(scene.detections[static_cast<std::size_t>(f)][1], 0, &counters);
+  }
+  REQUIRE(stage.sort().num_tracks() > 0);
+  tracker::CameraStage fresh(rig.camera(1), 1, options);
+  const core::CameraFrame& next = scene.detections[10][1];
+  const tracker::TrackedCameraFrame a = stage.Process(next, 1, &counters);
+  const tracker::TrackedCameraFrame b = fresh.Process(next, 0, &counters);
+  REQUIRE(a.observations.size() == b.observations.size());
+  REQUIRE(!a.observations.empty());
+  for (std::size_t i = 0; i < a.observations.size(); ++i) {
+    CHECK(a.observations[i].first == b.observations[i].first);  // ids restart at 1
+    CHECK(a.observations[i].second.points_px == b.observations[i].second.points_px);
+  }
+  CHECK(a.observations.front().first == 1);
+  CHECK(a.camera_index == 1);
+  CHECK(a.frame == next.frame);
+  CHECK(a.utime == next.utime);
+
+  // Invalid detections are counted with the first reason.
+  core::CameraFrame bad = scene.detections[11][1];
+  core::Detection2D nan_box;
+  nan_box.box = {std::numeric_limits<double>::quiet_NaN(), 0, 10, 10};
+  bad.detections.push_back(nan_box);
+  bad.detections.push_back(nan_box);
+  stage.Process(bad, 1, &counters);
+  CHECK(counters.detections_rejected == 2);
+  CHECK(!counters.first_rejection_reason.empty());
+  CHECK(counters.detections_used == static_cast<int>(scene.detections[11][1].detections.size()) -
+                                        counters.detections_filtered);
+}
+
+TEST_CASE("windows processed out of order on one reused workspace give the Tracker's output",
+          "[unit][tracker]") {
+  const sim::Scene scene = SmallScene(90, true, 3);
+  const geometry::CameraRig rig(scene.cameras);
+  tracker::TrackerOptions options;
+  options.mode = tracker::InputMode::kPoses;
+  options.window_size = 20;  // 8 windows over 90 frames
+  options.window_step = 10;
+
+  std::string why;
+  auto reference = tracker::Tracker::Create(rig, options, &why);
+  REQUIRE(reference);
+  const std::vector<tracker::Frame3D> expected = testing::RunScene(reference.get(), scene);
+
+  // The stages by hand: collect the whole output sequence first.
+  tracker::FrameGate gate(rig, options);
+  std::vector<tracker::CameraStage> stages;
+  for (int c = 0; c < rig.size(); ++c) stages.emplace_back(rig.camera(c), c, options);
+  tracker::WindowBuilder builder(rig, options);
+  std::vector<tracker::BuilderOutput> outputs;
+  for (const auto& cams : scene.detections) {
+    for (const core::CameraFrame& cf : cams) {
+      const tracker::FrameAdmission a = gate.Admit(cf);
+      REQUIRE(a.rejection == tracker::FrameRejection::kNone);
+      tracker::CameraStageCounters counters;
+      builder.Add(a.events,
+                  stages[static_cast<std::size_t>(a.camera_index)].Process(cf, a.stream_epoch,
+                                                                            &counters),
+                  &outputs);
+    }
+  }
+  gate.Flush();
+  builder.Flush(&outputs);
+
+  // Process every window in reverse order on one workspace, then finalize in order.
+  std::map<std::size_t, tracker::WindowResult> results;
+  tracker::WindowWorkspace workspace(options.triangulation);
+  for (std::size_t i = outputs.size(); i-- > 0;) {
+    if (const auto* job = std::get_if<tracker::WindowJob>(&outputs[i])) {
+      results.emplace(i, tracker::ProcessWindowJob(rig, options, *job, &workspace));
+    }
+  }
+  REQUIRE(results.size() >= 7);
+  tracker::WindowFinalizer finalizer(options);
+  std::vector<tracker::Frame3D> frames;
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    if (const auto* closed = std::get_if<tracker::ClosedFrame>(&outputs[i])) {
+      finalizer.AddClosedFrame(*closed);
+    } else if (std::holds_alternative<tracker::WindowJob>(outputs[i])) {
+      finalizer.Finalize(results.at(i), &frames);
+    } else {
+      finalizer.EndStream(&frames);
+    }
+  }
+  INFO(testing::FirstDifference(expected, frames));
+  CHECK(testing::FirstDifference(expected, frames).empty());
+  CHECK(finalizer.counters().frames_finalized == static_cast<std::int64_t>(expected.size()));
+  CHECK(finalizer.counters().windows_processed == reference->stats().windows_processed);
+  std::size_t tracks = 0;
+  for (const auto& f : frames) tracks += f.tracks.size();
+  CHECK(tracks > 0);
+}
+
+}  // namespace
+}  // namespace mvtrack

@@ -1,0 +1,829 @@
+// mvtrack convert: turns the evaluation datasets (Shelf, Campus, CMU Panoptic, WILDTRACK) and
+// the generic JSON-lines detection format into mvtrack's inputs: a detections log that
+// `mvtrack replay` tracks, the calibration, and, where the dataset has them, ground truth and a
+// peer method's output as canonical tracks JSONL, plus a README.txt stating the protocol.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "config/calibration.h"
+#include "config/config_error.h"
+#include "datasets/campus.h"
+#include "datasets/corruption.h"
+#include "datasets/dataset.h"
+#include "datasets/panoptic.h"
+#include "datasets/shelf.h"
+#include "datasets/wildtrack.h"
+#include "eval/sequence.h"
+#include "mvtrack/cli.h"
+#include "mvtrack/convert_output.h"
+#include "mvtrack/jsonl_detections.h"
+#include "transport/channels.h"
+#include "transport/tracks_jsonl.h"
+
+namespace mvtrack::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kNumPanopticHdCameras = 31;
+// Bad lines listed on stderr and in the README with --skip-bad-lines.
+constexpr std::size_t kBadLinesShown = 5;
+
+const char kConvertDescription[] =
+    "Converts an evaluation dataset, or detections in the generic JSON-lines format, into\n"
+    "mvtrack's inputs, written to --out DIR:\n"
+    "  detections.lcmlog    one camera_detections_t event per camera and frame (also when\n"
+    "                       empty), frames in increasing order, within a frame cameras in\n"
+    "                       increasing id order; event timestamp = the camera-frame's utime;\n"
+    "                       the same inputs always give a byte-identical log\n"
+    "  calibration.yaml     the cameras (mvtrack.calibration/1)\n"
+    "  ground_truth.jsonl   the ground-truth actors as tracks (canonical tracks JSONL), when\n"
+    "                       the dataset has ground truth (Shelf, Campus, Panoptic)\n"
+    "  peer.jsonl           the published output of a peer method mapped to shelf14 (Shelf:\n"
+    "                       4D Association, Campus: Cross-View Tracking)\n"
+    "  ground_points.jsonl  WILDTRACK only: MVDeTr's merged ground points per frame\n"
+    "  README.txt           what was converted, the protocol notes, the command line\n\n"
+    "Exit status: 0 converted, 1 failure (missing dataset, bad input), 2 usage error.";
+
+// The end of every format's --help.
+const char kFormatTrailer[] =
+    "Writes detections.lcmlog, calibration.yaml and README.txt (plus ground_truth.jsonl,\n"
+    "peer.jsonl or ground_points.jsonl where the dataset has them) to --out DIR; see\n"
+    "`mvtrack convert --help` for the file conventions.\n\n"
+    "Exit status: 0 converted, 1 failure (missing dataset, bad input), 2 usage error.";
+
+// ---------------------------------------------------------------------------------------------
+// Options shared by the formats.
+
+struct CommonSettings {
+  std::string format;
+  std::filesystem::path data_root;
+  std::filesystem::path out;
+  ChannelMode channel = ChannelMode::kShared;
+  bool overwrite = false;
+  bool quiet = false;
+  std::string command_line;  // the command as typed, shell-quoted
+};
+
+void AddCommonOptions(Args* args, bool with_data) {
+  args->Option("out",
+               "output directory (created when missing; must be empty unless --overwrite) "
+               "(required)");
+  if (with_data) {
+    args->Option("data",
+                 "data root holding shelf/, campus/, panoptic/ and wildtrack/ ($MVTRACK_DATA, "
+                 "else ../shared/data next to the repository)",
+                 datasets::DefaultDataRoot().string());
+  }
+  args->Option("channel",
+               "'shared': every camera on " + std::string(transport::kDetectionsChannel) +
+                   "; 'per-camera': camera C on " + transport::kDetectionsChannelPrefix + "C",
+               "shared")
+      .Flag("overwrite", "replace the files of an earlier conversion in --out")
+      .Flag("quiet", "no progress on stderr");
+}
+
+CommonSettings ParseCommon(const Args& args,
+                           const std::string& format,
+                           bool with_data,
+                           const std::string& command_line) {
+  CommonSettings c;
+  c.format = format;
+  if (!args.Has("out") || args.Get("out").empty()) throw UsageError("--out DIR is required");
+  c.out = args.Get("out");
+  if (with_data) {
+    if (args.Get("data").empty()) throw UsageError("--data must not be empty");
+    c.data_root = args.Get("data");
+  }
+  const std::string channel = args.Get("channel");
+  if (channel == "shared") {
+    c.channel = ChannelMode::kShared;
+  } else if (channel == "per-camera") {
+    c.channel = ChannelMode::kPerCamera;
+  } else {
+    throw UsageError("--channel must be 'shared' or 'per-camera', not '" + channel + "'");
+  }
+  c.overwrite = args.Has("overwrite");
+  c.quiet = args.Has("quiet");
+  c.command_line = command_line;
+  return c;
+}
+
+void Progress(const CommonSettings& c, const std::string& message) {
+  if (!c.quiet) std::cerr << "mvtrack convert " << c.format << ": " << message << std::endl;
+}
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string FormatSeconds(double s) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.2f s", s);
+  return buffer;
+}
+
+// `<root>/<folder>` when it is a directory, else an error naming the path and MVTRACK_DATA.
+std::filesystem::path RequireDatasetDir(const CommonSettings& c, const std::string& folder) {
+  const std::filesystem::path dir = c.data_root / folder;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) {
+    throw std::runtime_error("dataset directory " + dir.string() + " not found (data root " +
+                             c.data_root.string() +
+                             "; pass --data DIR or set MVTRACK_DATA to the directory that holds "
+                             "shelf/, campus/, panoptic/ and wildtrack/)");
+  }
+  return dir;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Corruption options (campus, panoptic).
+
+void AddCorruptionOptions(Args* args, const datasets::CorruptionOptions& defaults) {
+  auto num = [](double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+  };
+  args->Flag("clean",
+             "pass the clean 2D poses through unchanged (no corruption; excludes the "
+             "options below)")
+      .Option("seed", "master seed of the corruption model", std::to_string(defaults.seed))
+      .Option("noise-px",
+              "keypoint noise: Gaussian sigma in x and y, pixels",
+              num(defaults.pixel_noise_px))
+      .Option(
+          "dropout", "probability that a detected keypoint is lost", num(defaults.joint_dropout))
+      .Option("miss-rate",
+              "probability that a person is not detected in a view",
+              num(defaults.miss_rate))
+      .Option("false-positives",
+              "mean ghost poses per camera and frame (Poisson)",
+              num(defaults.false_positives_per_frame));
+}
+
+datasets::CorruptionOptions ParseCorruption(const Args& args,
+                                            const datasets::CorruptionOptions& defaults) {
+  const char* const kNames[] = {"seed", "noise-px", "dropout", "miss-rate", "false-positives"};
+  if (args.Has("clean")) {
+    for (const char* name : kNames) {
+      if (args.Has(name)) {
+        throw UsageError(std::string("--clean disables the corruption model; --") + name +
+                         " cannot be combined with it");
+      }
+    }
+    datasets::CorruptionOptions clean = defaults;
+    clean.enabled = false;
+    return clean;
+  }
+  datasets::CorruptionOptions o = defaults;
+  const std::int64_t seed = args.GetInt("seed");
+  if (seed < 0) throw UsageError("--seed must be >= 0");
+  o.seed = static_cast<std::uint64_t>(seed);
+  o.pixel_noise_px = args.GetDouble("noise-px");
+  o.joint_dropout = args.GetDouble("dropout");
+  o.miss_rate = args.GetDouble("miss-rate");
+  o.false_positives_per_frame = args.GetDouble("false-positives");
+  std::string why;
+  if (!o.Validate(&why)) throw UsageError(why);
+  return o;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing a loaded dataset.
+
+struct DatasetJob {
+  datasets::Dataset ds;
+  std::filesystem::path source_dir;
+  std::map<CameraId, std::string> camera_names;
+  /// What was converted, one line each.
+  std::vector<std::string> what;
+  std::optional<datasets::PeerOutput> peer;
+  std::optional<std::vector<datasets::WildtrackGroundFrame>> ground_points;
+  double ground_cluster_radius_m = 0.0;
+  /// The tracker mode and layout that match the detections.
+  std::string replay_mode;
+  std::string replay_layout;
+  double load_seconds = 0.0;
+};
+
+std::string LayoutName(core::KeypointLayoutId id) {
+  return id == core::KeypointLayoutId::kNone ? "none" : core::GetKeypointLayout(id).name;
+}
+
+std::string JoinIds(const std::vector<std::int64_t>& ids) {
+  std::string s;
+  for (std::int64_t id : ids) s += (s.empty() ? "" : ", ") + std::to_string(id);
+  return s;
+}
+
+std::string PerCamera(const std::map<CameraId, std::int64_t>& counts) {
+  std::string s;
+  for (const auto& [camera, n] : counts) {
+    s += (s.empty() ? "" : ", ") + std::to_string(camera) + ": " + std::to_string(n);
+  }
+  return s;
+}
+
+std::string LogDescription(const CommonSettings& c, const DetectionsLogStats& st) {
+  std::ostringstream os;
+  os << "  " << kConvertLogFile << " (" << st.bytes << " bytes): " << st.events
+     << " events of mvtrack.camera_detections_t on "
+     << (c.channel == ChannelMode::kShared
+             ? "the shared channel " + std::string(transport::kDetectionsChannel)
+             : "the per-camera channels " + std::string(transport::kDetectionsChannelPrefix) +
+                   "<camera id>")
+     << ", " << st.frames << " frames";
+  if (st.first_frame.has_value()) os << " (" << *st.first_frame << "-" << *st.last_frame << ")";
+  os << ".\n      Events are ordered by frame, and within a frame by ascending camera id; the\n"
+        "      event timestamp is the camera-frame's capture utime (the message's utime).\n"
+        "      Events per camera: "
+     << PerCamera(st.events_per_camera) << ".\n      Detections: " << st.detections
+     << " (per camera: " << PerCamera(st.detections_per_camera) << "; by layout:";
+  for (const auto& [layout, n] : st.detections_per_layout) os << " " << layout << " " << n;
+  os << ").\n";
+  return os.str();
+}
+
+void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
+  const datasets::Dataset& ds = job.ds;
+  const Clock::time_point start = Clock::now();
+  ConvertOutputDir out(c.out, c.overwrite);
+
+  // Detections log.
+  Progress(c, "writing " + out.File(kConvertLogFile).string());
+  DetectionsLogSink sink(&out, c.channel);
+  for (const std::vector<core::CameraFrame>& frame : ds.detections) {
+    std::vector<CameraFrameToWrite> batch;
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+      batch.push_back({&frame[i], ds.cameras[i].width_px, ds.cameras[i].height_px});
+    }
+    sink.WriteFrame(std::move(batch));
+  }
+  sink.Finish();
+  const DetectionsLogStats& st = sink.stats();
+
+  // Calibration.
+  config::SaveCalibration(out.File(kConvertCalibrationFile).string(), ds.cameras, job.camera_names);
+
+  // Ground truth, peer output, ground points.
+  if (!ds.ground_truth.empty()) {
+    out.WriteText(kConvertGroundTruthFile,
+                  SequenceToTracksJsonl(ds.ground_truth, ds.gt_layout, ds.fps, "ground truth"));
+  }
+  if (job.peer.has_value()) {
+    out.WriteText(kConvertPeerFile,
+                  SequenceToTracksJsonl(
+                      job.peer->shelf14, core::KeypointLayoutId::kShelf14, ds.fps, job.peer->name));
+  }
+  std::int64_t ground_point_count = 0;
+  if (job.ground_points.has_value()) {
+    std::string text;
+    for (const datasets::WildtrackGroundFrame& f : *job.ground_points) {
+      tracker::Frame3D frame;
+      frame.frame = f.frame;
+      frame.utime = datasets::FrameUtime(f.frame, ds.fps);
+      for (std::size_t i = 0; i < f.points.size(); ++i) {
+        tracker::Track3D t;
+        t.id = static_cast<TrackId3D>(i);
+        t.position = f.points[i].position_m;
+        frame.tracks.push_back(std::move(t));
+      }
+      ground_point_count += static_cast<std::int64_t>(f.points.size());
+      text += transport::TracksJsonLine(frame, core::KeypointLayoutId::kNone);
+    }
+    out.WriteText(kConvertGroundPointsFile, text);
+  }
+
+  // README.
+  std::ostringstream r;
+  r << "mvtrack convert " << c.format << " (mvtrack " << MVTRACK_VERSION << ")\n\n";
+  r << "Command line:\n  " << c.command_line << "\n\n";
+  r << "What was converted:\n";
+  for (const std::string& line : job.what) r << "  " << line << "\n";
+  r << "  Source directory: " << job.source_dir.string() << "\n\n";
+  r << "Protocol notes (from the dataset loader):\n  " << ds.protocol_notes << "\n\n";
+  r << "Frames: " << ds.detections.size() << " frames";
+  if (!ds.detections.empty() && !ds.detections.front().empty()) {
+    r << ", " << ds.detections.front().front().frame << "-" << ds.detections.back().front().frame;
+  }
+  r << ", at " << ds.fps
+    << " fps.\n  Capture time: utime = round(frame * 1e6 / fps) microseconds (frame 0 at utime\n"
+       "  0), the same for every camera of a frame; ground truth and peer lines carry the\n"
+       "  same utime as the frame's detections.\n";
+  r << "Cameras (" << ds.cameras.size() << ", id (name) image size):";
+  std::vector<const geometry::CameraModel*> sorted;
+  for (const geometry::CameraModel& cam : ds.cameras) sorted.push_back(&cam);
+  std::sort(
+      sorted.begin(), sorted.end(), [](const auto* a, const auto* b) { return a->id < b->id; });
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    const geometry::CameraModel* cam = sorted[i];
+    r << (i % 4 == 0 ? "\n   " : "") << " " << cam->id;
+    const auto name = job.camera_names.find(cam->id);
+    if (name != job.camera_names.end()) r << " (" << name->second << ")";
+    r << " " << cam->width_px << "x" << cam->height_px << (i + 1 < sorted.size() ? "," : ".");
+  }
+  r << "\nDetections: keypoint layout " << job.replay_layout
+    << (job.replay_layout == "none" ? " (box-only detections)" : "") << ".\n";
+  r << "Standard protocol: scored frames " << eval::DescribeFrameRanges(ds.protocol_frames)
+    << ", scored actors "
+    << (ds.protocol_actor_ids.empty() ? std::string("all") : JoinIds(ds.protocol_actor_ids))
+    << ".\n\n";
+
+  r << "Files:\n" << LogDescription(c, st);
+  r << "  " << kConvertCalibrationFile << ": mvtrack.calibration/1 (docs/FORMATS.md), "
+    << ds.cameras.size() << " cameras, cam_from_world in metres, world z up.\n";
+  if (!ds.ground_truth.empty()) {
+    std::map<std::int64_t, std::int64_t> frames_per_actor;
+    for (const eval::EvalFrame& f : ds.ground_truth) {
+      for (const eval::EvalObject& o : f.objects) ++frames_per_actor[o.id];
+    }
+    r << "  " << kConvertGroundTruthFile << ": canonical tracks JSONL (transport::TracksJsonLine), "
+      << ds.ground_truth.size() << " lines, one per frame (also frames without people);\n"
+      << "      the ground-truth actors as tracks: id = actor id, position = footprint (hip\n"
+      << "      midpoint dropped onto z = 0), joints in layout " << LayoutName(ds.gt_layout)
+      << " (metres, null = missing).\n      Actors (frames present):";
+    for (const auto& [id, n] : frames_per_actor) r << " " << id << " (" << n << ")";
+    r << ".\n";
+  }
+  if (job.peer.has_value()) {
+    const datasets::PeerOutput& p = *job.peer;
+    r << "  " << kConvertPeerFile << ": the published output of " << p.name
+      << " as canonical tracks JSONL in layout shelf14, " << p.shelf14.size()
+      << " lines (the frames of the file).\n"
+      << "      Track ids are dense (1, 2, ... in order of first appearance); the ids in the\n"
+      << "      original file:";
+    for (std::size_t i = 0; i < p.original_ids.size(); ++i) {
+      r << " " << (i + 1) << "=" << p.original_ids[i];
+    }
+    r << ".\n      Peer protocol notes: " << p.protocol_notes << "\n";
+  }
+  if (job.ground_points.has_value()) {
+    r << "  " << kConvertGroundPointsFile << ": MVDeTr's ground points as canonical tracks JSONL "
+      << "(layout none), " << job.ground_points->size() << " lines, " << ground_point_count
+      << " points.\n"
+      << "      Each point is one merged person position (box bottom centres mapped to the\n"
+      << "      ground by the inverse homographies of rest/metainfo.json, then merged across\n"
+      << "      views within " << job.ground_cluster_radius_m
+      << " m, one box per camera at most); position = the point,\n"
+      << "      z = 0. Track ids are the index of the point within its frame (points sorted by\n"
+      << "      x, then y): they are MEANINGLESS across frames and must not be used for identity\n"
+      << "      metrics; compare footprints only.\n";
+  }
+  r << "  " << kConvertReadmeFile << ": this file.\n\n";
+  r << "Tracking it (from this directory):\n"
+    << "  mvtrack replay --calibration " << kConvertCalibrationFile << " --mode " << job.replay_mode
+    << " --layout " << job.replay_layout << " --jsonl tracks.jsonl " << kConvertLogFile << "\n";
+  if (!ds.ground_truth.empty()) {
+    r << "  mvtrack eval --gt " << kConvertGroundTruthFile << " tracks.jsonl";
+    if (!ds.protocol_frames.empty()) {
+      r << " --frames ";
+      for (std::size_t i = 0; i < ds.protocol_frames.size(); ++i) {
+        r << (i ? "," : "") << ds.protocol_frames[i].first << "-" << ds.protocol_frames[i].last;
+      }
+    }
+    if (ds.gt_layout != core::KeypointLayoutId::kNone) r << " --distance joints";
+    if (ds.gt_layout == core::KeypointLayoutId::kShelf14) {
+      r << " --pcp";
+      if (!ds.protocol_actor_ids.empty()) {
+        std::string ids;
+        for (std::int64_t id : ds.protocol_actor_ids)
+          ids += (ids.empty() ? "" : ",") + std::to_string(id);
+        r << " --actors " << ids;
+      }
+    }
+    r << "\n";
+  }
+  out.WriteText(kConvertReadmeFile, r.str());
+
+  Progress(c,
+           "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
+               std::to_string(st.detections) + " detections, " + std::to_string(st.bytes) +
+               " bytes of log (load " + FormatSeconds(job.load_seconds) + ", write " +
+               FormatSeconds(SecondsSince(start)) + ")");
+}
+
+std::map<CameraId, std::string> NamesFromPattern(const std::vector<geometry::CameraModel>& cameras,
+                                                 const std::string& prefix,
+                                                 int offset) {
+  std::map<CameraId, std::string> names;
+  for (const geometry::CameraModel& cam : cameras)
+    names[cam.id] = prefix + std::to_string(cam.id + offset);
+  return names;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The formats.
+
+std::string FormatUsage(const std::string& format, const std::string& extra) {
+  return "mvtrack convert " + format + " --out DIR " + extra +
+         "[--channel shared|per-camera] [--overwrite] [--quiet]";
+}
+
+int ConvertShelf(int argc, char** argv, const std::string& command_line) {
+  Args args;
+  AddCommonOptions(&args, true);
+  if (!args.Parse(
+          argc,
+          argv,
+          FormatUsage("shelf", "[--data DIR] "),
+          "Shelf (Belagiannis et al., CVPR 2014, as released by 4D Association): the real\n"
+          "OpenPose BODY25 detections of shelf/derived (5 cameras, 1032x776, frames\n"
+          "300-600 = 301 frames, 25 fps assumed), the 3D ground truth of 4 actors (shelf14)\n"
+          "and 4D Association's own output (skel.txt, SKEL19 mapped to shelf14) as\n"
+          "peer.jsonl.\n\n" +
+              std::string(kFormatTrailer))) {
+    return 0;
+  }
+  const CommonSettings c = ParseCommon(args, "shelf", true, command_line);
+  DatasetJob job;
+  job.source_dir = RequireDatasetDir(c, "shelf");
+  Progress(c, "loading Shelf from " + job.source_dir.string());
+  const Clock::time_point start = Clock::now();
+  job.ds = datasets::LoadShelf(c.data_root);
+  job.peer = datasets::LoadShelfPeer4DA(c.data_root);
+  job.load_seconds = SecondsSince(start);
+  job.what = {
+      "Shelf: real OpenPose BODY25 detections (shelf/derived/persons2d_body25_cam*.json, people",
+      "assembled from the joint candidates with 4D Association's PAF rule), 5 cameras, layout",
+      "body25, box = keypoint bounds + 10 % of their height per side, score = mean keypoint",
+      "confidence; no corruption (real detector output).",
+      "Ground truth: 4d_association/gt.txt (pelvis dropped -> shelf14), actors 0-3.",
+      "Peer: 4D Association's skel.txt (SKEL19 -> shelf14 by its own MappingToShelf)."};
+  job.replay_mode = "poses";
+  job.replay_layout = "body25";
+  WriteDatasetJob(c, job);
+  return 0;
+}
+
+int ConvertCampus(int argc, char** argv, const std::string& command_line) {
+  Args args;
+  AddCommonOptions(&args, true);
+  const datasets::CorruptionOptions defaults;
+  AddCorruptionOptions(&args, defaults);
+  if (!args.Parse(argc,
+                  argv,
+                  FormatUsage("campus",
+                              "[--data DIR] [--clean | [--seed N] [--noise-px X] [--dropout P] "
+                              "[--miss-rate P] [--false-positives R]] "),
+                  "Campus (Belagiannis et al., CVPR 2014, as released by Cross-View Tracking): 3\n"
+                  "cameras (360x288, 25 fps), frames 0-1999. No real detections exist: the 2D\n"
+                  "ground truth (shelf14) goes through the seeded detector-error model of\n"
+                  "datasets::CorruptionOptions (misses, keypoint noise, joint dropout, false\n"
+                  "positives; defaults below), or unchanged with --clean. Ground truth: the 3D\n"
+                  "poses of 3 actors (shelf14); peer.jsonl: Cross-View Tracking's result_3d.json\n"
+                  "(COCO-17 mapped to shelf14).\n\n" +
+                      std::string(kFormatTrailer))) {
+    return 0;
+  }
+  const CommonSettings c = ParseCommon(args, "campus", true, command_line);
+  datasets::CampusOptions options;
+  options.corruption = ParseCorruption(args, defaults);
+  DatasetJob job;
+  job.source_dir = RequireDatasetDir(c, "campus");
+  Progress(c, "loading Campus from " + job.source_dir.string());
+  const Clock::time_point start = Clock::now();
+  job.ds = datasets::LoadCampus(c.data_root, options);
+  job.peer = datasets::LoadCampusPeerCrossView(c.data_root);
+  job.load_seconds = SecondsSince(start);
+  job.camera_names = NamesFromPattern(job.ds.cameras, "Camera", 0);
+  job.what = {
+      "Campus: the 2D ground truth (crossview_longcw/annotation_2d.json), 3 cameras, layout",
+      "shelf14, box = keypoint bounds + 10 % of their height per side, score = mean keypoint",
+      "confidence, then the detector-error model: " +
+          datasets::DescribeCorruption(options.corruption) + ".",
+      "Ground truth: annotation_3d.json (cm -> m), actors 0-2.",
+      "Peer: Cross-View Tracking's result_3d.json (COCO-17 -> shelf14)."};
+  job.replay_mode = "poses";
+  job.replay_layout = "shelf14";
+  WriteDatasetJob(c, job);
+  return 0;
+}
+
+// The order --num-cameras picks from: the six default cameras, then the other HD cameras by
+// name (00_00, 00_01, 00_03, ...).
+std::vector<std::string> PanopticCameraOrder() {
+  std::vector<std::string> order = datasets::DefaultPanopticCameras();
+  for (int i = 0; i < kNumPanopticHdCameras; ++i) {
+    char name[8];
+    std::snprintf(name, sizeof(name), "00_%02d", i);
+    if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
+  }
+  return order;
+}
+
+std::vector<std::string> SplitList(const std::string& text, const std::string& option) {
+  std::vector<std::string> out;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t end = text.find(',', begin);
+    const std::string item =
+        text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    if (item.empty()) throw UsageError("--" + option + ": empty entry in '" + text + "'");
+    out.push_back(item);
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  return out;
+}
+
+int ConvertPanoptic(int argc, char** argv, const std::string& command_line) {
+  Args args;
+  args.Option("sequence", "160906_band1 or 160906_band2 (required)");
+  args.Option("cameras", "HD cameras, comma-separated names (00_02) or indices (2), in any order");
+  std::string order_text;
+  for (const std::string& name : PanopticCameraOrder())
+    order_text += (order_text.empty() ? "" : ",") + name;
+  args.Option("num-cameras",
+              "use the first N (1-31) of the fixed order " + order_text +
+                  " (the six default cameras first, then the others by name)");
+  AddCommonOptions(&args, true);
+  const datasets::CorruptionOptions defaults = datasets::PanopticOptions::DefaultCorruption();
+  AddCorruptionOptions(&args, defaults);
+  if (!args.Parse(
+          argc,
+          argv,
+          FormatUsage("panoptic",
+                      "--sequence 160906_band1|160906_band2 [--cameras A,B,...|"
+                      "--num-cameras N] [--data DIR] [--clean | [--seed N] [--noise-px X] "
+                      "[--dropout P] [--miss-rate P] [--false-positives R]] "),
+          "CMU Panoptic (Joo et al., ICCV 2015), a 20-frame excerpt of 3 seated\n"
+          "musicians: the 3D skeletons (panoptic19) projected with the official lens\n"
+          "distortion into the chosen HD cameras (1920x1080, 29.97 fps; default: the six\n"
+          "cameras 00_02, 00_06, 00_07, 00_12, 00_13, 00_28), joints outside the image\n"
+          "dropped, then the seeded detector-error model (sigma scaled to the HD images:\n"
+          "6 px by default), or unchanged with --clean. Ground truth: the 3D skeletons.\n\n" +
+              std::string(kFormatTrailer))) {
+    return 0;
+  }
+  const CommonSettings c = ParseCommon(args, "panoptic", true, command_line);
+  datasets::PanopticOptions options;
+  if (!args.Has("sequence"))
+    throw UsageError("--sequence is required (160906_band1 or 160906_band2)");
+  options.sequence = args.Get("sequence");
+  if (args.Has("cameras") && args.Has("num-cameras")) {
+    throw UsageError("give either --cameras or --num-cameras, not both");
+  }
+  if (args.Has("cameras")) {
+    options.cameras = SplitList(args.Get("cameras"), "cameras");
+  } else if (args.Has("num-cameras")) {
+    const std::int64_t n = args.GetInt("num-cameras");
+    if (n < 1 || n > kNumPanopticHdCameras) throw UsageError("--num-cameras must be in [1, 31]");
+    const std::vector<std::string> order = PanopticCameraOrder();
+    options.cameras.assign(order.begin(), order.begin() + n);
+  }
+  options.corruption = ParseCorruption(args, defaults);
+  std::string why;
+  if (!options.Validate(&why)) throw UsageError(why);
+  DatasetJob job;
+  job.source_dir = RequireDatasetDir(c, "panoptic");
+  Progress(c, "loading Panoptic " + options.sequence + " from " + job.source_dir.string());
+  const Clock::time_point start = Clock::now();
+  job.ds = datasets::LoadPanoptic(c.data_root, options);
+  job.load_seconds = SecondsSince(start);
+  for (const geometry::CameraModel& cam : job.ds.cameras) {
+    char name[8];
+    std::snprintf(name, sizeof(name), "00_%02d", cam.id);
+    job.camera_names[cam.id] = name;
+  }
+  std::string chosen;
+  for (const geometry::CameraModel& cam : job.ds.cameras) {
+    chosen += (chosen.empty() ? "" : ", ") + job.camera_names[cam.id];
+  }
+  job.what = {
+      "CMU Panoptic " + options.sequence + ": the 3D skeletons of hdPose3d_stage1_coco19",
+      "projected with distortion into HD cameras " + chosen + " (camera id = HD index),",
+      "layout panoptic19 (confidence 1 for projected joints inside the image), box = keypoint",
+      "bounds + 10 % of their height per side, then the detector-error model: " +
+          datasets::DescribeCorruption(options.corruption) + ".",
+      "Ground truth: the 3D skeletons (panoptic19; joints with confidence < 0 missing)."};
+  job.replay_mode = "poses";
+  job.replay_layout = "panoptic19";
+  WriteDatasetJob(c, job);
+  return 0;
+}
+
+int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
+  Args args;
+  AddCommonOptions(&args, true);
+  if (!args.Parse(argc,
+                  argv,
+                  FormatUsage("wildtrack", "[--data DIR] "),
+                  "WILDTRACK (Chavdarova et al., CVPR 2018): MVDeTr's detections of the 40 test\n"
+                  "frames 360-399 (2 fps) drawn as boxes into the 7 views (1920x1080), box-only\n"
+                  "(layout none: track with --mode boxes). No ground truth exists; instead\n"
+                  "ground_points.jsonl holds MVDeTr's own ground-plane points per frame (the box\n"
+                  "bottoms mapped through the dataset's homographies and merged across views) for\n"
+                  "a footprint comparison. Their ids are meaningless.\n\n" +
+                      std::string(kFormatTrailer))) {
+    return 0;
+  }
+  const CommonSettings c = ParseCommon(args, "wildtrack", true, command_line);
+  DatasetJob job;
+  job.source_dir = RequireDatasetDir(c, "wildtrack");
+  Progress(c, "loading WILDTRACK from " + job.source_dir.string());
+  const Clock::time_point start = Clock::now();
+  job.ds = datasets::LoadWildtrack(c.data_root);
+  const datasets::WildtrackGroundOptions ground_options;
+  job.ground_points = datasets::WildtrackGroundPoints(c.data_root, ground_options);
+  job.ground_cluster_radius_m = ground_options.cluster_radius_m;
+  job.load_seconds = SecondsSince(start);
+  job.camera_names = NamesFromPattern(job.ds.cameras, "C", 1);
+  job.what = {
+      "WILDTRACK: MVDeTr's boxes (rest/MVDeTr_test.json) of 7 cameras C1-C7 (ids 0-6), box-only",
+      "detections (layout none), score 1.",
+      "No ground truth. ground_points.jsonl: MVDeTr's ground points (see below)."};
+  job.replay_mode = "boxes";
+  job.replay_layout = "none";
+  WriteDatasetJob(c, job);
+  return 0;
+}
+
+int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
+  Args args;
+  args.Option("detections", "the detections, JSON lines (docs/FORMATS.md) (required)")
+      .Option("calibration", "the cameras, mvtrack.calibration/1 (required)")
+      .Flag("skip-bad-lines",
+            "skip lines that break the format (counted; the first few are printed) instead of "
+            "stopping at the first");
+  AddCommonOptions(&args, false);
+  if (!args.Parse(argc,
+                  argv,
+                  FormatUsage("jsonl",
+                              "--detections FILE.jsonl --calibration CAL.yaml "
+                              "[--skip-bad-lines] "),
+                  "The generic JSON-lines detection format (docs/FORMATS.md, \"JSON-lines\n"
+                  "detections\"): one line per camera-frame,\n"
+                  "  {\"camera\": 3, \"frame\": 120, \"utime\": 1700000004000000, \"image_size\": "
+                  "[1920, 1080],\n"
+                  "   \"detections\": [{\"box\": [x_min, y_min, x_max, y_max], \"score\": 0.93,\n"
+                  "                   \"keypoints\": [[x, y, conf], ...], \"layout\": \"coco17\",\n"
+                  "                   \"embedding\": [...]}]}\n"
+                  "in raw (distorted) pixels, frames not decreasing. Every line becomes one event\n"
+                  "(within a frame, events are sorted by camera id). The calibration is checked\n"
+                  "(camera ids, image sizes) and written back in canonical form.\n\n" +
+                      std::string(kFormatTrailer))) {
+    return 0;
+  }
+  const CommonSettings c = ParseCommon(args, "jsonl", false, command_line);
+  if (!args.Has("detections")) throw UsageError("--detections FILE.jsonl is required");
+  if (!args.Has("calibration")) throw UsageError("--calibration CAL.yaml is required");
+  const std::string detections_path = args.Get("detections");
+  const std::string calibration_path = args.Get("calibration");
+
+  const Clock::time_point start = Clock::now();
+  const config::CalibrationDocument calibration = config::LoadCalibrationDocument(calibration_path);
+  JsonlReaderOptions reader_options;
+  reader_options.skip_bad_lines = args.Has("skip-bad-lines");
+  reader_options.max_kept_bad_lines = kBadLinesShown;
+  for (const geometry::CameraModel& cam : calibration.cameras) {
+    reader_options.cameras[cam.id] = JsonlCameraInfo{cam.width_px, cam.height_px};
+  }
+  std::ifstream in(detections_path, std::ios::binary);
+  if (!in) throw std::runtime_error(detections_path + ": cannot open the detections file");
+
+  ConvertOutputDir out(c.out, c.overwrite);
+  Progress(c, "reading " + detections_path + ", writing " + out.File(kConvertLogFile).string());
+  DetectionsLogSink sink(&out, c.channel);
+  JsonlDetectionsReader reader(&in, detections_path, reader_options);
+  std::vector<JsonlCameraFrame> pending;  // the lines of the current frame
+  auto flush = [&]() {
+    std::vector<CameraFrameToWrite> batch;
+    for (const JsonlCameraFrame& f : pending) {
+      const JsonlCameraInfo& info = reader_options.cameras.at(f.frame.camera_id);
+      batch.push_back({&f.frame, info.width_px, info.height_px});
+    }
+    sink.WriteFrame(std::move(batch));
+    pending.clear();
+  };
+  std::int64_t next_report = 100000;
+  while (std::optional<JsonlCameraFrame> f = reader.Next()) {
+    if (!pending.empty() && f->frame.frame != pending.front().frame.frame) flush();
+    pending.push_back(std::move(*f));
+    if (reader.lines_read() >= next_report) {
+      Progress(c, std::to_string(reader.lines_read()) + " lines read");
+      next_report += 100000;
+    }
+  }
+  if (!pending.empty()) flush();
+  if (sink.stats().events == 0) {
+    throw std::runtime_error(detections_path + ": no valid line (" +
+                             std::to_string(reader.lines_read()) + " lines read)");
+  }
+  sink.Finish();
+  const DetectionsLogStats& st = sink.stats();
+  config::SaveCalibration(
+      out.File(kConvertCalibrationFile).string(), calibration.cameras, calibration.names);
+
+  if (reader.bad_lines() > 0) {
+    std::cerr << "mvtrack convert jsonl: skipped " << reader.bad_lines() << " bad line(s) of "
+              << reader.lines_read() << "; the first:\n";
+    for (const JsonlBadLine& bad : reader.first_bad_lines())
+      std::cerr << "  " << bad.message << "\n";
+  }
+
+  std::ostringstream r;
+  r << "mvtrack convert jsonl (mvtrack " << MVTRACK_VERSION << ")\n\n";
+  r << "Command line:\n  " << c.command_line << "\n\n";
+  r << "What was converted:\n"
+    << "  Detections: " << detections_path << " (JSON-lines detections, docs/FORMATS.md), "
+    << reader.lines_read() << " lines: " << st.events << " converted, " << reader.bad_lines()
+    << " bad line(s) skipped" << (reader_options.skip_bad_lines ? "" : " (--skip-bad-lines off)")
+    << ".\n";
+  for (const JsonlBadLine& bad : reader.first_bad_lines())
+    r << "    skipped: " << bad.message << "\n";
+  r << "  Calibration: " << calibration_path << ", " << calibration.cameras.size()
+    << " cameras, written back in canonical form.\n";
+  std::vector<CameraId> silent;
+  for (const geometry::CameraModel& cam : calibration.cameras) {
+    if (st.events_per_camera.count(cam.id) == 0) silent.push_back(cam.id);
+  }
+  if (!silent.empty()) {
+    std::sort(silent.begin(), silent.end());
+    r << "  Calibrated cameras without any line:";
+    for (CameraId id : silent) r << " " << id;
+    r << ".\n";
+  }
+  r << "  Each line became one event; a camera-frame without a line has no event (the tracker\n"
+       "  sees that camera as silent in that frame). Detections are copied as given: boxes,\n"
+       "  scores, keypoints (raw pixels) and embeddings; coordinates become floats on the wire.\n"
+       "  Image size of each event: the camera's calibrated size.\n\n";
+  r << "Files:\n" << LogDescription(c, st);
+  r << "  " << kConvertCalibrationFile << ": mvtrack.calibration/1 (docs/FORMATS.md), "
+    << calibration.cameras.size() << " cameras.\n";
+  r << "  " << kConvertReadmeFile << ": this file.\n";
+  out.WriteText(kConvertReadmeFile, r.str());
+
+  Progress(c,
+           "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
+               std::to_string(st.detections) + " detections, " + std::to_string(st.bytes) +
+               " bytes of log in " + FormatSeconds(SecondsSince(start)));
+  return 0;
+}
+
+struct Format {
+  const char* name;
+  const char* summary;
+  int (*run)(int, char**, const std::string&);
+};
+
+constexpr Format kFormats[] = {
+    {"shelf", "Shelf: real OpenPose BODY25 detections, 5 cameras, frames 300-600", ConvertShelf},
+    {"campus",
+     "Campus: 2D ground truth through the seeded corruption model, 3 cameras",
+     ConvertCampus},
+    {"panoptic",
+     "CMU Panoptic excerpt: 3D skeletons projected into chosen HD cameras",
+     ConvertPanoptic},
+    {"wildtrack",
+     "WILDTRACK: MVDeTr boxes of 7 views (box mode) + MVDeTr ground points",
+     ConvertWildtrack},
+    {"jsonl", "generic JSON-lines detections + a calibration (docs/FORMATS.md)", ConvertJsonl},
+};
+
+std::string ConvertHelp() {
+  std::ostringstream os;
+  os << "usage: mvtrack convert <format> [options] --out DIR   (mvtrack convert <format> "
+        "--help)\n\n"
+     << kConvertDescription << "\n\nformats:\n";
+  for (const Format& f : kFormats) {
+    os << "  " << f.name << std::string(12 - std::string(f.name).size(), ' ') << f.summary << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace
+
+int RunConvert(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << ConvertHelp();
+    return 2;
+  }
+  const std::string format = argv[1];
+  if (format == "--help" || format == "-h") {
+    std::cout << ConvertHelp();
+    return 0;
+  }
+  std::vector<std::string> words = {"mvtrack"};
+  for (int i = 0; i < argc; ++i) words.emplace_back(argv[i]);
+  const std::string command_line = ShellQuoteCommand(words);
+  for (const Format& f : kFormats) {
+    if (format == f.name) return f.run(argc - 1, argv + 1, command_line);
+  }
+  throw UsageError("unknown format '" + format +
+                   "' (shelf, campus, panoptic, wildtrack, jsonl; "
+                   "see mvtrack convert --help)");
+}
+
+}  // namespace mvtrack::cli

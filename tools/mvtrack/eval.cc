@@ -1,0 +1,338 @@
+// mvtrack eval: scores a track output against ground truth (CLEAR MOT, identity F1, MPJPE and
+// optionally PCP) with lib/eval. Both inputs are canonical tracks JSONL or LCM tracks logs
+// (tracks_io.h); ground-truth actors are tracks whose ids are the actor ids.
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include "core/keypoint_layout.h"
+#include "eval/pcp.h"
+#include "eval/report.h"
+#include "eval/sequence.h"
+#include "eval/tracking_metrics.h"
+#include "mvtrack/cli.h"
+#include "mvtrack/tracks_io.h"
+
+namespace mvtrack::cli {
+namespace {
+
+// A non-negative decimal integer, the whole of `text`.
+std::optional<std::int64_t> ParseNonNegative(std::string_view text) {
+  std::int64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || v < 0) {
+    return std::nullopt;
+  }
+  return v;
+}
+
+std::vector<std::string_view> SplitCommas(std::string_view text) {
+  std::vector<std::string_view> parts;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', begin);
+    parts.push_back(text.substr(begin, comma == std::string_view::npos ? comma : comma - begin));
+    if (comma == std::string_view::npos) break;
+    begin = comma + 1;
+  }
+  return parts;
+}
+
+// "A-B[,C-D...]", a single frame "A" meaning A-A.
+std::vector<eval::FrameRange> ParseFrameRanges(const std::string& text) {
+  std::vector<eval::FrameRange> ranges;
+  for (std::string_view part : SplitCommas(text)) {
+    const std::size_t dash = part.find('-');
+    const std::optional<std::int64_t> first = ParseNonNegative(part.substr(0, dash));
+    const std::optional<std::int64_t> last =
+        dash == std::string_view::npos ? first : ParseNonNegative(part.substr(dash + 1));
+    if (!first || !last) {
+      throw UsageError("--frames: '" + std::string(part) +
+                       "' is not a frame range A-B (non-negative frame indices, A <= B)");
+    }
+    if (*first > *last) {
+      throw UsageError("--frames: range '" + std::string(part) + "' ends before it starts");
+    }
+    ranges.push_back({*first, *last});
+  }
+  return ranges;
+}
+
+std::vector<std::int64_t> ParseActors(const std::string& text) {
+  std::vector<std::int64_t> ids;
+  std::set<std::int64_t> seen;
+  for (std::string_view part : SplitCommas(text)) {
+    const std::optional<std::int64_t> id = ParseNonNegative(part);
+    if (!id) throw UsageError("--actors: '" + std::string(part) + "' is not an actor id");
+    if (!seen.insert(*id).second) {
+      throw UsageError("--actors: actor " + std::to_string(*id) + " is listed twice");
+    }
+    ids.push_back(*id);
+  }
+  return ids;
+}
+
+// True when the file's tracks carry joints (or the file has no frames, so nothing to compare).
+bool HasJoints(const TrackFile& file) {
+  return !file.layout || *file.layout != core::KeypointLayoutId::kNone;
+}
+
+// The frames of `file` as an evaluation sequence; joints dropped (`keep_joints` false), kept, or
+// mapped with `mapping` (when not null).
+eval::EvalSequence ToSequence(const TrackFile& file, bool keep_joints,
+                              const core::KeypointMapping* mapping) {
+  eval::EvalSequence seq;
+  seq.reserve(file.frames.size());
+  std::vector<Vec3> points;
+  std::vector<bool> valid;
+  std::vector<Vec3> mapped_points;
+  std::vector<bool> mapped_valid;
+  for (const TrackFileFrame& f : file.frames) {
+    eval::EvalFrame ef;
+    ef.frame = f.frame.frame;
+    for (const tracker::Track3D& t : f.frame.tracks) {
+      eval::EvalObject o;
+      o.id = t.id;
+      o.position = t.position;
+      if (keep_joints && mapping == nullptr) {
+        o.joints = t.joints;
+      } else if (keep_joints) {
+        points.assign(t.joints.size(), Vec3::Zero());
+        valid.assign(t.joints.size(), false);
+        for (std::size_t j = 0; j < t.joints.size(); ++j) {
+          if (t.joints[j]) {
+            points[j] = *t.joints[j];
+            valid[j] = true;
+          }
+        }
+        core::ApplyKeypointMapping(*mapping, points, valid, &mapped_points, &mapped_valid);
+        o.joints.resize(mapped_points.size());
+        for (std::size_t j = 0; j < mapped_points.size(); ++j) {
+          if (mapped_valid[j]) o.joints[j] = mapped_points[j];
+        }
+      }
+      ef.objects.push_back(std::move(o));
+    }
+    seq.push_back(std::move(ef));
+  }
+  return seq;
+}
+
+// One line per target joint: "  neck          <- 0.5 left_shoulder + 0.5 right_shoulder".
+std::string DescribeMapping(const core::KeypointMapping& mapping) {
+  const core::KeypointLayout& from = core::GetKeypointLayout(mapping.from);
+  const core::KeypointLayout& to = core::GetKeypointLayout(mapping.to);
+  std::size_t width = 0;
+  for (const std::string& name : to.joints) width = std::max(width, name.size());
+  std::ostringstream os;
+  int derivable = 0;
+  for (std::size_t j = 0; j < mapping.targets.size(); ++j) {
+    os << "  " << to.joints[j] << std::string(width - to.joints[j].size(), ' ') << " <- ";
+    const std::vector<core::JointSource>& sources = mapping.targets[j];
+    if (sources.empty()) {
+      os << "not derivable (always missing)";
+    } else {
+      ++derivable;
+      for (std::size_t k = 0; k < sources.size(); ++k) {
+        const double w = sources[k].weight;
+        if (k > 0) os << (w < 0.0 ? " - " : " + ");
+        if (k == 0 && w < 0.0) os << "-";
+        if (sources.size() > 1 || w != 1.0) os << std::abs(w) << " ";
+        os << from.joints[static_cast<std::size_t>(sources[k].source_joint)];
+      }
+    }
+    os << "\n";
+  }
+  return "  (" + std::to_string(derivable) + " of " + std::to_string(mapping.targets.size()) +
+         " joints derivable)\n" + os.str();
+}
+
+}  // namespace
+
+int RunEval(int argc, char** argv) {
+  Args args;
+  args.Positional("TRACKS", "the predictions (instead of --pred)", /*required=*/false)
+      .Option("gt", "ground truth: canonical tracks JSONL (actors as tracks) or an LCM tracks log "
+                    "(required)")
+      .Option("pred", "the predictions: JSONL or LCM tracks log (or give them as TRACKS)")
+      .Option("layout", "keypoint layout joints are compared in: coco17, body25, shelf14, "
+                        "panoptic19 (default: the ground truth's); the other side is mapped to it "
+                        "with core::MakeKeypointMapping")
+      .Option("distance", "how GT and tracks are matched: footprint (ground-plane distance) or "
+                          "joints (mean 3D joint distance)",
+              "footprint")
+      .Option("threshold", "matching gate, metres", "0.5")
+      .Option("frames", "evaluate only these frames: A-B[,C-D...] (inclusive; default: all)")
+      .Option("actors", "PCP only: GT actor ids scored, e.g. 0,1,2 (default: every actor)")
+      .Flag("pcp", "also score PCP (alpha 0.5): the Shelf/Campus parts when the layout is shelf14, "
+                   "else every bone of the layout")
+      .Option("json", "also write the report as JSON (schema mvtrack.eval/1) to this file "
+                      "('-': stdout, the table then goes to stderr)");
+  if (!args.Parse(argc, argv,
+                  "mvtrack eval --gt GT [--pred] TRACKS [--layout NAME] "
+                  "[--distance footprint|joints] [--threshold M] [--frames A-B[,C-D]] "
+                  "[--actors 0,1,2] [--pcp] [--json OUT.json]",
+                  "Scores tracks against ground truth with CLEAR MOT (MOTA, MOTP, FP, FN, IDSW, MT,\n"
+                  "ML; py-motmetrics semantics), identity F1 (IDF1, IDP, IDR) and MPJPE, and with\n"
+                  "--pcp the PCP of Belagiannis et al. as the Shelf/Campus evaluations compute it.\n"
+                  "Both files may be canonical tracks JSONL or LCM logs of tracks3d_t (recognised\n"
+                  "by content). Joints in different keypoint layouts are mapped to one layout\n"
+                  "(the mapping is printed). The protocol of every metric is printed with it.\n\n"
+                  "Exit status: 0 evaluated, 1 failure (unreadable input, inputs that cannot be\n"
+                  "compared), 2 usage error.")) {
+    return 0;
+  }
+  if (!args.Has("gt")) throw UsageError("--gt is required");
+  if (args.Has("pred") && args.Has("TRACKS")) {
+    throw UsageError("give the predictions either as --pred or as TRACKS, not both");
+  }
+  if (!args.Has("pred") && !args.Has("TRACKS")) {
+    throw UsageError("missing the predictions (--pred TRACKS or TRACKS)");
+  }
+  const std::string pred_path = args.Has("pred") ? args.Get("pred") : args.Get("TRACKS");
+
+  eval::TrackingOptions tracking_options;
+  const std::string distance = args.Get("distance");
+  if (distance == "footprint") {
+    tracking_options.distance = eval::DistanceKind::kFootprint;
+  } else if (distance == "joints") {
+    tracking_options.distance = eval::DistanceKind::kMeanJoint;
+  } else {
+    throw UsageError("--distance must be 'footprint' or 'joints', not '" + distance + "'");
+  }
+  const double threshold = args.GetDouble("threshold");
+  if (!(threshold > 0.0)) throw UsageError("--threshold must be > 0 (metres)");
+  tracking_options.footprint_threshold_m = threshold;
+  tracking_options.mean_joint_threshold_m = threshold;
+  if (args.Has("frames")) tracking_options.frame_ranges = ParseFrameRanges(args.Get("frames"));
+  const bool pcp = args.Has("pcp");
+  if (args.Has("actors") && !pcp) throw UsageError("--actors applies to PCP only: add --pcp");
+  std::optional<core::KeypointLayoutId> requested_layout;
+  if (args.Has("layout")) {
+    requested_layout = core::KeypointLayoutFromName(args.Get("layout"));
+    if (!requested_layout) {
+      throw UsageError("--layout: unknown layout '" + args.Get("layout") +
+                       "' (coco17, body25, shelf14, campus14, panoptic19, none)");
+    }
+  }
+  const bool needs_joints = tracking_options.distance == eval::DistanceKind::kMeanJoint || pcp;
+  if (needs_joints && requested_layout == core::KeypointLayoutId::kNone) {
+    throw UsageError("--layout none has no joints: --distance joints and --pcp need joints");
+  }
+
+  TrackFile gt;
+  TrackFile pred;
+  try {
+    gt = ReadTrackFile(args.Get("gt"));
+    pred = ReadTrackFile(pred_path);
+  } catch (const TrackFileError& e) {
+    std::cerr << "mvtrack eval: " << e.what() << "\n";
+    return 1;
+  }
+
+  // The layout joints are compared in, and how each side gets there.
+  const core::KeypointLayoutId eval_layout = requested_layout.value_or(
+      gt.layout.value_or(pred.layout.value_or(core::KeypointLayoutId::kNone)));
+  const bool compare_joints =
+      eval_layout != core::KeypointLayoutId::kNone && HasJoints(gt) && HasJoints(pred);
+  if (needs_joints && !compare_joints) {
+    const std::string side = !HasJoints(gt) ? "the ground truth (" + gt.path + ")"
+                                            : "the predictions (" + pred.path + ")";
+    std::cerr << "mvtrack eval: no joints in " << side
+              << ": layout none (box mode); --distance joints and --pcp need joints on both "
+                 "sides\n";
+    return 1;
+  }
+  std::optional<core::KeypointMapping> gt_mapping;
+  std::optional<core::KeypointMapping> pred_mapping;
+  if (compare_joints && gt.layout && *gt.layout != eval_layout) {
+    gt_mapping = core::MakeKeypointMapping(*gt.layout, eval_layout);
+  }
+  if (compare_joints && pred.layout && *pred.layout != eval_layout) {
+    pred_mapping = core::MakeKeypointMapping(*pred.layout, eval_layout);
+  }
+  const eval::EvalSequence gt_seq =
+      ToSequence(gt, compare_joints, gt_mapping ? &*gt_mapping : nullptr);
+  const eval::EvalSequence pred_seq =
+      ToSequence(pred, compare_joints, pred_mapping ? &*pred_mapping : nullptr);
+
+  const bool json_to_stdout = args.Has("json") && args.Get("json") == "-";
+  std::ostream& out = json_to_stdout ? std::cerr : std::cout;
+  out << "ground truth: " << gt.Describe() << "\n";
+  out << "predictions:  " << pred.Describe() << "\n";
+  {
+    std::set<FrameIndex> gt_frames;
+    for (const TrackFileFrame& f : gt.frames) gt_frames.insert(f.frame.frame);
+    std::int64_t common = 0;
+    for (const TrackFileFrame& f : pred.frames) common += gt_frames.count(f.frame.frame) ? 1 : 0;
+    out << "frames: " << gt.frames.size() << " in the ground truth, " << pred.frames.size()
+        << " predicted, " << common << " in both\n";
+  }
+  if (!compare_joints) {
+    out << "joints: not compared ("
+        << (eval_layout == core::KeypointLayoutId::kNone
+                ? std::string("layout none")
+                : (!HasJoints(gt) ? "the ground truth has none" : "the predictions have none"))
+        << "); footprints only\n";
+  } else {
+    out << "joints: compared in layout " << LayoutName(eval_layout) << "\n";
+    const std::pair<const char*, const std::optional<core::KeypointMapping>*> sides[] = {
+        {"ground truth", &gt_mapping}, {"predictions", &pred_mapping}};
+    for (const auto& [name, mapping] : sides) {
+      if (!*mapping) continue;
+      out << "  " << name << " mapped " << LayoutName((*mapping)->from) << " -> "
+          << LayoutName((*mapping)->to) << " (core::MakeKeypointMapping):\n"
+          << DescribeMapping(**mapping);
+    }
+  }
+  out << "\n";
+
+  std::string why;
+  if (!tracking_options.Validate(&why)) throw UsageError(why);
+  eval::EvaluationReport report;
+  report.tracking = eval::EvaluateTracking(gt_seq, pred_seq, tracking_options);
+  if (!report.tracking->valid) {
+    std::cerr << "mvtrack eval: tracking evaluation failed: " << report.tracking->error << "\n";
+    return 1;
+  }
+  if (pcp) {
+    const eval::PcpProtocol protocol = eval_layout == core::KeypointLayoutId::kShelf14
+                                           ? eval::ShelfCampusPcpProtocol()
+                                           : eval::LayoutPcpProtocol(eval_layout);
+    eval::PcpOptions pcp_options;
+    pcp_options.frame_ranges = tracking_options.frame_ranges;
+    if (args.Has("actors")) pcp_options.actor_ids = ParseActors(args.Get("actors"));
+    if (!pcp_options.Validate(&why)) throw UsageError(why);
+    report.pcp = eval::EvaluatePcp(gt_seq, pred_seq, protocol, pcp_options);
+    if (!report.pcp->valid) {
+      std::cerr << "mvtrack eval: PCP evaluation failed: " << report.pcp->error << "\n";
+      return 1;
+    }
+  }
+  out << eval::FormatReportTable(report);
+  if (args.Has("json")) {
+    const std::string json = eval::ReportToJson(report);
+    if (json_to_stdout) {
+      std::cout << json << std::flush;
+      if (!std::cout) throw std::runtime_error("stdout: write error");
+    } else {
+      std::ofstream file(args.Get("json"), std::ios::binary | std::ios::trunc);
+      if (!file) throw std::runtime_error(args.Get("json") + ": cannot open for writing");
+      file << json;
+      file.close();
+      if (!file) throw std::runtime_error(args.Get("json") + ": write error");
+    }
+  }
+  return 0;
+}
+
+}  // namespace mvtrack::cli

@@ -1,0 +1,428 @@
+// mvtrack replay: deterministic offline tracking of a recorded detections log. Reads the log
+// with transport::LogReader (no LCM receive thread), decodes every detections event with the
+// safe decoder, runs the threaded pipeline::Pipeline (lossless queues) in log order and writes
+// every finalized frame as tracks3d_t (LCM log) and/or canonical JSONL.
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "config/calibration.h"
+#include "config/tracker_options.h"
+#include "core/keypoint_layout.h"
+#include "geometry/camera_rig.h"
+#include "mvtrack/cli.h"
+#include "mvtrack/tracks_io.h"
+#include "pipeline/clock.h"
+#include "pipeline/executor.h"
+#include "pipeline/pipeline.h"
+#include "transport/channels.h"
+#include "transport/codec.h"
+#include "transport/log_io.h"
+#include "transport/tracks_jsonl.h"
+
+namespace mvtrack::cli {
+namespace {
+
+// Diagnostics printed per kind of problem (bad messages, rejected camera-frames, image sizes);
+// the rest are only counted.
+constexpr std::int64_t kMaxPrintedPerKind = 5;
+// Largest --threads value (ThreadPoolOptions allows [1, 256]).
+constexpr std::int64_t kMaxThreads = 256;
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A progress line on stderr at most once per second: rewritten in place on a terminal, one
+// line per update otherwise (logs, CI).
+class Progress {
+ public:
+  explicit Progress(bool enabled) : enabled_(enabled), tty_(isatty(STDERR_FILENO) == 1) {}
+
+  bool Due() const {
+    return enabled_ && std::chrono::duration<double>(Clock::now() - last_).count() >= 1.0;
+  }
+  void Print(const std::string& text) {
+    last_ = Clock::now();
+    std::cerr << (tty_ ? "\r" : "") << "replay: " << text << (tty_ ? "\x1b[K" : "\n")
+              << std::flush;
+    open_line_ = tty_;
+  }
+  // Ends a line left open on a terminal.
+  void Finish() {
+    if (open_line_) std::cerr << "\n";
+    open_line_ = false;
+  }
+
+ private:
+  bool enabled_;
+  bool tty_;
+  bool open_line_ = false;
+  Clock::time_point last_ = Clock::now();
+};
+
+// The decoded input and what was wrong with it.
+struct LoadedInput {
+  std::vector<core::CameraFrame> frames;  // camera-frames in log order
+  std::vector<std::int64_t> event_times_us;  // the log timestamp of each of `frames`
+  std::int64_t events = 0;                // events read
+  std::int64_t detection_events = 0;      // events on a detections channel
+  std::map<std::string, std::int64_t> foreign_channels;  // other channels: event counts
+  std::map<std::string, std::int64_t> bad_messages;      // by reason kind
+  std::int64_t bad_messages_total = 0;
+  std::int64_t image_size_mismatches = 0;  // accepted, but the size differs from calibration
+  transport::LogEnd end = transport::LogEnd::kNotEnded;
+  std::string end_error;
+  std::int64_t skipped_bytes = 0;
+};
+
+std::string EventWhere(const std::string& path, const transport::LogEvent& e) {
+  return path + ": event " + std::to_string(e.event_number) + " on " + e.channel + " (t=" +
+         std::to_string(e.timestamp_us) + " us)";
+}
+
+LoadedInput LoadDetections(const std::string& path, const geometry::CameraRig& rig,
+                           Progress* progress) {
+  std::string why;
+  std::unique_ptr<transport::LogReader> reader = transport::LogReader::Open(path, &why);
+  if (!reader) throw std::runtime_error(why);
+  LoadedInput in;
+  std::int64_t printed_bad = 0;
+  std::int64_t printed_size = 0;
+  auto bad = [&](const std::string& kind, const std::string& message) {
+    ++in.bad_messages[kind];
+    ++in.bad_messages_total;
+    if (printed_bad < kMaxPrintedPerKind) {
+      progress->Finish();
+      std::cerr << "replay: skipped: " << message << "\n";
+    } else if (printed_bad == kMaxPrintedPerKind) {
+      std::cerr << "replay: (further bad messages are counted, not printed)\n";
+    }
+    ++printed_bad;
+  };
+  while (std::optional<transport::LogEvent> event = reader->Next()) {
+    ++in.events;
+    if (progress->Due()) {
+      progress->Print("reading: " + std::to_string(in.events) + " events, " +
+                      std::to_string(in.frames.size()) + " camera-frames");
+    }
+    if (!transport::IsDetectionsChannel(event->channel)) {
+      ++in.foreign_channels[event->channel];
+      continue;
+    }
+    ++in.detection_events;
+    transport::DecodeResult decoded =
+        transport::DecodeCameraDetections(event->data.data(), event->data.size());
+    if (!decoded.ok()) {
+      bad(transport::ToString(decoded.status), EventWhere(path, *event) + ": " +
+                                                   transport::ToString(decoded.status) + ": " +
+                                                   decoded.reason);
+      continue;
+    }
+    const std::optional<CameraId> channel_camera = transport::CameraIdFromChannel(event->channel);
+    if (channel_camera && *channel_camera != decoded.frame.camera_id) {
+      bad("camera id differs from channel",
+          EventWhere(path, *event) + ": camera_id " + std::to_string(decoded.frame.camera_id) +
+              " on the channel of camera " + std::to_string(*channel_camera));
+      continue;
+    }
+    if (const std::optional<int> index = rig.IndexOf(decoded.frame.camera_id)) {
+      const geometry::CameraModel& cam = rig.camera(*index);
+      if (decoded.image_width_px != 0 && decoded.image_height_px != 0 &&
+          (decoded.image_width_px != cam.width_px || decoded.image_height_px != cam.height_px)) {
+        ++in.image_size_mismatches;
+        if (printed_size++ < 1) {
+          progress->Finish();
+          std::cerr << "replay: warning: " << EventWhere(path, *event) << ": image size "
+                    << decoded.image_width_px << "x" << decoded.image_height_px
+                    << " differs from the calibration's " << cam.width_px << "x" << cam.height_px
+                    << " (detections are validated against the calibration; further cases "
+                       "are counted)\n";
+        }
+      }
+    }
+    in.frames.push_back(std::move(decoded.frame));
+    in.event_times_us.push_back(event->timestamp_us);
+  }
+  in.end = reader->end();
+  in.end_error = reader->error();
+  in.skipped_bytes = reader->skipped_bytes();
+  return in;
+}
+
+std::string CountsText(const std::map<std::string, std::int64_t>& counts) {
+  std::string s;
+  for (const auto& [name, n] : counts) s += (s.empty() ? "" : ", ") + name + " " + std::to_string(n);
+  return s;
+}
+
+bool SamePath(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (std::filesystem::exists(a, ec) && std::filesystem::exists(b, ec)) {
+    return std::filesystem::equivalent(a, b, ec);
+  }
+  return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
+}
+
+}  // namespace
+
+int RunReplay(int argc, char** argv) {
+  Args args;
+  args.Positional("INPUT.lcmlog", "detections log (camera_detections_t on MVTRACK_DETECTIONS or "
+                                  "MVTRACK_DETECTIONS_<camera id>)")
+      .Option("calibration", "camera calibration, mvtrack.calibration/1 (required)")
+      .Option("config", "tracker options file (a `tracker:` YAML document; default: the paper's "
+                        "defaults)")
+      .Option("mode", "override tracker.mode: boxes or poses")
+      .Option("layout", "override tracker.layout: coco17, body25, shelf14, panoptic19 or none")
+      .Option("threads", "window-job workers: 0 = run jobs inline on the scheduler thread, N = a "
+                         "pool of N worker threads; the output is identical for every value",
+              "0")
+      .Option("out", "write the tracks as tracks3d_t on MVTRACK_TRACKS to this LCM log")
+      .Option("jsonl", "write the tracks as canonical JSON lines to this file ('-': stdout)")
+      .Flag("quiet", "no progress line on stderr");
+  if (!args.Parse(argc, argv,
+                  "mvtrack replay --calibration CAL.yaml [--config OPTIONS.yaml] "
+                  "[--mode boxes|poses] [--layout NAME] [--threads N] [--out TRACKS.lcmlog] "
+                  "[--jsonl TRACKS.jsonl] [--quiet] INPUT.lcmlog",
+                  "Tracks a recorded detections log offline, deterministically: the events are read\n"
+                  "in log order, decoded with the safe decoder and fed to the threaded pipeline with\n"
+                  "lossless queues, so the output depends only on the log and the options (never on\n"
+                  "timing or --threads). Events on other channels are ignored and counted; messages\n"
+                  "that do not decode are skipped, counted, and the first few are printed. A\n"
+                  "truncated or damaged log is tracked up to the damage.\n\n"
+                  "Every finalized frame is written as tracks3d_t (event timestamp and publish_utime\n"
+                  "= the frame's capture utime, latency_us = 0) and/or as one canonical JSON line.\n"
+                  "The decoded detections are held in memory while tracking, so the reported speed\n"
+                  "measures tracking only (from the first camera-frame submitted to the end of the\n"
+                  "final flush; reading, decoding and writing excluded).\n\n"
+                  "Exit status: 0 done (also when messages were skipped), 1 failure (unreadable\n"
+                  "input, calibration or options error, output not writable), 2 usage error.")) {
+    return 0;
+  }
+  const std::string input_path = args.Get("INPUT.lcmlog");
+  if (!args.Has("calibration")) throw UsageError("--calibration is required");
+  const std::int64_t threads = args.GetInt("threads");
+  if (threads < 0 || threads > kMaxThreads) {
+    throw UsageError("--threads must be in [0, " + std::to_string(kMaxThreads) + "]");
+  }
+  const std::string out_path = args.Get("out");
+  const std::string jsonl_path = args.Get("jsonl");
+  if (args.Has("out") && out_path.empty()) throw UsageError("--out needs a file name");
+  if (args.Has("jsonl") && jsonl_path.empty()) throw UsageError("--jsonl needs a file name");
+  if (!out_path.empty() && SamePath(out_path, input_path)) {
+    throw UsageError("--out would overwrite the input " + input_path);
+  }
+  if (!jsonl_path.empty() && jsonl_path != "-" && SamePath(jsonl_path, input_path)) {
+    throw UsageError("--jsonl would overwrite the input " + input_path);
+  }
+  if (!out_path.empty() && !jsonl_path.empty() && SamePath(out_path, jsonl_path)) {
+    throw UsageError("--out and --jsonl name the same file");
+  }
+  const bool jsonl_to_stdout = jsonl_path == "-";
+  std::ostream& report = jsonl_to_stdout ? std::cerr : std::cout;
+
+  // Options: file (or defaults), then the command-line overrides.
+  tracker::TrackerOptions options;
+  if (args.Has("config")) options = config::LoadTrackerOptionsFile(args.Get("config"));
+  if (args.Has("mode")) {
+    const std::optional<tracker::InputMode> mode = config::InputModeFromName(args.Get("mode"));
+    if (!mode) throw UsageError("--mode must be 'boxes' or 'poses', not '" + args.Get("mode") + "'");
+    options.mode = *mode;
+  }
+  if (args.Has("layout")) {
+    const std::optional<core::KeypointLayoutId> layout =
+        core::KeypointLayoutFromName(args.Get("layout"));
+    if (!layout) {
+      throw UsageError("--layout: unknown layout '" + args.Get("layout") +
+                       "' (coco17, body25, shelf14, campus14, panoptic19, none)");
+    }
+    options.layout = *layout;
+  }
+  std::string why;
+  if (!options.Validate(&why)) throw UsageError("tracker options: " + why);
+  const core::KeypointLayoutId output_layout =
+      options.mode == tracker::InputMode::kPoses ? options.layout : core::KeypointLayoutId::kNone;
+
+  std::vector<geometry::CameraModel> cameras = config::LoadCalibration(args.Get("calibration"));
+  geometry::CameraRig rig(std::move(cameras), &why);
+  if (!rig.ok()) throw std::runtime_error(args.Get("calibration") + ": " + why);
+
+  // Open the outputs first: an unwritable path fails before any work.
+  std::unique_ptr<transport::LogWriter> lcm_out;
+  if (!out_path.empty()) {
+    lcm_out = transport::LogWriter::Open(out_path, &why);
+    if (!lcm_out) throw std::runtime_error(why);
+  }
+  std::ofstream jsonl_file;
+  std::ostream* jsonl = nullptr;
+  if (jsonl_to_stdout) {
+    jsonl = &std::cout;
+  } else if (!jsonl_path.empty()) {
+    jsonl_file.open(jsonl_path, std::ios::binary | std::ios::trunc);
+    if (!jsonl_file) throw std::runtime_error(jsonl_path + ": cannot open for writing");
+    jsonl = &jsonl_file;
+  }
+
+  Progress progress(!args.Has("quiet"));
+  const auto read_start = Clock::now();
+  LoadedInput in = LoadDetections(input_path, rig, &progress);
+  const double read_seconds = SecondsSince(read_start);
+  if (in.end == transport::LogEnd::kIoError) {
+    progress.Finish();
+    throw std::runtime_error(in.end_error);
+  }
+
+  // Tracking: the pipeline with lossless camera queues; frames are collected in memory.
+  pipeline::PipelineOptions pipeline_options;
+  pipeline_options.camera_overflow = pipeline::OverflowPolicy::kBlock;
+  std::unique_ptr<pipeline::Executor> executor;
+  if (threads == 0) {
+    executor = std::make_unique<pipeline::InlineExecutor>();
+  } else {
+    pipeline::ThreadPoolOptions pool;
+    pool.num_workers = static_cast<int>(threads);
+    executor = std::make_unique<pipeline::ThreadPoolExecutor>(pool);
+  }
+  pipeline::ManualClock clock(in.event_times_us.empty() ? 0 : in.event_times_us.front());
+  std::mutex frames_mu;
+  std::vector<tracker::Frame3D> frames;  // guarded by frames_mu (written on the finalizer thread)
+  std::atomic<std::int64_t> frames_out{0};
+  std::unique_ptr<pipeline::Pipeline> pipeline = pipeline::Pipeline::Create(
+      rig, options, pipeline_options, std::move(executor), clock,
+      [&](tracker::Frame3D frame) {
+        std::lock_guard<std::mutex> lock(frames_mu);
+        frames.push_back(std::move(frame));
+        frames_out.fetch_add(1, std::memory_order_relaxed);
+      },
+      &why);
+  if (!pipeline) throw std::runtime_error("pipeline: " + why);
+
+  const std::size_t num_camera_frames = in.frames.size();
+  std::int64_t printed_rejections = 0;
+  const auto track_start = Clock::now();
+  for (std::size_t i = 0; i < num_camera_frames; ++i) {
+    if (progress.Due()) {
+      progress.Print("tracking: " + std::to_string(i) + "/" + std::to_string(num_camera_frames) +
+                     " camera-frames, " + std::to_string(frames_out.load()) + " frames out");
+    }
+    clock.SetMicros(in.event_times_us[i]);
+    const CameraId camera = in.frames[i].camera_id;
+    const FrameIndex frame = in.frames[i].frame;
+    const pipeline::SubmitResult r = pipeline->Submit(std::move(in.frames[i]));
+    if (r.status == pipeline::SubmitStatus::kStopped) {
+      throw std::runtime_error("pipeline stopped unexpectedly");
+    }
+    if (r.status == pipeline::SubmitStatus::kRejected) {
+      if (printed_rejections < kMaxPrintedPerKind) {
+        progress.Finish();
+        std::cerr << "replay: rejected camera-frame (camera " << camera << ", frame " << frame
+                  << "): " << tracker::ToString(r.rejection) << ": " << r.reason << "\n";
+      } else if (printed_rejections == kMaxPrintedPerKind) {
+        std::cerr << "replay: (further rejected camera-frames are counted, not printed)\n";
+      }
+      ++printed_rejections;
+    }
+  }
+  if (!pipeline->Flush()) throw std::runtime_error("pipeline stopped before the final flush");
+  pipeline->Stop();
+  const double track_seconds = SecondsSince(track_start);
+  const pipeline::PipelineStatus status = pipeline->Status();
+  pipeline.reset();
+  in.frames.clear();
+  progress.Finish();
+
+  // Output.
+  const auto write_start = Clock::now();
+  std::set<TrackId3D> track_ids;
+  std::int64_t track_frames = 0;
+  for (const tracker::Frame3D& f : frames) {
+    for (const tracker::Track3D& t : f.tracks) track_ids.insert(t.id);
+    track_frames += static_cast<std::int64_t>(f.tracks.size());
+    if (jsonl) *jsonl << transport::TracksJsonLine(f, output_layout);
+    if (lcm_out && !lcm_out->Write(transport::kTracksChannel, f.utime,
+                                   transport::EncodeTracks(f, output_layout, f.utime, 0), &why)) {
+      throw std::runtime_error(why);
+    }
+  }
+  if (lcm_out && !lcm_out->Flush(&why)) throw std::runtime_error(why);
+  if (jsonl) {
+    jsonl->flush();
+    if (!*jsonl) throw std::runtime_error((jsonl_to_stdout ? "stdout" : jsonl_path) + ": write error");
+  }
+  if (jsonl_file.is_open()) {
+    jsonl_file.close();
+    if (!jsonl_file) throw std::runtime_error(jsonl_path + ": write error");
+  }
+  const double write_seconds = SecondsSince(write_start);
+
+  // Summary.
+  const tracker::TrackerStats& st = status.tracker;
+  report << "replay: " << input_path << ": " << in.events << " event(s), "
+         << in.detection_events << " on detections channels";
+  if (!in.foreign_channels.empty()) {
+    std::int64_t n = 0;
+    for (const auto& [channel, count] : in.foreign_channels) n += count;
+    report << ", " << n << " on other channels ignored (" << CountsText(in.foreign_channels) << ")";
+  }
+  report << "; log " << transport::ToString(in.end);
+  if (!in.end_error.empty()) report << " (" << in.end_error << ")";
+  if (in.skipped_bytes > 0) report << "; " << in.skipped_bytes << " damaged byte(s) skipped";
+  report << "\n";
+  report << "  bad messages skipped: " << in.bad_messages_total;
+  if (in.bad_messages_total > 0) report << " (" << CountsText(in.bad_messages) << ")";
+  if (in.image_size_mismatches > 0) {
+    report << "; image size differs from calibration: " << in.image_size_mismatches;
+  }
+  report << "\n";
+  std::map<std::string, std::int64_t> rejections;
+  for (const auto& [kind, n] : st.rejections) rejections[tracker::ToString(kind)] = n;
+  report << "  camera-frames: " << st.camera_frames_accepted << " accepted, "
+         << st.camera_frames_rejected << " rejected";
+  if (st.camera_frames_rejected > 0) report << " (" << CountsText(rejections) << ")";
+  report << "\n  detections: " << st.detections_used << " used, " << st.detections_rejected
+         << " rejected, " << st.detections_repaired << " repaired, " << st.detections_filtered
+         << " filtered\n";
+  report << "  output: " << frames.size() << " frame(s), " << track_ids.size()
+         << " track id(s), " << track_frames << " track-frame(s), layout "
+         << LayoutName(output_layout) << "; " << st.windows_processed << " window(s)";
+  if (status.windows_failed > 0) {
+    report << ", " << status.windows_failed << " FAILED (" << status.last_failure << ")";
+  }
+  if (st.reanchors > 0) report << ", " << st.reanchors << " stream restart(s)";
+  report << "\n";
+  char speed[160];
+  const double fps = track_seconds > 0.0 ? static_cast<double>(frames.size()) / track_seconds : 0.0;
+  std::snprintf(speed, sizeof(speed), "%.3f s = %.0f frames/s", track_seconds, fps);
+  report << "  tracking: " << frames.size() << " frame(s) in " << speed << " (pipeline, "
+         << (threads == 0 ? std::string("inline window jobs")
+                          : std::to_string(threads) + " worker thread(s)")
+         << "; timed from the first submit to the end of the flush; reading "
+         << static_cast<long long>(read_seconds * 1000.0 + 0.5) << " ms and writing "
+         << static_cast<long long>(write_seconds * 1000.0 + 0.5) << " ms not included)\n";
+  if (!out_path.empty()) report << "  wrote " << out_path << " (LCM log, " << frames.size() << " event(s))\n";
+  if (!jsonl_path.empty() && !jsonl_to_stdout) {
+    report << "  wrote " << jsonl_path << " (JSONL, " << frames.size() << " line(s))\n";
+  }
+  if (status.windows_failed > 0 || status.output_callback_errors > 0) return 1;
+  return 0;
+}
+
+}  // namespace mvtrack::cli
