@@ -61,9 +61,12 @@ function(mvtrack_add_test)
   if(NOT labels)
     set(labels unit)
   endif()
+  # catch_discover_tests flattens PROPERTIES, so several labels must be passed as one
+  # escaped list or only the first survives.
+  string(REPLACE ";" "\\;" labels_joined "${labels}")
   catch_discover_tests(${t}
     TEST_PREFIX "${A_NAME}/"
     EXTRA_ARGS --rng-seed 12345
-    PROPERTIES LABELS "${labels}"
+    PROPERTIES LABELS "${labels_joined}"
     DISCOVERY_TIMEOUT 60)
 endfunction()
