@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/check.h"
+#include "core/random.h"
 #include "datasets/dataset.h"
 
 namespace mvtrack::datasets {
@@ -25,13 +26,8 @@ enum class Stream : std::uint64_t {
   kShuffle = 5,
 };
 
-// SplitMix64 finaliser (Steele, Lea & Flood 2014): a bijective 64-bit mixer.
-std::uint64_t Mix64(std::uint64_t z) {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
+using core::Mix64;
+using core::Random;
 
 std::uint64_t StreamSeed(std::uint64_t seed, Stream stream, FrameIndex frame, CameraId camera) {
   std::uint64_t h = Mix64(seed);
@@ -40,42 +36,6 @@ std::uint64_t StreamSeed(std::uint64_t seed, Stream stream, FrameIndex frame, Ca
   h = Mix64(h ^ static_cast<std::uint64_t>(static_cast<std::int64_t>(camera)));
   return h;
 }
-
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-
-  // Uniform in [0, 1) with 53 random bits.
-  double Uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  // Uniform in [lo, hi).
-  double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
-  // Uniform integer in [0, n), n >= 1.
-  std::size_t Index(std::size_t n) {
-    const auto i = static_cast<std::size_t>(Uniform() * static_cast<double>(n));
-    return i < n ? i : n - 1;
-  }
-  // Standard normal by the Box-Muller transform (two draws per value).
-  double Normal() {
-    const double u1 = 1.0 - Uniform();  // (0, 1]
-    const double u2 = Uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
-  }
-  // Poisson variate by Knuth's multiplication method (O(mean) draws).
-  int Poisson(double mean) {
-    if (!(mean > 0.0)) return 0;
-    const double limit = std::exp(-mean);
-    int k = 0;
-    double p = Uniform();
-    while (p > limit) {
-      ++k;
-      p *= Uniform();
-    }
-    return k;
-  }
-
- private:
-  std::mt19937_64 engine_;
-};
 
 bool InImage(const Vec2& p, int width, int height) {
   return p.x() >= 0.0 && p.y() >= 0.0 && p.x() <= static_cast<double>(width) &&
