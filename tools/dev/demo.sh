@@ -6,5 +6,5 @@ cd "$(dirname "$0")/../.."
 tools/dev/install_deps.sh
 export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
 cmake --preset release >/dev/null
-cmake --build --preset release
+cmake --build --preset release --target mvtrack
 exec build/release/tools/mvtrack demo "$@"
