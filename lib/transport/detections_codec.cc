@@ -117,24 +117,7 @@ DecodeResult DecodeCameraDetections(const void* data,
                                     std::size_t size,
                                     const DecodeLimits& limits) {
   DecodeResult result;
-  if (!internal::CheckEnvelope(data, size, limits, &result.status, &result.reason)) {
-    return result;
-  }
-  WireWalker walker(static_cast<const std::uint8_t*>(data), size);
-  if (!WalkCameraDetections(&walker, limits)) {
-    result.status = walker.status();
-    result.reason = walker.reason();
-    return result;
-  }
-  try {
-    mvtrack::camera_detections_t msg;
-    const int consumed = msg.decode(data, 0, static_cast<int>(size));
-    if (consumed < 0 || static_cast<std::size_t>(consumed) != size) {
-      result.status = DecodeStatus::kMalformed;
-      result.reason = "the generated decoder disagrees with the structure walk (returned " +
-                      std::to_string(consumed) + " for " + std::to_string(size) + " bytes)";
-      return result;
-    }
+  const auto convert = [&](const mvtrack::camera_detections_t& msg) {
     result.frame.utime = msg.utime;
     result.frame.frame = msg.frame;
     result.frame.camera_id = msg.camera_id;
@@ -144,13 +127,14 @@ DecodeResult DecodeCameraDetections(const void* data,
     for (const mvtrack::detection_t& d : msg.detections) {
       result.frame.detections.push_back(ToDetection2D(d));
     }
-  } catch (const std::exception& e) {
-    result = DecodeResult{};
-    result.status = DecodeStatus::kMalformed;
-    result.reason = std::string("the generated decoder threw: ") + e.what();
-    return result;
+  };
+  if (!internal::CheckedDecode<mvtrack::camera_detections_t>(
+          data, size, limits, WalkCameraDetections, convert, &result.status, &result.reason)) {
+    DecodeResult failed;  // nothing partially converted leaks out
+    failed.status = result.status;
+    failed.reason = std::move(result.reason);
+    return failed;
   }
-  result.status = DecodeStatus::kOk;
   return result;
 }
 

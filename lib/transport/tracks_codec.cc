@@ -149,24 +149,7 @@ std::int32_t SaturateToInt32(std::int64_t value) {
 
 TracksDecodeResult DecodeTracks(const void* data, std::size_t size, const DecodeLimits& limits) {
   TracksDecodeResult result;
-  if (!internal::CheckEnvelope(data, size, limits, &result.status, &result.reason)) {
-    return result;
-  }
-  WireWalker walker(static_cast<const std::uint8_t*>(data), size);
-  if (!WalkTracks(&walker, limits)) {
-    result.status = walker.status();
-    result.reason = walker.reason();
-    return result;
-  }
-  try {
-    mvtrack::tracks3d_t msg;
-    const int consumed = msg.decode(data, 0, static_cast<int>(size));
-    if (consumed < 0 || static_cast<std::size_t>(consumed) != size) {
-      result.status = DecodeStatus::kMalformed;
-      result.reason = "the generated decoder disagrees with the structure walk (returned " +
-                      std::to_string(consumed) + " for " + std::to_string(size) + " bytes)";
-      return result;
-    }
+  const auto convert = [&](const mvtrack::tracks3d_t& msg) {
     TracksMessage& out = result.message;
     out.frame.frame = msg.frame;
     out.frame.utime = msg.utime;
@@ -197,13 +180,14 @@ TracksDecodeResult DecodeTracks(const void* data, std::size_t size, const Decode
       out.frame.tracks.push_back(std::move(track));
       out.info.push_back(info);
     }
-  } catch (const std::exception& e) {
-    result = TracksDecodeResult{};
-    result.status = DecodeStatus::kMalformed;
-    result.reason = std::string("the generated decoder threw: ") + e.what();
-    return result;
+  };
+  if (!internal::CheckedDecode<mvtrack::tracks3d_t>(
+          data, size, limits, WalkTracks, convert, &result.status, &result.reason)) {
+    TracksDecodeResult failed;  // nothing partially converted leaks out
+    failed.status = result.status;
+    failed.reason = std::move(result.reason);
+    return failed;
   }
-  result.status = DecodeStatus::kOk;
   return result;
 }
 

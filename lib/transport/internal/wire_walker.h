@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -95,6 +96,39 @@ bool WalkFingerprint(WireWalker* walker, std::int64_t expected, std::string_view
 /// false with status and reason set on failure.
 bool CheckEnvelope(const void* data, std::size_t size, const DecodeLimits& limits,
                    DecodeStatus* status, std::string* reason);
+
+/// The decode sequence every message type shares: CheckEnvelope, the structure walk `walk`
+/// (bool(WireWalker*, const DecodeLimits&)), then the generated decoder of `Message`, which must
+/// consume exactly `size` bytes, and `convert(const Message&)`, both inside try/catch so no
+/// exception escapes. Returns false with status and reason set on failure.
+template <typename Message, typename Walk, typename Convert>
+bool CheckedDecode(const void* data, std::size_t size, const DecodeLimits& limits, Walk&& walk,
+                   Convert&& convert, DecodeStatus* status, std::string* reason) {
+  if (!CheckEnvelope(data, size, limits, status, reason)) return false;
+  WireWalker walker(static_cast<const std::uint8_t*>(data), size);
+  if (!walk(&walker, limits)) {
+    *status = walker.status();
+    *reason = walker.reason();
+    return false;
+  }
+  try {
+    Message msg;
+    const int consumed = msg.decode(data, 0, static_cast<int>(size));
+    if (consumed < 0 || static_cast<std::size_t>(consumed) != size) {
+      *status = DecodeStatus::kMalformed;
+      *reason = "the generated decoder disagrees with the structure walk (returned " +
+                std::to_string(consumed) + " for " + std::to_string(size) + " bytes)";
+      return false;
+    }
+    convert(msg);
+  } catch (const std::exception& e) {
+    *status = DecodeStatus::kMalformed;
+    *reason = std::string("the generated decoder threw: ") + e.what();
+    return false;
+  }
+  *status = DecodeStatus::kOk;
+  return true;
+}
 
 /// A double as a float the way IEEE-754 narrowing does it (values beyond the float range
 /// become +-infinity, NaN stays NaN) without the undefined behaviour of an out-of-range cast.
