@@ -10,6 +10,8 @@ MVTRACK=$1
 CHECK=$2
 WORK=$3
 SRC=$4
+# shellcheck source=../support/shell_asserts.sh
+. "$SRC/tests/support/shell_asserts.sh"
 HERE=$(cd "$(dirname "$0")" && pwd)
 OUT=$WORK/$(basename "$0" _test.sh)
 rm -rf "$OUT"
@@ -18,10 +20,6 @@ mkdir -p "$OUT"
 # repository.
 DATA_ROOT=${MVTRACK_DATA:-$SRC/../shared/data}
 
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
 
 # require_dataset FOLDER: continue when DATA_ROOT/FOLDER exists; otherwise fail when CI is set,
 # else print a skip message and end the script successfully.
@@ -37,27 +35,7 @@ require_dataset() {
   exit 0
 }
 
-# expect_exit CODE LOG CMD...: runs CMD with stdout and stderr into LOG and requires exit CODE.
-expect_exit() {
-  local want=$1 log=$2
-  shift 2
-  local got=0
-  "$@" >"$log" 2>&1 || got=$?
-  if [ "$got" -ne "$want" ]; then
-    echo "--- output of: $*" >&2
-    cat "$log" >&2
-    fail "exit status $got, expected $want: $*"
-  fi
-}
 
-# expect_grep REGEX FILE: FILE must contain a line matching the extended REGEX.
-expect_grep() {
-  if ! grep -qE -- "$1" "$2"; then
-    echo "--- $2:" >&2
-    cat "$2" >&2
-    fail "no line matching '$1' in $2"
-  fi
-}
 
 # expect_fixed TEXT FILE: FILE must contain TEXT literally.
 expect_fixed() {

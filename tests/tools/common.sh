@@ -9,6 +9,8 @@ fi
 MVTRACK=$1
 WORK=$2
 SRC=$3
+# shellcheck source=../support/shell_asserts.sh
+. "$SRC/tests/support/shell_asserts.sh"
 OUT=$WORK/out/$(basename "$0" _test.sh)
 rm -rf "$OUT"
 mkdir -p "$OUT"
@@ -20,32 +22,8 @@ py() {
   "$PYTHON" -S "$@"
 }
 
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
 
-# expect_exit CODE LOG CMD...: runs CMD with stdout and stderr into LOG and requires exit CODE.
-expect_exit() {
-  local want=$1 log=$2
-  shift 2
-  local got=0
-  "$@" >"$log" 2>&1 || got=$?
-  if [ "$got" -ne "$want" ]; then
-    echo "--- output of: $*" >&2
-    cat "$log" >&2
-    fail "exit status $got, expected $want: $*"
-  fi
-}
 
-# expect_grep REGEX FILE: FILE must contain a line matching the extended REGEX.
-expect_grep() {
-  if ! grep -qE -- "$1" "$2"; then
-    echo "--- $2:" >&2
-    cat "$2" >&2
-    fail "no line matching '$1' in $2"
-  fi
-}
 
 # json_get FILE PYTHON_EXPR: parses FILE as JSON (fails if it does not parse) and prints the
 # expression evaluated with the document bound to `d`.
