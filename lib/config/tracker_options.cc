@@ -39,7 +39,8 @@ constexpr std::array<std::pair<tracker::BoxPoint, std::string_view>, 2> kBoxPoin
 }};
 
 // The sub-maps of `tracker:`, in output order.
-const std::vector<std::string> kSections = {"sort", "association", "triangulation", "linking"};
+const std::vector<std::string> kSections = {"sort", "association", "triangulation", "linking",
+                                             "refinement"};
 
 // One option: its sub-map ("" = directly under `tracker:`), its key, how to read it from YAML
 // (with the range checks of the owning struct's Validate, so errors point at the key) and how
@@ -215,6 +216,29 @@ std::vector<Field> MakeFields() {
   f.push_back(DoubleField("linking", "max_speed_m_per_frame",
                           [](auto& o) -> auto& { return o.linking.max_speed_m_per_frame; },
                           DoubleRange::AtLeast(0.0)));
+  // refinement (triangulation::RefinementOptions::Validate; pose mode, after CMMT).
+  f.push_back(DoubleField("refinement", "merge_distance_m",
+                          [](auto& o) -> auto& { return o.refinement.merge_distance_m; },
+                          DoubleRange::AtLeast(0.0)));
+  f.push_back(IntField("refinement", "min_duplicate_pairs",
+                       [](auto& o) -> auto& { return o.refinement.min_duplicate_pairs; }, 1,
+                       kIntMax));
+  f.push_back(DoubleField("refinement", "min_person_point_fraction",
+                          [](auto& o) -> auto& { return o.refinement.min_person_point_fraction; },
+                          unit));
+  f.push_back(IntField("refinement", "outlier_half_window",
+                       [](auto& o) -> auto& { return o.refinement.outlier_half_window; }, 0,
+                       kIntMax));
+  f.push_back(DoubleField("refinement", "outlier_distance_m",
+                          [](auto& o) -> auto& { return o.refinement.outlier_distance_m; },
+                          DoubleRange::GreaterThan(0.0)));
+  f.push_back(IntField("refinement", "max_fill_gap",
+                       [](auto& o) -> auto& { return o.refinement.max_fill_gap; }, 0, kIntMax));
+  f.push_back(IntField("refinement", "fill_neighbors",
+                       [](auto& o) -> auto& { return o.refinement.fill_neighbors; }, 1, kIntMax));
+  f.push_back(IntField("refinement", "min_points_to_fill",
+                       [](auto& o) -> auto& { return o.refinement.min_points_to_fill; }, 1,
+                       kIntMax));
   return f;
 }
 

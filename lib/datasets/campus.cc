@@ -6,6 +6,7 @@
 #include <set>
 #include <utility>
 
+#include "datasets/calibration_files.h"
 #include "datasets/internal/common.h"
 #include "datasets/internal/json_document.h"
 
@@ -279,6 +280,12 @@ PeerOutput LoadCampusPeerCrossView(const std::filesystem::path& data_root) {
       "+ r_shoulder + l_ear + r_ear), head_top = 0.75 (l_ear + r_ear) - 0.25 (l_shoulder + "
       "r_shoulder) (VoxelPose's coco2campus).";
   return peer;
+}
+
+std::vector<geometry::CameraModel> LoadCampusCalibrationFile(const std::filesystem::path& file,
+                                                             int width_px,
+                                                             int height_px) {
+  return LoadCampusCalibration(file, width_px, height_px);
 }
 
 }  // namespace mvtrack::datasets

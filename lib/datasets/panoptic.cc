@@ -8,6 +8,7 @@
 #include <set>
 #include <utility>
 
+#include "datasets/calibration_files.h"
 #include "datasets/internal/common.h"
 #include "datasets/internal/json_document.h"
 
@@ -138,43 +139,8 @@ Dataset LoadPanoptic(const std::filesystem::path& data_root, const PanopticOptio
   // Cameras.
   const std::vector<std::string> wanted =
       options.cameras.empty() ? DefaultPanopticCameras() : options.cameras;
-  const std::filesystem::path calib_file = dir / ("calibration_" + options.sequence + ".json");
-  const JsonValue calib = internal::LoadJsonFile(calib_file);
-  std::map<std::string, JsonValue> hd;
-  const JsonValue cams = calib["cameras"];
-  for (std::size_t i = 0; i < cams.Size(); ++i) {
-    const JsonValue cam = cams.At(i);
-    if (cam["type"].AsString() != "hd") continue;
-    const std::string name = cam["name"].AsString();
-    if (!hd.emplace(name, cam).second) cam["name"].Fail("HD camera " + name + " appears twice");
-  }
-  for (const std::string& entry : wanted) {
-    const int index = *ParseHdCamera(entry);
-    const std::string name = HdCameraName(index);
-    const auto it = hd.find(name);
-    if (it == hd.end()) throw DatasetError(calib_file.string(), "no HD camera named " + name);
-    const JsonValue& cam = it->second;
-    const JsonValue resolution = cam["resolution"];
-    const std::int64_t width = resolution.At(0).AsInt();
-    const std::int64_t height = resolution.At(1).AsInt();
-    if (resolution.Size() != 2 || width <= 0 || height <= 0 || width > 100000 || height > 100000) {
-      resolution.Fail("expected [width, height] with positive sizes");
-    }
-    const Mat3 K = internal::Mat3FromRowMajor(cam["K"].AsMatrix(3, 3));
-    const std::vector<double> dist = cam["distCoef"].AsDoubles(5);
-    const Mat3 R = internal::Mat3FromRowMajor(cam["R"].AsMatrix(3, 3));
-    const std::vector<double> t = cam["t"].AsMatrix(3, 1);
-    geometry::Distortion distortion;
-    distortion.k1 = dist[0];
-    distortion.k2 = dist[1];
-    distortion.p1 = dist[2];
-    distortion.p2 = dist[3];
-    distortion.k3 = dist[4];
-    ds.cameras.push_back(internal::MakeCamera(
-        calib_file.string(), "HD camera " + name, index, static_cast<int>(width),
-        static_cast<int>(height), K, R * to_world.transpose(), kCmToM * Vec3(t[0], t[1], t[2]),
-        distortion));
-  }
+  ds.cameras =
+      LoadPanopticCalibrationFile(dir / ("calibration_" + options.sequence + ".json"), wanted);
 
   // Skeleton frames, sorted by frame number.
   const std::filesystem::path skel_dir = dir / "hdPose3d_stage1_coco19";
@@ -265,6 +231,73 @@ Dataset LoadPanoptic(const std::filesystem::path& data_root, const PanopticOptio
       ". Ground truth: the 3D skeletons, 3 people (ids 0-2). 20 frames: too short for "
       "meaningful MOTA/IDF1.";
   return ds;
+}
+
+std::vector<geometry::CameraModel> LoadPanopticCalibrationFile(
+    const std::filesystem::path& calib_file, const std::vector<std::string>& cameras) {
+  const Mat3 to_world = PanopticToWorldRotation();
+  const JsonValue calib = internal::LoadJsonFile(calib_file);
+  std::map<std::string, JsonValue> hd;
+  const JsonValue cams = calib["cameras"];
+  for (std::size_t i = 0; i < cams.Size(); ++i) {
+    const JsonValue cam = cams.At(i);
+    if (cam["type"].AsString() != "hd") continue;
+    const std::string name = cam["name"].AsString();
+    if (!hd.emplace(name, cam).second) cam["name"].Fail("HD camera " + name + " appears twice");
+  }
+  std::vector<std::string> wanted = cameras;
+  if (wanted.empty()) {
+    // Every HD camera of the file, in index order (names "00_xx" sort by index).
+    for (const auto& [name, cam] : hd) {
+      if (ParseHdCamera(name).has_value()) wanted.push_back(name);
+    }
+    if (wanted.empty()) throw DatasetError(calib_file.string(), "no HD cameras");
+  }
+  std::set<int> seen;
+  std::vector<geometry::CameraModel> out;
+  for (const std::string& entry : wanted) {
+    const std::optional<int> parsed = ParseHdCamera(entry);
+    if (!parsed.has_value()) {
+      throw DatasetError(calib_file.string(),
+                         "camera \"" + entry +
+                             "\" is neither an HD name 00_00..00_30 nor an "
+                             "index 0..30");
+    }
+    const int index = *parsed;
+    if (!seen.insert(index).second) {
+      throw DatasetError(calib_file.string(), "camera \"" + entry + "\" is listed twice");
+    }
+    const std::string name = HdCameraName(index);
+    const auto it = hd.find(name);
+    if (it == hd.end()) throw DatasetError(calib_file.string(), "no HD camera named " + name);
+    const JsonValue& cam = it->second;
+    const JsonValue resolution = cam["resolution"];
+    const std::int64_t width = resolution.At(0).AsInt();
+    const std::int64_t height = resolution.At(1).AsInt();
+    if (resolution.Size() != 2 || width <= 0 || height <= 0 || width > 100000 || height > 100000) {
+      resolution.Fail("expected [width, height] with positive sizes");
+    }
+    const Mat3 K = internal::Mat3FromRowMajor(cam["K"].AsMatrix(3, 3));
+    const std::vector<double> dist = cam["distCoef"].AsDoubles(5);
+    const Mat3 R = internal::Mat3FromRowMajor(cam["R"].AsMatrix(3, 3));
+    const std::vector<double> t = cam["t"].AsMatrix(3, 1);
+    geometry::Distortion distortion;
+    distortion.k1 = dist[0];
+    distortion.k2 = dist[1];
+    distortion.p1 = dist[2];
+    distortion.p2 = dist[3];
+    distortion.k3 = dist[4];
+    out.push_back(internal::MakeCamera(calib_file.string(),
+                                       "HD camera " + name,
+                                       index,
+                                       static_cast<int>(width),
+                                       static_cast<int>(height),
+                                       K,
+                                       R * to_world.transpose(),
+                                       kCmToM * Vec3(t[0], t[1], t[2]),
+                                       distortion));
+  }
+  return out;
 }
 
 }  // namespace mvtrack::datasets

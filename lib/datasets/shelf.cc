@@ -8,6 +8,7 @@
 #include <map>
 #include <utility>
 
+#include "datasets/calibration_files.h"
 #include "datasets/internal/common.h"
 #include "datasets/internal/json_document.h"
 #include "datasets/internal/skel_text.h"
@@ -303,6 +304,10 @@ PeerOutput LoadShelfPeer4DA(const std::filesystem::path& data_root) {
       "head_bottom = shoulder_mid + 0.5 (ear_mid - shoulder_mid), head_top = head_bottom + "
       "0.125 m * normalize((neck - mid_hip) x (r_shoulder - l_shoulder)) + 0.145 m * z.";
   return peer;
+}
+
+std::vector<geometry::CameraModel> LoadShelfCalibrationFile(const std::filesystem::path& file) {
+  return LoadShelfCalibration(file);
 }
 
 }  // namespace mvtrack::datasets

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/check.h"
+#include "datasets/calibration_files.h"
 #include "datasets/internal/common.h"
 #include "datasets/internal/json_document.h"
 
@@ -301,6 +302,10 @@ std::vector<WildtrackGroundFrame> WildtrackGroundPoints(const std::filesystem::p
     out.push_back(std::move(gf));
   }
   return out;
+}
+
+std::vector<geometry::CameraModel> LoadWildtrackCalibrationFile(const std::filesystem::path& file) {
+  return LoadWildtrackCalibration(file);
 }
 
 }  // namespace mvtrack::datasets

@@ -247,6 +247,39 @@ Json PcpJson(const PcpResult& r) {
   return Obj(std::move(o));
 }
 
+Json PointsJson(const PointComparison& r) {
+  JsonObject o;
+  o.emplace_back("valid", Bool(r.valid));
+  o.emplace_back("error", Str(r.error));
+  o.emplace_back("protocol", Str(r.protocol));
+  o.emplace_back("gate_m", Num(r.gate_m));
+  o.emplace_back("frame_ranges", Ranges(r.frame_ranges));
+  if (!r.valid) return Obj(std::move(o));
+  JsonArray frames;
+  for (const PointFrameCounts& f : r.frames) {
+    frames.push_back(Obj({{"frame", Int(f.frame)},
+                          {"num_reference", Int(f.num_reference)},
+                          {"num_predicted", Int(f.num_predicted)},
+                          {"num_matched", Int(f.num_matched)}}));
+  }
+  o.emplace_back("frames", Arr(std::move(frames)));
+  o.emplace_back("num_frames", Int(static_cast<std::int64_t>(r.frames.size())));
+  o.emplace_back("num_reference", Int(r.num_reference));
+  o.emplace_back("num_predicted", Int(r.num_predicted));
+  o.emplace_back("num_matched", Int(r.num_matched));
+  o.emplace_back("frames_with_equal_count", Int(r.frames_with_equal_count));
+  o.emplace_back("mean_abs_count_difference", Num(r.mean_abs_count_difference));
+  o.emplace_back("mean_count_difference", Num(r.mean_count_difference));
+  o.emplace_back("max_abs_count_difference", Int(r.max_abs_count_difference));
+  o.emplace_back("precision", Num(r.precision));
+  o.emplace_back("recall", Num(r.recall));
+  o.emplace_back("median_distance_m", Num(r.median_distance_m));
+  o.emplace_back("mean_distance_m", Num(r.mean_distance_m));
+  o.emplace_back("p90_distance_m", Num(r.p90_distance_m));
+  o.emplace_back("max_distance_m", Num(r.max_distance_m));
+  return Obj(std::move(o));
+}
+
 // ------------------------------------------------------------------------------------------
 // Text table helpers.
 
@@ -328,6 +361,31 @@ std::string PcpTable(const PcpResult& r) {
   return out;
 }
 
+std::string PointsTable(const PointComparison& r) {
+  std::string out = "Footprints vs reference points (gate " + internal::FormatFixed(r.gate_m, 3) +
+                    " m, frames " + DescribeFrameRanges(r.frame_ranges) + ")\n";
+  if (!r.valid) return out + "  invalid input: " + r.error + "\n";
+  const auto frames = static_cast<std::int64_t>(r.frames.size());
+  out += Columns({{"Frames", "Ref", "Pred", "Matched", "Prec%", "Rec%", "equal count",
+                   "mean |dN|", "mean dN", "max |dN|", "median[m]", "mean[m]", "p90[m]",
+                   "max[m]"},
+                  {std::to_string(frames), std::to_string(r.num_reference),
+                   std::to_string(r.num_predicted), std::to_string(r.num_matched),
+                   Percent(r.precision), Percent(r.recall),
+                   std::to_string(r.frames_with_equal_count) + "/" + std::to_string(frames),
+                   std::isnan(r.mean_abs_count_difference)
+                       ? "n/a"
+                       : internal::FormatFixed(r.mean_abs_count_difference, 2),
+                   std::isnan(r.mean_count_difference)
+                       ? "n/a"
+                       : internal::FormatFixed(r.mean_count_difference, 2),
+                   std::to_string(r.max_abs_count_difference), Metres(r.median_distance_m),
+                   Metres(r.mean_distance_m), Metres(r.p90_distance_m),
+                   Metres(r.max_distance_m)}});
+  out += "  Protocol: " + r.protocol + "\n";
+  return out;
+}
+
 }  // namespace
 
 std::string FormatReportTable(const EvaluationReport& report) {
@@ -336,6 +394,10 @@ std::string FormatReportTable(const EvaluationReport& report) {
   if (report.pcp.has_value()) {
     if (!out.empty()) out += "\n";
     out += PcpTable(*report.pcp);
+  }
+  if (report.points.has_value()) {
+    if (!out.empty()) out += "\n";
+    out += PointsTable(*report.points);
   }
   if (out.empty()) out = "No evaluation results.\n";
   return out;
@@ -346,6 +408,7 @@ std::string ReportToJson(const EvaluationReport& report, int precision) {
   root.emplace_back("schema", Str("mvtrack.eval/1"));
   if (report.tracking.has_value()) root.emplace_back("tracking", TrackingJson(*report.tracking));
   if (report.pcp.has_value()) root.emplace_back("pcp", PcpJson(*report.pcp));
+  if (report.points.has_value()) root.emplace_back("points", PointsJson(*report.points));
   std::string out;
   Write(Obj(std::move(root)), std::clamp(precision, 0, 17), 0, &out);
   return out + "\n";

@@ -26,6 +26,15 @@ class SteadyClock final : public Clock {
   std::int64_t NowMicros() const override;
 };
 
+/// std::chrono::system_clock in µs since the Unix epoch (the wall clock of LCM message
+/// timestamps such as tracks3d_t.publish_utime). Not monotonic: it follows clock adjustments;
+/// use it to stamp messages, SteadyClock to measure durations. Thread-safe.
+class SystemClock final : public Clock {
+ public:
+  /// system_clock::now() in µs since 1970-01-01T00:00:00Z.
+  std::int64_t NowMicros() const override;
+};
+
 /// A clock that only moves when told to (log replay, tests). Thread-safe: any thread may read
 /// it while one thread sets or advances it.
 class ManualClock final : public Clock {

@@ -186,6 +186,7 @@ void Pipeline::CameraLoop(int camera_index) {
       item.frame = stage.Process(work->frame, work->stream_epoch, &counters);
       std::lock_guard<std::mutex> lock(status_mu_);
       ++camera_counters_[c].frames_processed;
+      camera_counters_[c].detections_rejected += counters.detections_rejected;
       stats_.detections_used += counters.detections_used;
       stats_.detections_rejected += counters.detections_rejected;
       stats_.detections_repaired += counters.detections_repaired;
@@ -305,6 +306,10 @@ void Pipeline::FinalizerLoop() {
           latency_.last_us = latency_us;
           latency_.max_us = std::max(latency_.max_us, latency_us);
           latency_.sum_us += latency_us;
+          if (latency_samples_.size() >= kMaxLatencySamples) {
+            latency_samples_.erase(latency_samples_.begin());
+          }
+          latency_samples_.push_back(latency_us);
         }
         Emit(&frames);
         break;
@@ -363,6 +368,7 @@ PipelineStatus Pipeline::Status() const {
   s.tracker = stats_;
   for (std::size_t c = 0; c < s.cameras.size(); ++c) {
     s.cameras[c].frames_processed = camera_counters_[c].frames_processed;
+    s.cameras[c].detections_rejected = camera_counters_[c].detections_rejected;
   }
   s.windows_submitted = windows_submitted_;
   s.windows_failed = windows_failed_;
@@ -370,6 +376,13 @@ PipelineStatus Pipeline::Status() const {
   s.output_callback_errors = output_callback_errors_;
   s.window_latency = latency_;
   return s;
+}
+
+std::vector<std::int64_t> Pipeline::TakeWindowLatencies() {
+  std::lock_guard<std::mutex> lock(status_mu_);
+  std::vector<std::int64_t> out;
+  out.swap(latency_samples_);
+  return out;
 }
 
 }  // namespace mvtrack::pipeline

@@ -135,6 +135,7 @@ struct CameraStatus {
   std::size_t queue_depth = 0;     ///< camera-frames waiting (dropped headers included)
   std::int64_t frames_processed = 0;  ///< camera-frames run through the CameraStage
   std::int64_t frames_dropped = 0;    ///< camera-frames whose detections overflow discarded
+  std::int64_t detections_rejected = 0;  ///< this camera's detections that failed validation
 };
 
 /// A snapshot of the pipeline's counters and queue depths (for the daemon's status message).
@@ -195,6 +196,13 @@ class Pipeline {
   /// A snapshot of counters and queue depths; thread-safe, never blocks on the stages' work.
   PipelineStatus Status() const;
 
+  /// The window latencies (see LatencyStats), µs, of the windows linked since the previous
+  /// call, oldest first; at most kMaxLatencySamples are kept (older ones are discarded).
+  /// Thread-safe (the daemon computes per-period percentiles from them).
+  std::vector<std::int64_t> TakeWindowLatencies();
+  /// Bound on the samples TakeWindowLatencies() keeps between calls.
+  static constexpr std::size_t kMaxLatencySamples = 4096;
+
   /// The camera rig in use.
   const geometry::CameraRig& rig() const { return rig_; }
   /// The tracking options in use.
@@ -229,6 +237,7 @@ class Pipeline {
   // Per-camera counters (guarded by status_mu_).
   struct CameraCounters {
     std::int64_t frames_processed = 0;
+    std::int64_t detections_rejected = 0;
   };
 
   Pipeline(geometry::CameraRig rig, tracker::TrackerOptions options,
@@ -293,6 +302,7 @@ class Pipeline {
   std::string last_failure_;
   std::int64_t output_callback_errors_ = 0;
   LatencyStats latency_;
+  std::vector<std::int64_t> latency_samples_;  // since the last TakeWindowLatencies()
 
   // Threads and their shutdown.
   std::mutex stop_mu_;

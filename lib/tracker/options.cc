@@ -36,6 +36,7 @@ bool TrackerOptions::Validate(std::string* why) const {
   if (!association.Validate(&nested)) return fail("association: " + nested);
   if (!triangulation.Validate(&nested)) return fail("triangulation: " + nested);
   if (!linking.Validate(&nested)) return fail("linking: " + nested);
+  if (!refinement.Validate(&nested)) return fail(nested);
   return true;
 }
 

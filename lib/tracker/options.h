@@ -9,6 +9,7 @@
 #include "core/keypoint_layout.h"
 #include "linking/window_linker.h"
 #include "tracking2d/sort_tracker.h"
+#include "triangulation/refinement.h"
 #include "triangulation/triangulation.h"
 
 namespace mvtrack::tracker {
@@ -58,6 +59,10 @@ struct TrackerOptions {
   association::AssociationOptions association;      ///< Eq. 2-4 and PDNC
   triangulation::TriangulationOptions triangulation;  ///< CMMT (Algorithm 2)
   linking::LinkerOptions linking;                   ///< Eq. 8-9
+  /// Pose mode: per-window refinement after CMMT (duplicate merging, fragment removal, temporal
+  /// outlier rejection, completion of joints no camera pair could triangulate;
+  /// docs/ACCURACY.md). Not applied in box mode.
+  triangulation::RefinementOptions refinement;
 
   /// Validates these options and the nested ones; on failure `why` names the field.
   bool Validate(std::string* why) const;

@@ -73,7 +73,7 @@ struct WindowOutput {
   FrameIndex begin = 0, end = 0;  ///< [begin, end)
   std::vector<core::Tracklet2D> tracklets;  ///< the job's 2D tracklets
   std::vector<std::vector<int>> clusters;   ///< PDNC clusters of indices into `tracklets`
-  std::vector<core::Tracklet3D> persons;    ///< one per cluster with >= 2 cameras
+  std::vector<core::Tracklet3D> persons;    ///< see WindowResult::persons
   linking::LinkResult link;                 ///< how `persons` were linked
 };
 

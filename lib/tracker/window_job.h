@@ -40,7 +40,10 @@ struct WindowResult {
   /// PDNC clusters of indices into the job's tracklets (association::AssociateTracklets).
   std::vector<std::vector<int>> clusters;
   /// One short-term 3D tracklet per cluster seen by >= 2 cameras with at least one
-  /// triangulated frame, in cluster order.
+  /// triangulated frame, in cluster order. Pose mode refines them (TrackerOptions::refinement):
+  /// duplicates are merged (the united clusters triangulated again, in the place of the first),
+  /// fragments dropped, temporal outliers removed and missing joints completed; the
+  /// `source_tracklets` of a merged person list both clusters' tracklets.
   std::vector<core::Tracklet3D> persons;
 };
 
@@ -64,7 +67,8 @@ class WindowWorkspace {
 };
 
 /// Processes one window: association (Eq. 2-4 + PDNC) of the job's tracklets, then CMMT
-/// (Algorithm 2) of every cluster whose tracklets come from at least two cameras.
+/// (Algorithm 2) of every cluster whose tracklets come from at least two cameras, then, in
+/// pose mode, the refinement of triangulation/refinement.h (see WindowResult::persons).
 ///
 /// Pure and thread-compatible: it reads `rig`, `options` and `job` only (any number of threads
 /// may run it concurrently on shared immutable inputs) and writes only `workspace` and its

@@ -53,14 +53,15 @@ std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
 
   // 3. Associate (SORT Sec. 3.3): cost 1 - IoU between predicted track boxes (rows) and usable
   //    detections (columns); pairs with IoU < iou_threshold are forbidden.
-  std::vector<int> usable;
-  usable.reserve(boxes.size());
+  std::vector<int>& usable = usable_;
+  usable.clear();
   for (std::size_t d = 0; d < boxes.size(); ++d) {
     if (IsUsableBox(boxes[d])) usable.push_back(static_cast<int>(d));
   }
   const auto num_tracks_before = static_cast<Eigen::Index>(tracks_.size());
   const auto num_usable = static_cast<Eigen::Index>(usable.size());
-  Eigen::MatrixXd cost(num_tracks_before, num_usable);
+  Eigen::MatrixXd& cost = cost_;
+  cost.resize(num_tracks_before, num_usable);
   for (Eigen::Index r = 0; r < num_tracks_before; ++r) {
     const core::BoxPx predicted = tracks_[static_cast<std::size_t>(r)].filter.Box();
     for (Eigen::Index c = 0; c < num_usable; ++c) {

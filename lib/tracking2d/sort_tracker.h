@@ -5,6 +5,7 @@
 /// camera's detections into 2D tracks, which the sliding window later crops into the 2D
 /// tracklets T_{k,i}. One instance per camera; single-owner, single-threaded, no I/O.
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
@@ -102,6 +103,10 @@ class SortTracker {
   std::vector<Track> tracks_;  // increasing id order
   std::optional<FrameIndex> last_frame_;
   TrackId2D next_id_ = 1;
+  // Per-frame scratch kept between Update() calls so a warmed-up tracker does not reallocate
+  // (the cost matrix only when its shape changes).
+  std::vector<int> usable_;
+  Eigen::MatrixXd cost_;
 };
 
 }  // namespace mvtrack::tracking2d

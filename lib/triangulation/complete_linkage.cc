@@ -15,8 +15,20 @@ constexpr float kNotMergeable = std::numeric_limits<float>::infinity();
 /// Mean member-to-centroid distances closer than this count as a tie (metres).
 constexpr double kTieTolerance_m = 1e-9;
 
-/// The one "may be in the same cluster" predicate used everywhere (components, distances).
-bool Within(const Vec3& a, const Vec3& b, double kappa_m) { return (a - b).norm() <= kappa_m; }
+/// Squared-distance bound beyond which a pair is certainly further apart than kappa: sqrt is
+/// correctly rounded and monotone, so squaredNorm > kappa^2 * (1 + 1e-9) implies
+/// norm() = sqrt(squaredNorm) > kappa. Pairs under the bound take the exact test (norm() <= kappa),
+/// so the prefilter only skips square roots and never changes a decision.
+double FarSquared(double kappa_m) { return kappa_m * kappa_m * (1.0 + 1e-9); }
+
+/// Distance of a and b (exactly Eigen's norm()), or +inf when it exceeds kappa: the one
+/// "may be in the same cluster" predicate used everywhere (components, distances).
+double DistanceWithin(const Vec3& a, const Vec3& b, double kappa_m, double far_sq) {
+  const double sq = (a - b).squaredNorm();
+  if (sq > far_sq) return std::numeric_limits<double>::infinity();
+  const double d = std::sqrt(sq);
+  return d <= kappa_m ? d : std::numeric_limits<double>::infinity();
+}
 
 /// Diagonal of the axis-aligned bounding box of candidates[idx[0..n)]; an upper bound of the
 /// largest pairwise distance.
@@ -29,14 +41,6 @@ double BoxDiagonal(std::span<const Vec3> candidates, const int* idx, std::size_t
     hi = hi.cwiseMax(p);
   }
   return (hi - lo).norm();
-}
-
-/// Index of the pair (i, j), i != j, in a condensed upper-triangular matrix of an s x s matrix.
-std::size_t PairIndex(int i, int j, std::size_t s) {
-  if (i > j) std::swap(i, j);
-  const auto a = static_cast<std::size_t>(i);
-  const auto b = static_cast<std::size_t>(j);
-  return a * s - a * (a + 1) / 2 + (b - a - 1);
 }
 
 /// Statistics of one cluster used by the vote's ordering.
@@ -107,6 +111,7 @@ void ClusterVoter::FindComponents(std::span<const Vec3> candidates, double kappa
   std::iota(parent_.begin(), parent_.end(), 0);
   order_.resize(n);
   std::iota(order_.begin(), order_.end(), 0);
+  const double far_sq = FarSquared(kappa_m);
   auto x_of = [&](int pos) {
     return candidates[static_cast<std::size_t>(valid_[static_cast<std::size_t>(pos)])].x();
   };
@@ -117,15 +122,19 @@ void ClusterVoter::FindComponents(std::span<const Vec3> candidates, double kappa
   for (std::size_t ii = 0; ii < n; ++ii) {
     const int i = order_[ii];
     const Vec3& pi = candidates[static_cast<std::size_t>(valid_[static_cast<std::size_t>(i)])];
+    // Root of i's component, kept current across the unions below (only they can change it).
+    int ri = Find(i);
     for (std::size_t jj = ii + 1; jj < n; ++jj) {
       const int j = order_[jj];
       const Vec3& pj = candidates[static_cast<std::size_t>(valid_[static_cast<std::size_t>(j)])];
       if (pj.x() - pi.x() > kappa_m) break;
-      if (!Within(pi, pj, kappa_m)) continue;
-      const int ri = Find(i), rj = Find(j);
+      // Already connected: the edge could not change the components, skip its distance.
+      const int rj = Find(j);
       if (ri == rj) continue;
+      if (DistanceWithin(pi, pj, kappa_m, far_sq) > kappa_m) continue;
       // The root is always the smallest position of its component.
       parent_[static_cast<std::size_t>(std::max(ri, rj))] = std::min(ri, rj);
+      ri = std::min(ri, rj);
     }
   }
 
@@ -167,16 +176,19 @@ void ClusterVoter::ClusterComponent(std::span<const Vec3> candidates, int comp, 
     return;
   }
 
-  // Condensed distance matrix; pairs further apart than kappa can never share a cluster.
-  dist_.resize(s * (s - 1) / 2);
-  {
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < s; ++i) {
-      const Vec3& pi = candidates[static_cast<std::size_t>(members[i])];
-      for (std::size_t j = i + 1; j < s; ++j) {
-        const double d = (pi - candidates[static_cast<std::size_t>(members[j])]).norm();
-        dist_[k++] = d <= kappa_m ? static_cast<float>(d) : kNotMergeable;
-      }
+  // Full symmetric s x s distance matrix (row-major, diagonal unused) so the nearest-neighbour
+  // scans read one contiguous row; pairs further apart than kappa can never share a cluster.
+  dist_.resize(s * s);
+  const double far_sq = FarSquared(kappa_m);
+  for (std::size_t i = 0; i < s; ++i) {
+    const Vec3& pi = candidates[static_cast<std::size_t>(members[i])];
+    float* row_i = dist_.data() + i * s;
+    for (std::size_t j = i + 1; j < s; ++j) {
+      const double d =
+          DistanceWithin(pi, candidates[static_cast<std::size_t>(members[j])], kappa_m, far_sq);
+      const float f = d <= kappa_m ? static_cast<float>(d) : kNotMergeable;
+      row_i[j] = f;
+      dist_[j * s + i] = f;
     }
   }
   active_.resize(s);
@@ -186,7 +198,7 @@ void ClusterVoter::ClusterComponent(std::span<const Vec3> candidates, int comp, 
   std::iota(tail_.begin(), tail_.end(), 0);
   chain_.clear();
 
-  auto d = [&](int i, int j) { return dist_[PairIndex(i, j, s)]; };
+  auto row = [&](int i) { return dist_.data() + static_cast<std::size_t>(i) * s; };
   auto remove_active = [&](int id) {
     active_.erase(std::lower_bound(active_.begin(), active_.end(), id));
   };
@@ -198,11 +210,12 @@ void ClusterVoter::ClusterComponent(std::span<const Vec3> candidates, int comp, 
     if (chain_.empty()) chain_.push_back(active_.front());
     const int a = chain_.back();
     const int prev = chain_.size() >= 2 ? chain_[chain_.size() - 2] : -1;
+    const float* row_a = row(a);
     int b = prev;
-    float best = prev >= 0 ? d(a, prev) : kNotMergeable;
+    float best = prev >= 0 ? row_a[prev] : kNotMergeable;
     for (const int j : active_) {
       if (j == a || j == prev) continue;
-      const float dj = d(a, j);
+      const float dj = row_a[j];
       if (dj < best) {
         best = dj;
         b = j;
@@ -226,9 +239,13 @@ void ClusterVoter::ClusterComponent(std::span<const Vec3> candidates, int comp, 
     chain_.pop_back();
     chain_.pop_back();
     const int keep = std::min(a, b), drop = std::max(a, b);
+    float* row_keep = row(keep);
+    const float* row_b = row(b);
     for (const int j : active_) {
       if (j == a || j == b) continue;
-      dist_[PairIndex(keep, j, s)] = std::max(d(a, j), d(b, j));
+      const float merged = std::max(row_a[j], row_b[j]);
+      row_keep[j] = merged;
+      row(j)[keep] = merged;
     }
     next_[static_cast<std::size_t>(tail_[static_cast<std::size_t>(keep)])] = drop;
     tail_[static_cast<std::size_t>(keep)] = tail_[static_cast<std::size_t>(drop)];
@@ -247,12 +264,20 @@ std::optional<ClusterVote> ClusterVoter::Vote(std::span<const Vec3> candidates, 
     const auto uc = static_cast<std::size_t>(c);
     return comp_offsets_[uc + 1] - comp_offsets_[uc];
   };
+  // Components by decreasing size, then ascending number: a counting sort on the size (sizes
+  // are at most the number of finite candidates), linear instead of a comparison sort.
+  const std::size_t max_size = valid_.size();
+  size_start_.assign(max_size + 2, 0);
+  for (std::size_t c = 0; c < num_comps; ++c) {
+    // Bucket of size z is max_size - z, so larger components come first.
+    ++size_start_[max_size - static_cast<std::size_t>(comp_size(static_cast<int>(c))) + 1];
+  }
+  for (std::size_t z = 1; z < size_start_.size(); ++z) size_start_[z] += size_start_[z - 1];
   comp_order_.resize(num_comps);
-  std::iota(comp_order_.begin(), comp_order_.end(), 0);
-  std::sort(comp_order_.begin(), comp_order_.end(), [&](int a, int b) {
-    const int sa = comp_size(a), sb = comp_size(b);
-    return sa != sb ? sa > sb : a < b;
-  });
+  for (std::size_t c = 0; c < num_comps; ++c) {
+    const std::size_t bucket = max_size - static_cast<std::size_t>(comp_size(static_cast<int>(c)));
+    comp_order_[static_cast<std::size_t>(size_start_[bucket]++)] = static_cast<int>(c);
+  }
 
   std::optional<ClusterScore> best;
   for (const int c : comp_order_) {

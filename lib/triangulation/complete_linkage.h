@@ -11,8 +11,8 @@
 ///  2. otherwise the candidates are split into the connected components of the graph
 ///     "distance <= kappa" (sweep along x); no complete-linkage cluster can span two components;
 ///  3. each component is clustered with the nearest-neighbour-chain algorithm (Murtagh 1983,
-///     complete linkage is reducible) on a condensed float distance matrix in which pairs further
-///     apart than kappa are +inf, i.e. "never mergeable". The vote visits components by
+///     complete linkage is reducible) on a full (s x s) float distance matrix in which pairs
+///     further apart than kappa are +inf, i.e. "never mergeable". The vote visits components by
 ///     decreasing size and stops once a component cannot beat the best cluster found.
 /// Ties between equal merge distances are broken deterministically (NN-chain prefers the previous
 /// chain element, then the lowest index), so results depend only on the input order.
@@ -75,7 +75,8 @@ class ClusterVoter {
   std::vector<int> comp_members_;    // original indices, grouped by component
   std::vector<int> comp_offsets_;
   std::vector<int> comp_order_;      // components by decreasing size
-  std::vector<float> dist_;          // condensed distance matrix of one component
+  std::vector<int> size_start_;      // counting-sort buckets of comp_order_
+  std::vector<float> dist_;          // full s x s distance matrix of one component
   std::vector<int> active_;          // local ids of clusters still able to merge, ascending
   std::vector<int> chain_;           // nearest-neighbour chain
   std::vector<int> next_;            // linked member lists (local ids)

@@ -60,6 +60,14 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.linking.min_hits == b.linking.min_hits);
   REQUIRE(a.linking.max_missed_windows == b.linking.max_missed_windows);
   REQUIRE(a.linking.max_speed_m_per_frame == b.linking.max_speed_m_per_frame);
+  REQUIRE(a.refinement.merge_distance_m == b.refinement.merge_distance_m);
+  REQUIRE(a.refinement.min_duplicate_pairs == b.refinement.min_duplicate_pairs);
+  REQUIRE(a.refinement.min_person_point_fraction == b.refinement.min_person_point_fraction);
+  REQUIRE(a.refinement.outlier_half_window == b.refinement.outlier_half_window);
+  REQUIRE(a.refinement.outlier_distance_m == b.refinement.outlier_distance_m);
+  REQUIRE(a.refinement.max_fill_gap == b.refinement.max_fill_gap);
+  REQUIRE(a.refinement.fill_neighbors == b.refinement.fill_neighbors);
+  REQUIRE(a.refinement.min_points_to_fill == b.refinement.min_points_to_fill);
 }
 
 // Valid options with every field drawn at random (full-precision reals).
@@ -104,6 +112,14 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.linking.min_hits = small(1, 5);
   o.linking.max_missed_windows = small(0, 10);
   o.linking.max_speed_m_per_frame = unit(*rng);
+  o.refinement.merge_distance_m = unit(*rng);
+  o.refinement.min_duplicate_pairs = small(1, 30);
+  o.refinement.min_person_point_fraction = unit(*rng);
+  o.refinement.outlier_half_window = small(0, 10);
+  o.refinement.outlier_distance_m = 0.01 + unit(*rng);
+  o.refinement.max_fill_gap = small(0, 30);
+  o.refinement.fill_neighbors = small(1, 8);
+  o.refinement.min_points_to_fill = small(1, 10);
   return o;
 }
 
@@ -135,7 +151,8 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   CHECK(sizeof(association::AssociationOptions) == 32);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
   CHECK(sizeof(linking::LinkerOptions) == 24);
-  CHECK(sizeof(TrackerOptions) == 192);
+  CHECK(sizeof(triangulation::RefinementOptions) == 56);
+  CHECK(sizeof(TrackerOptions) == 248);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -187,7 +204,16 @@ TEST_CASE("Every key sets its own field", "[unit]") {
       "    max_link_distance_m: 0.65\n"
       "    min_hits: 3\n"
       "    max_missed_windows: 4\n"
-      "    max_speed_m_per_frame: 0.2\n";
+      "    max_speed_m_per_frame: 0.2\n"
+      "  refinement:\n"
+      "    merge_distance_m: 0.15\n"
+      "    min_duplicate_pairs: 7\n"
+      "    min_person_point_fraction: 0.375\n"
+      "    outlier_half_window: 5\n"
+      "    outlier_distance_m: 0.3\n"
+      "    max_fill_gap: 11\n"
+      "    fill_neighbors: 3\n"
+      "    min_points_to_fill: 6\n";
   const TrackerOptions o = ParseTrackerOptions(text, "all.yaml");
   CHECK(o.mode == tracker::InputMode::kPoses);
   CHECK(o.layout == core::KeypointLayoutId::kShelf14);
@@ -220,6 +246,14 @@ TEST_CASE("Every key sets its own field", "[unit]") {
   CHECK(o.linking.min_hits == 3);
   CHECK(o.linking.max_missed_windows == 4);
   CHECK(o.linking.max_speed_m_per_frame == 0.2);
+  CHECK(o.refinement.merge_distance_m == 0.15);
+  CHECK(o.refinement.min_duplicate_pairs == 7);
+  CHECK(o.refinement.min_person_point_fraction == 0.375);
+  CHECK(o.refinement.outlier_half_window == 5);
+  CHECK(o.refinement.outlier_distance_m == 0.3);
+  CHECK(o.refinement.max_fill_gap == 11);
+  CHECK(o.refinement.fill_neighbors == 3);
+  CHECK(o.refinement.min_points_to_fill == 6);
 }
 
 TEST_CASE("Enum names", "[unit]") {
@@ -267,7 +301,7 @@ TEST_CASE("Options round-trip exactly: defaults and random sets", "[unit]") {
 TEST_CASE("ToYaml lists every option and the example documents exactly those", "[unit]") {
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
-  CHECK(written.size() == 31);  // 13 + 3 (sort) + 4 (association) + 7 (triangulation) + 4
+  CHECK(written.size() == 39);  // 13 + 3 (sort) + 4 (association) + 7 (triangulation) + 4
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

@@ -9,6 +9,8 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config git
   # algorithm and runtime libraries
   libeigen3-dev libopencv-core-dev libopencv-calib3d-dev
+  # mvtrack view and calib check pictures (PNG, MP4) and OpenCV FileStorage calibrations
+  libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-videoio-dev
   libyaml-cpp-dev libspdlog-dev libsystemd-dev
   # LCM: C/C++ library, lcm-gen and the logger, Java bindings; lcm.pc needs glib
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev
@@ -16,6 +18,10 @@ packages=(
   default-jdk-headless libjchart2d-java
   # tests
   catch2 python3
+  # Python examples: a virtualenv with PyPI's lcm (tests/python)
+  python3-venv
+  # Debian package: cpack -G DEB runs dpkg-shlibdeps (tools/cmake/packaging.cmake)
+  dpkg-dev
   # lcm-spy GUI smoke test and screenshots (virtual X server)
   xvfb xauth
 )

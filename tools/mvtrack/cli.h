@@ -65,5 +65,16 @@ int RunCheckConfig(int argc, char** argv);
 /// `mvtrack convert`: datasets and JSON-lines detections -> detections log, calibration,
 /// ground truth (convert.cc).
 int RunConvert(int argc, char** argv);
+/// `mvtrack sim`: write a simulated recording (detections log, calibration, ground truth)
+/// (sim.cc).
+int RunSim(int argc, char** argv);
+/// `mvtrack bench`: throughput, latency and memory on simulated scenes, with accuracy
+/// (bench.cc).
+int RunBench(int argc, char** argv);
+/// `mvtrack view`: render tracks (and detections, cameras) as PNG, contact sheet or MP4
+/// (view.cc).
+int RunView(int argc, char** argv);
+/// `mvtrack calib`: import calibrations from other formats, check a calibration (calib.cc).
+int RunCalib(int argc, char** argv);
 
 }  // namespace mvtrack::cli

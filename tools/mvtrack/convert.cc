@@ -4,16 +4,20 @@
 // peer method's output as canonical tracks JSONL, plus a README.txt stating the protocol.
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <string>
+#include <system_error>
+#include <utility>
 #include <vector>
 
 #include "config/calibration.h"
@@ -27,6 +31,7 @@
 #include "eval/sequence.h"
 #include "mvtrack/cli.h"
 #include "mvtrack/convert_output.h"
+#include "mvtrack/detection_importers.h"
 #include "mvtrack/jsonl_detections.h"
 #include "transport/channels.h"
 #include "transport/tracks_jsonl.h"
@@ -516,7 +521,7 @@ int ConvertCampus(int argc, char** argv, const std::string& command_line) {
 std::vector<std::string> PanopticCameraOrder() {
   std::vector<std::string> order = datasets::DefaultPanopticCameras();
   for (int i = 0; i < kNumPanopticHdCameras; ++i) {
-    char name[8];
+    char name[16];  // "00_" + up to 11 characters of an int: no truncation possible
     std::snprintf(name, sizeof(name), "00_%02d", i);
     if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
   }
@@ -772,6 +777,314 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
   return 0;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Per-camera detection files: MOTChallenge det.txt and COCO-style keypoint JSON
+// (detection_importers.h).
+
+// What differs between the two per-camera formats.
+struct PerCameraFormat {
+  const char* name;        // "motchallenge" or "coco"
+  const char* file_kind;   // "det.txt" or "keypoints.json"
+  const char* long_name;   // for the README
+  FrameIndex first_frame_number;  // frame at --start-utime: 1 (MOTChallenge) or 0 (COCO)
+};
+
+// Reads a whole file into memory.
+std::string ReadWholeFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open the detections file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw std::runtime_error(path + ": read error");
+  return text.str();
+}
+
+// `--detections ID=FILE,ID=FILE`: camera id -> path.
+std::map<CameraId, std::string> ParseDetectionFiles(const std::string& text) {
+  std::map<CameraId, std::string> files;
+  for (const std::string& item : SplitList(text, "detections")) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == item.size()) {
+      throw UsageError("--detections: '" + item + "' is not CAMERA_ID=FILE");
+    }
+    const std::string id_text = item.substr(0, eq);
+    CameraId id = 0;
+    const auto [end, ec] = std::from_chars(id_text.data(), id_text.data() + id_text.size(), id);
+    if (ec != std::errc() || end != id_text.data() + id_text.size() || id < 0) {
+      throw UsageError("--detections: camera id '" + id_text + "' in '" + item +
+                       "' is not an integer >= 0");
+    }
+    if (!files.emplace(id, item.substr(eq + 1)).second) {
+      throw UsageError("--detections: camera " + id_text + " is given twice");
+    }
+  }
+  return files;
+}
+
+// `--frames FIRST:LAST` (inclusive).
+std::pair<FrameIndex, FrameIndex> ParseFrameRange(const std::string& text, FrameIndex min_first) {
+  const std::size_t colon = text.find(':');
+  auto number = [&](const std::string& t) {
+    FrameIndex v = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || ec != std::errc() || end != t.data() + t.size()) {
+      throw UsageError("--frames: '" + text + "' is not FIRST:LAST (two integers)");
+    }
+    return v;
+  };
+  if (colon == std::string::npos) {
+    throw UsageError("--frames: '" + text + "' is not FIRST:LAST (two integers)");
+  }
+  const FrameIndex first = number(text.substr(0, colon));
+  const FrameIndex last = number(text.substr(colon + 1));
+  if (first < min_first || last < first) {
+    throw UsageError("--frames: '" + text + "' needs " + std::to_string(min_first) +
+                     " <= FIRST <= LAST");
+  }
+  return {first, last};
+}
+
+void AddPerCameraOptions(Args* args) {
+  args->Option("detections",
+               "the per-camera files: CAMERA_ID=FILE[,CAMERA_ID=FILE...] (required)")
+      .Option("calibration", "the cameras, mvtrack.calibration/1 (required)")
+      .Option("fps", "frame rate of the synchronized cameras, frames per second (required)")
+      .Option("start-utime",
+              "capture time of the first frame number, µs since the Unix epoch", "0")
+      .Option("frames",
+              "FIRST:LAST frames to write (default: the smallest to the largest frame in any "
+              "file); frames without detections give empty events")
+      .Flag("clamp-scores", "clamp scores and keypoint confidences outside [0, 1] into it");
+}
+
+int ConvertPerCameraFiles(const Args& args,
+                          const CommonSettings& c,
+                          const PerCameraFormat& format,
+                          const std::function<ImportedDetections(const std::string&,
+                                                                 const std::string&)>& read,
+                          const std::vector<std::string>& what) {
+  if (!args.Has("detections")) throw UsageError("--detections CAMERA_ID=FILE,... is required");
+  if (!args.Has("calibration")) throw UsageError("--calibration CAL.yaml is required");
+  if (!args.Has("fps")) throw UsageError("--fps F is required");
+  const double fps = args.GetDouble("fps");
+  if (!(fps > 0.0 && fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
+  const std::int64_t start_utime = args.GetInt("start-utime");
+  if (start_utime < 0) throw UsageError("--start-utime must be >= 0");
+  const std::map<CameraId, std::string> files = ParseDetectionFiles(args.Get("detections"));
+  std::optional<std::pair<FrameIndex, FrameIndex>> range;
+  if (args.Has("frames")) range = ParseFrameRange(args.Get("frames"), format.first_frame_number);
+
+  const Clock::time_point start = Clock::now();
+  const std::string calibration_path = args.Get("calibration");
+  const config::CalibrationDocument calibration = config::LoadCalibrationDocument(calibration_path);
+  std::map<CameraId, const geometry::CameraModel*> cameras;
+  for (const geometry::CameraModel& cam : calibration.cameras) cameras[cam.id] = &cam;
+  for (const auto& [id, path] : files) {
+    if (cameras.count(id) == 0) {
+      throw std::runtime_error("--detections: camera " + std::to_string(id) + " (" + path +
+                               ") is not in the calibration " + calibration_path);
+    }
+  }
+
+  // Read every file; the frame range is checked against all of them.
+  std::map<CameraId, ImportedDetections> per_camera;
+  std::int64_t clamped = 0;
+  for (const auto& [id, path] : files) {
+    Progress(c, "reading camera " + std::to_string(id) + ": " + path);
+    per_camera[id] = read(ReadWholeFile(path), path);
+    clamped += per_camera[id].clamped;
+  }
+  std::optional<FrameIndex> first, last;
+  for (const auto& [id, imported] : per_camera) {
+    if (imported.by_frame.empty()) continue;
+    const FrameIndex lo = imported.by_frame.begin()->first;
+    const FrameIndex hi = imported.by_frame.rbegin()->first;
+    first = first.has_value() ? std::min(*first, lo) : lo;
+    last = last.has_value() ? std::max(*last, hi) : hi;
+    if (range.has_value() && (lo < range->first || hi > range->second)) {
+      const FrameIndex bad = lo < range->first ? lo : hi;
+      throw std::runtime_error(files.at(id) + ":" + std::to_string(imported.first_line.at(bad)) +
+                               ": frame " + std::to_string(bad) + " is outside --frames " +
+                               args.Get("frames"));
+    }
+  }
+  if (range.has_value()) {
+    first = range->first;
+    last = range->second;
+  }
+  if (!first.has_value()) {
+    throw std::runtime_error("no detections in any file; give --frames FIRST:LAST to write "
+                             "empty frames");
+  }
+
+  ConvertOutputDir out(c.out, c.overwrite);
+  Progress(c, "writing " + out.File(kConvertLogFile).string() + ", frames " +
+                  std::to_string(*first) + "-" + std::to_string(*last));
+  DetectionsLogSink sink(&out, c.channel);
+  const std::vector<core::Detection2D> none;
+  for (FrameIndex frame = *first; frame <= *last; ++frame) {
+    const Utime utime =
+        ImportFrameUtime(frame, format.first_frame_number, fps, static_cast<Utime>(start_utime));
+    std::vector<core::CameraFrame> frames;
+    frames.reserve(per_camera.size());
+    for (const auto& [id, imported] : per_camera) {
+      core::CameraFrame f;
+      f.utime = utime;
+      f.frame = frame;
+      f.camera_id = id;
+      const auto it = imported.by_frame.find(frame);
+      if (it != imported.by_frame.end()) f.detections = it->second;
+      frames.push_back(std::move(f));
+    }
+    std::vector<CameraFrameToWrite> batch;
+    for (const core::CameraFrame& f : frames) {
+      const geometry::CameraModel& cam = *cameras.at(f.camera_id);
+      batch.push_back({&f, cam.width_px, cam.height_px});
+    }
+    sink.WriteFrame(std::move(batch));
+    if ((frame - *first + 1) % 10000 == 0) {
+      Progress(c, std::to_string(frame - *first + 1) + " frames written");
+    }
+  }
+  sink.Finish();
+  const DetectionsLogStats& st = sink.stats();
+  config::SaveCalibration(
+      out.File(kConvertCalibrationFile).string(), calibration.cameras, calibration.names);
+
+  std::ostringstream r;
+  r << "mvtrack convert " << format.name << " (mvtrack " << MVTRACK_VERSION << ")\n\n";
+  r << "Command line:\n  " << c.command_line << "\n\n";
+  r << "What was converted:\n";
+  for (const auto& [id, path] : files) {
+    r << "  Camera " << id << ": " << path << " (" << format.long_name << "), "
+      << per_camera.at(id).records << " detections.\n";
+  }
+  for (const std::string& line : what) r << "  " << line << "\n";
+  r << "  Frames " << *first << "-" << *last << ": every listed camera has one event per frame "
+    << "(empty when its file has no detection in that frame).\n"
+    << "  utime = " << start_utime << " + round((frame - " << format.first_frame_number
+    << ") * 1e6 / " << fps << ") µs.\n";
+  if (args.Has("clamp-scores")) {
+    r << "  --clamp-scores: " << clamped << " score(s) or confidence(s) clamped into [0, 1].\n";
+  }
+  r << "  Calibration: " << calibration_path << ", " << calibration.cameras.size()
+    << " cameras, written back in canonical form.\n";
+  std::vector<CameraId> silent;
+  for (const geometry::CameraModel& cam : calibration.cameras) {
+    if (files.count(cam.id) == 0) silent.push_back(cam.id);
+  }
+  if (!silent.empty()) {
+    std::sort(silent.begin(), silent.end());
+    r << "  Calibrated cameras without a file (no events):";
+    for (CameraId id : silent) r << " " << id;
+    r << ".\n";
+  }
+  r << "\nFiles:\n" << LogDescription(c, st);
+  r << "  " << kConvertCalibrationFile << ": mvtrack.calibration/1 (docs/FORMATS.md), "
+    << calibration.cameras.size() << " cameras.\n";
+  r << "  " << kConvertReadmeFile << ": this file.\n";
+  out.WriteText(kConvertReadmeFile, r.str());
+
+  Progress(c,
+           "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
+               std::to_string(st.detections) + " detections, " + std::to_string(st.bytes) +
+               " bytes of log in " + FormatSeconds(SecondsSince(start)));
+  return 0;
+}
+
+int ConvertMotChallenge(int argc, char** argv, const std::string& command_line) {
+  Args args;
+  AddPerCameraOptions(&args);
+  args.Option("pixel-origin",
+              "coordinate of the top-left pixel in the files: 1 (MOTChallenge) or 0", "1");
+  AddCommonOptions(&args, false);
+  if (!args.Parse(
+          argc,
+          argv,
+          FormatUsage("motchallenge",
+                      "--detections ID=det.txt,... --calibration CAL.yaml --fps F "
+                      "[--start-utime U] [--frames A:B] [--pixel-origin 1|0] [--clamp-scores] "),
+          "MOTChallenge det.txt files, one per camera (docs/FORMATS.md, \"MOTChallenge\n"
+          "det.txt\"): per line frame,id,left,top,width,height,conf[,x,y,z]; frames are\n"
+          "1-based and equal across cameras (synchronized). Each becomes a box-only detection\n"
+          "(layout none): box [left-o, top-o, left-o+width, top-o+height] with o the pixel\n"
+          "origin, score conf. Frame f is captured at start-utime + round((f - 1) * 1e6 / fps)\n"
+          "µs. Every camera gets an event in every frame of the range.\n\n" +
+              std::string(kFormatTrailer))) {
+    return 0;
+  }
+  const CommonSettings c = ParseCommon(args, "motchallenge", false, command_line);
+  MotChallengeOptions options;
+  const std::string origin = args.Get("pixel-origin");
+  if (origin != "0" && origin != "1") {
+    throw UsageError("--pixel-origin must be 1 or 0, not '" + origin + "'");
+  }
+  options.pixel_origin = origin == "1" ? 1 : 0;
+  options.clamp_scores = args.Has("clamp-scores");
+  const PerCameraFormat format{"motchallenge", "det.txt", "MOTChallenge det.txt", 1};
+  return ConvertPerCameraFiles(
+      args,
+      c,
+      format,
+      [&](const std::string& text, const std::string& path) {
+        return ReadMotChallengeDetections(text, path, options);
+      },
+      {"Box-only detections (layout none), box = [left, top, left + width, top + height] - " +
+           origin + " (pixel origin " + origin + "), score = conf; id and x, y, z ignored."});
+}
+
+int ConvertCoco(int argc, char** argv, const std::string& command_line) {
+  Args args;
+  AddPerCameraOptions(&args);
+  args.Option("keypoint-score",
+              "third value of each keypoint: 'confidence' (in [0, 1], pose detector results) or "
+              "'visibility' (COCO annotation flag 0/1/2: 0 -> 0, 1 and 2 -> 1)",
+              "confidence");
+  AddCommonOptions(&args, false);
+  if (!args.Parse(
+          argc,
+          argv,
+          FormatUsage("coco",
+                      "--detections ID=keypoints.json,... --calibration CAL.yaml --fps F "
+                      "[--start-utime U] [--frames A:B] [--keypoint-score confidence|visibility] "
+                      "[--clamp-scores] "),
+          "COCO-style keypoint JSON, one file per camera (docs/FORMATS.md, \"COCO-style\n"
+          "keypoint JSON\"): an array of person records (COCO keypoint results as written by\n"
+          "mmpose, Detectron2, OpenPifPaf, AlphaPose), or an object whose \"annotations\" is\n"
+          "that array. Each record: \"image_id\" (integer, or an image file name ending in the\n"
+          "frame number) or \"frame\"; \"keypoints\" (17 COCO keypoints, flat x,y,v or [x,y,v]\n"
+          "triples); optional \"score\", \"bbox\"/\"box\" [x, y, w, h], \"category_id\" 1.\n"
+          "Frame f "
+          "is captured at start-utime + round(f * 1e6 / fps) µs. Every camera gets an event in\n"
+          "every frame of the range.\n\n" +
+              std::string(kFormatTrailer))) {
+    return 0;
+  }
+  const CommonSettings c = ParseCommon(args, "coco", false, command_line);
+  CocoOptions options;
+  const std::string score = args.Get("keypoint-score");
+  if (score == "confidence") {
+    options.keypoint_score = CocoKeypointScore::kConfidence;
+  } else if (score == "visibility") {
+    options.keypoint_score = CocoKeypointScore::kVisibility;
+  } else {
+    throw UsageError("--keypoint-score must be 'confidence' or 'visibility', not '" + score + "'");
+  }
+  options.clamp_scores = args.Has("clamp-scores");
+  const PerCameraFormat format{"coco", "keypoints.json", "COCO-style keypoint JSON", 0};
+  return ConvertPerCameraFiles(
+      args,
+      c,
+      format,
+      [&](const std::string& text, const std::string& path) {
+        return ReadCocoKeypoints(text, path, options);
+      },
+      {"COCO-17 poses (layout coco17), keypoint confidence = the keypoints' third value (" +
+           score + "); box = bbox [x, y, x + w, y + h], else the keypoint",
+       "bounds grown by 10 % of their height per side; score = \"score\", else the mean "
+       "detected keypoint confidence."});
+}
+
 struct Format {
   const char* name;
   const char* summary;
@@ -790,6 +1103,10 @@ constexpr Format kFormats[] = {
      "WILDTRACK: MVDeTr boxes of 7 views (box mode) + MVDeTr ground points",
      ConvertWildtrack},
     {"jsonl", "generic JSON-lines detections + a calibration (docs/FORMATS.md)", ConvertJsonl},
+    {"motchallenge", "MOTChallenge det.txt boxes, one file per camera + a calibration",
+     ConvertMotChallenge},
+    {"coco", "COCO-style keypoint JSON (pose detector output) per camera + a calibration",
+     ConvertCoco},
 };
 
 std::string ConvertHelp() {
@@ -798,7 +1115,7 @@ std::string ConvertHelp() {
         "--help)\n\n"
      << kConvertDescription << "\n\nformats:\n";
   for (const Format& f : kFormats) {
-    os << "  " << f.name << std::string(12 - std::string(f.name).size(), ' ') << f.summary << "\n";
+    os << "  " << f.name << std::string(14 - std::string(f.name).size(), ' ') << f.summary << "\n";
   }
   return os.str();
 }
@@ -822,7 +1139,7 @@ int RunConvert(int argc, char** argv) {
     if (format == f.name) return f.run(argc - 1, argv + 1, command_line);
   }
   throw UsageError("unknown format '" + format +
-                   "' (shelf, campus, panoptic, wildtrack, jsonl; "
+                   "' (shelf, campus, panoptic, wildtrack, jsonl, motchallenge, coco; "
                    "see mvtrack convert --help)");
 }
 

@@ -16,6 +16,7 @@
 
 #include "core/keypoint_layout.h"
 #include "eval/pcp.h"
+#include "eval/point_comparison.h"
 #include "eval/report.h"
 #include "eval/sequence.h"
 #include "eval/tracking_metrics.h"
@@ -156,6 +157,48 @@ std::string DescribeMapping(const core::KeypointMapping& mapping) {
          " joints derivable)\n" + os.str();
 }
 
+// Writes `report` as JSON to the --json target (a file, or stdout for '-').
+void WriteJsonReport(const Args& args, const eval::EvaluationReport& report) {
+  const std::string json = eval::ReportToJson(report);
+  if (args.Get("json") == "-") {
+    std::cout << json << std::flush;
+    if (!std::cout) throw std::runtime_error("stdout: write error");
+    return;
+  }
+  std::ofstream file(args.Get("json"), std::ios::binary | std::ios::trunc);
+  if (!file) throw std::runtime_error(args.Get("json") + ": cannot open for writing");
+  file << json;
+  file.close();
+  if (!file) throw std::runtime_error(args.Get("json") + ": write error");
+}
+
+// eval --points: footprints of `pred` against the identity-free reference points of `gt`.
+int RunPointComparison(const Args& args,
+                       const TrackFile& gt,
+                       const TrackFile& pred,
+                       const eval::TrackingOptions& tracking_options) {
+  eval::PointComparisonOptions options;
+  options.gate_m = tracking_options.footprint_threshold_m;
+  options.frame_ranges = tracking_options.frame_ranges;
+  std::string why;
+  if (!options.Validate(&why)) throw UsageError(why);
+  const bool json_to_stdout = args.Has("json") && args.Get("json") == "-";
+  std::ostream& out = json_to_stdout ? std::cerr : std::cout;
+  out << "reference:    " << gt.Describe() << "\n";
+  out << "predictions:  " << pred.Describe() << "\n";
+  out << "joints: not compared (--points: footprints only, ids ignored on both sides)\n\n";
+  eval::EvaluationReport report;
+  report.points = eval::ComparePoints(
+      ToSequence(gt, false, nullptr), ToSequence(pred, false, nullptr), options);
+  if (!report.points->valid) {
+    std::cerr << "mvtrack eval: point comparison failed: " << report.points->error << "\n";
+    return 1;
+  }
+  out << eval::FormatReportTable(report);
+  if (args.Has("json")) WriteJsonReport(args, report);
+  return 0;
+}
+
 }  // namespace
 
 int RunEval(int argc, char** argv) {
@@ -173,6 +216,10 @@ int RunEval(int argc, char** argv) {
       .Option("threshold", "matching gate, metres", "0.5")
       .Option("frames", "evaluate only these frames: A-B[,C-D...] (inclusive; default: all)")
       .Option("actors", "PCP only: GT actor ids scored, e.g. 0,1,2 (default: every actor)")
+      .Flag("points",
+            "instead of tracking metrics, compare footprints with reference points that carry no "
+            "identities (GT = e.g. WILDTRACK's ground_points.jsonl): per-frame counts and the "
+            "distances of the per-frame one-to-one matches within --threshold")
       .Flag("pcp", "also score PCP (alpha 0.5): the Shelf/Campus parts when the layout is shelf14, "
                    "else every bone of the layout")
       .Option("json", "also write the report as JSON (schema mvtrack.eval/1) to this file "
@@ -180,13 +227,16 @@ int RunEval(int argc, char** argv) {
   if (!args.Parse(argc, argv,
                   "mvtrack eval --gt GT [--pred] TRACKS [--layout NAME] "
                   "[--distance footprint|joints] [--threshold M] [--frames A-B[,C-D]] "
-                  "[--actors 0,1,2] [--pcp] [--json OUT.json]",
+                  "[--actors 0,1,2] [--pcp | --points] [--json OUT.json]",
                   "Scores tracks against ground truth with CLEAR MOT (MOTA, MOTP, FP, FN, IDSW, MT,\n"
                   "ML; py-motmetrics semantics), identity F1 (IDF1, IDP, IDR) and MPJPE, and with\n"
                   "--pcp the PCP of Belagiannis et al. as the Shelf/Campus evaluations compute it.\n"
                   "Both files may be canonical tracks JSONL or LCM logs of tracks3d_t (recognised\n"
                   "by content). Joints in different keypoint layouts are mapped to one layout\n"
-                  "(the mapping is printed). The protocol of every metric is printed with it.\n\n"
+                  "(the mapping is printed). The protocol of every metric is printed with it.\n"
+                  "With --points the ground truth is a set of reference points without\n"
+                  "identities: each frame's footprints and points are paired one-to-one\n"
+                  "(min-cost, within --threshold) and the counts and distances are reported.\n\n"
                   "Exit status: 0 evaluated, 1 failure (unreadable input, inputs that cannot be\n"
                   "compared), 2 usage error.")) {
     return 0;
@@ -215,6 +265,11 @@ int RunEval(int argc, char** argv) {
   tracking_options.mean_joint_threshold_m = threshold;
   if (args.Has("frames")) tracking_options.frame_ranges = ParseFrameRanges(args.Get("frames"));
   const bool pcp = args.Has("pcp");
+  const bool points = args.Has("points");
+  if (points && pcp) throw UsageError("--points and --pcp exclude each other");
+  if (points && tracking_options.distance != eval::DistanceKind::kFootprint) {
+    throw UsageError("--points compares footprints: --distance must be footprint");
+  }
   if (args.Has("actors") && !pcp) throw UsageError("--actors applies to PCP only: add --pcp");
   std::optional<core::KeypointLayoutId> requested_layout;
   if (args.Has("layout")) {
@@ -252,6 +307,7 @@ int RunEval(int argc, char** argv) {
                  "sides\n";
     return 1;
   }
+  if (points) return RunPointComparison(args, gt, pred, tracking_options);
   std::optional<core::KeypointMapping> gt_mapping;
   std::optional<core::KeypointMapping> pred_mapping;
   if (compare_joints && gt.layout && *gt.layout != eval_layout) {
@@ -319,19 +375,7 @@ int RunEval(int argc, char** argv) {
     }
   }
   out << eval::FormatReportTable(report);
-  if (args.Has("json")) {
-    const std::string json = eval::ReportToJson(report);
-    if (json_to_stdout) {
-      std::cout << json << std::flush;
-      if (!std::cout) throw std::runtime_error("stdout: write error");
-    } else {
-      std::ofstream file(args.Get("json"), std::ios::binary | std::ios::trunc);
-      if (!file) throw std::runtime_error(args.Get("json") + ": cannot open for writing");
-      file << json;
-      file.close();
-      if (!file) throw std::runtime_error(args.Get("json") + ": write error");
-    }
-  }
+  if (args.Has("json")) WriteJsonReport(args, report);
   return 0;
 }
 

@@ -24,6 +24,14 @@ constexpr Command kCommands[] = {
      mvtrack::cli::RunCheckConfig},
     {"convert", "convert a dataset or JSON-lines detections into a detections log",
      mvtrack::cli::RunConvert},
+    {"sim", "write a simulated recording (detections log, calibration, ground truth)",
+     mvtrack::cli::RunSim},
+    {"bench", "measure speed, latency and memory on simulated scenes (with accuracy)",
+     mvtrack::cli::RunBench},
+    {"view", "render tracks over the floor and the cameras (PNG, contact sheet, MP4)",
+     mvtrack::cli::RunView},
+    {"calib", "import a calibration from other formats; check a calibration",
+     mvtrack::cli::RunCalib},
 };
 
 void PrintUsage(std::ostream& os) {

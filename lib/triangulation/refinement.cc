@@ -1,0 +1,252 @@
+#include "triangulation/refinement.h"
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "core/check.h"
+
+namespace mvtrack::triangulation {
+namespace {
+
+// Neighbour sets whose second principal spread (RMS, metres) is below this are treated as
+// collinear: their rotation about the line is undetermined, so only their translation is used.
+constexpr double kMinRigidSpreadM = 0.02;
+
+using Row = std::vector<std::optional<Vec3>>;
+
+// Estimate of point k at row `to` carried from row `from` by the motion of k's nearest
+// neighbours (points present in both rows), or nullopt without neighbours.
+std::optional<Vec3> Carry(const Row& from, const Row& to, std::size_t k, int max_neighbors,
+                          bool* rigid) {
+  const Vec3 anchor = *from[k];
+  std::vector<std::pair<double, std::size_t>> near;
+  for (std::size_t j = 0; j < from.size(); ++j) {
+    if (j == k || !from[j] || !to[j]) continue;
+    near.emplace_back((*from[j] - anchor).squaredNorm(), j);
+  }
+  if (near.empty()) return std::nullopt;
+  const auto n = std::min(near.size(), static_cast<std::size_t>(max_neighbors));
+  std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(n), near.end());
+  Vec3 mean_from = Vec3::Zero();
+  Vec3 mean_to = Vec3::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    mean_from += *from[near[i].second];
+    mean_to += *to[near[i].second];
+  }
+  mean_from /= static_cast<double>(n);
+  mean_to /= static_cast<double>(n);
+  *rigid = false;
+  if (n >= 3) {
+    Eigen::Matrix<double, Eigen::Dynamic, 3> src(static_cast<Eigen::Index>(n), 3);
+    Eigen::Matrix<double, Eigen::Dynamic, 3> dst(static_cast<Eigen::Index>(n), 3);
+    for (std::size_t i = 0; i < n; ++i) {
+      src.row(static_cast<Eigen::Index>(i)) = (*from[near[i].second] - mean_from).transpose();
+      dst.row(static_cast<Eigen::Index>(i)) = (*to[near[i].second] - mean_to).transpose();
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix<double, Eigen::Dynamic, 3>> spread(src);
+    const double second_rms = spread.singularValues()(1) / std::sqrt(static_cast<double>(n));
+    if (second_rms >= kMinRigidSpreadM) {
+      // Kabsch: R = V diag(1, 1, det(V U^T)) U^T for H = src^T dst = U S V^T.
+      const Mat3 h = src.transpose() * dst;
+      const Eigen::JacobiSVD<Mat3> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      Mat3 d = Mat3::Identity();
+      d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+      const Mat3 r = svd.matrixV() * d * svd.matrixU().transpose();
+      *rigid = true;
+      return Vec3(r * (anchor - mean_from) + mean_to);
+    }
+  }
+  return Vec3(anchor + (mean_to - mean_from));
+}
+
+}  // namespace
+
+bool RefinementOptions::Validate(std::string* why) const {
+  auto fail = [&](const char* reason) {
+    if (why != nullptr) *why = std::string("refinement: ") + reason;
+    return false;
+  };
+  if (!(std::isfinite(merge_distance_m) && merge_distance_m >= 0.0)) {
+    return fail("merge_distance_m must be finite and >= 0");
+  }
+  if (min_duplicate_pairs < 1) return fail("min_duplicate_pairs must be >= 1");
+  if (!(min_person_point_fraction >= 0.0 && min_person_point_fraction <= 1.0)) {
+    return fail("min_person_point_fraction must be in [0, 1]");
+  }
+  if (outlier_half_window < 0) return fail("outlier_half_window must be >= 0 frames");
+  if (!(std::isfinite(outlier_distance_m) && outlier_distance_m > 0.0)) {
+    return fail("outlier_distance_m must be finite and > 0");
+  }
+  if (max_fill_gap < 0) return fail("max_fill_gap must be >= 0 frames");
+  if (fill_neighbors < 1) return fail("fill_neighbors must be >= 1");
+  if (min_points_to_fill < 1) return fail("min_points_to_fill must be >= 1");
+  return true;
+}
+
+double PointDistance(const core::Tracklet3D& a, const core::Tracklet3D& b, std::int64_t* pairs) {
+  double sum = 0.0;
+  std::int64_t count = 0;
+  std::size_t i = 0;
+  std::size_t j = 0;
+  while (i < a.frames.size() && j < b.frames.size()) {
+    if (a.frames[i] < b.frames[j]) {
+      ++i;
+    } else if (b.frames[j] < a.frames[i]) {
+      ++j;
+    } else {
+      const Row& pa = a.points[i];
+      const Row& pb = b.points[j];
+      const std::size_t n = std::min(pa.size(), pb.size());
+      for (std::size_t k = 0; k < n; ++k) {
+        if (pa[k] && pb[k]) {
+          sum += (*pa[k] - *pb[k]).norm();
+          ++count;
+        }
+      }
+      ++i;
+      ++j;
+    }
+  }
+  if (pairs != nullptr) *pairs = count;
+  if (count == 0) return std::numeric_limits<double>::infinity();
+  return sum / static_cast<double>(count);
+}
+
+int MaxPointsPerFrame(const core::Tracklet3D& tracklet) {
+  int best = 0;
+  for (const Row& row : tracklet.points) {
+    const auto n = std::count_if(row.begin(), row.end(),
+                                 [](const std::optional<Vec3>& p) { return p.has_value(); });
+    best = std::max(best, static_cast<int>(n));
+  }
+  return best;
+}
+
+std::int64_t RejectTemporalOutliers(core::Tracklet3D* tracklet, const RefinementOptions& options) {
+  MVTRACK_CHECK(tracklet != nullptr);
+  std::string why;
+  MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
+  MVTRACK_CHECK_MSG(tracklet->frames.size() == tracklet->points.size(),
+                    "tracklet frames and points differ in length");
+  const std::size_t num_frames = tracklet->frames.size();
+  const FrameIndex h = options.outlier_half_window;
+  if (h == 0 || num_frames < 3) return 0;
+  const std::size_t num_points = tracklet->points.front().size();
+  for (const Row& row : tracklet->points) {
+    MVTRACK_CHECK_MSG(row.size() == num_points, "every frame needs the same number of points");
+  }
+  const auto& frames = tracklet->frames;
+  std::vector<std::pair<std::size_t, std::size_t>> removals;  // (frame, point)
+  std::array<std::vector<double>, 3> values;
+  for (std::size_t f = 0; f < num_frames; ++f) {
+    // A window symmetric about the frame (truncated at the tracklet's ends), so that the median
+    // of a straight-line motion is the point itself; the end frames cannot be judged.
+    const FrameIndex half = std::min({h, frames[f] - frames.front(), frames.back() - frames[f]});
+    if (half < 1) continue;
+    std::size_t lo = f;
+    while (lo > 0 && frames[f] - frames[lo - 1] <= half) --lo;
+    for (std::size_t k = 0; k < num_points; ++k) {
+      if (!tracklet->points[f][k]) continue;
+      for (auto& v : values) v.clear();
+      for (std::size_t r = lo; r < num_frames && frames[r] - frames[f] <= half; ++r) {
+        const std::optional<Vec3>& p = tracklet->points[r][k];
+        if (!p) continue;
+        for (int a = 0; a < 3; ++a) values[static_cast<std::size_t>(a)].push_back((*p)(a));
+      }
+      if (values[0].size() < 3) continue;
+      Vec3 median;
+      for (int a = 0; a < 3; ++a) {
+        std::vector<double>& v = values[static_cast<std::size_t>(a)];
+        const std::size_t mid = v.size() / 2;
+        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+        double m = v[mid];
+        if (v.size() % 2 == 0) {
+          m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
+        }
+        median(a) = m;
+      }
+      if ((*tracklet->points[f][k] - median).norm() > options.outlier_distance_m) {
+        removals.emplace_back(f, k);
+      }
+    }
+  }
+  for (const auto& [f, k] : removals) tracklet->points[f][k].reset();
+  return static_cast<std::int64_t>(removals.size());
+}
+
+CompletionStats CompleteMissingPoints(core::Tracklet3D* tracklet,
+                                      const RefinementOptions& options) {
+  MVTRACK_CHECK(tracklet != nullptr);
+  std::string why;
+  MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
+  MVTRACK_CHECK_MSG(tracklet->frames.size() == tracklet->points.size(),
+                    "tracklet frames and points differ in length");
+  CompletionStats stats;
+  const std::size_t num_frames = tracklet->frames.size();
+  if (num_frames < 2 || options.max_fill_gap == 0) return stats;
+  const std::size_t num_points = tracklet->points.front().size();
+  for (const Row& row : tracklet->points) {
+    MVTRACK_CHECK_MSG(row.size() == num_points, "every frame needs the same number of points");
+  }
+  if (num_points < 2) return stats;
+  const std::vector<Row> original = tracklet->points;
+  const auto& frames = tracklet->frames;
+  const FrameIndex max_gap = options.max_fill_gap;
+  for (std::size_t f = 0; f < num_frames; ++f) {
+    const Row& here = original[f];
+    const auto present = std::count_if(here.begin(), here.end(),
+                                       [](const std::optional<Vec3>& p) { return p.has_value(); });
+    if (present < options.min_points_to_fill) continue;
+    for (std::size_t k = 0; k < num_points; ++k) {
+      if (here[k]) continue;
+      std::optional<std::size_t> before;
+      for (std::size_t r = f; r-- > 0 && frames[f] - frames[r] <= max_gap;) {
+        if (original[r][k]) {
+          before = r;
+          break;
+        }
+      }
+      std::optional<std::size_t> after;
+      for (std::size_t r = f + 1; r < num_frames && frames[r] - frames[f] <= max_gap; ++r) {
+        if (original[r][k]) {
+          after = r;
+          break;
+        }
+      }
+      bool rigid_before = false;
+      bool rigid_after = false;
+      const std::optional<Vec3> from_before =
+          before ? Carry(original[*before], here, k, options.fill_neighbors, &rigid_before)
+                 : std::nullopt;
+      const std::optional<Vec3> from_after =
+          after ? Carry(original[*after], here, k, options.fill_neighbors, &rigid_after)
+                : std::nullopt;
+      std::optional<Vec3> estimate;
+      if (from_before && from_after) {
+        const auto t0 = static_cast<double>(frames[*before]);
+        const auto t1 = static_cast<double>(frames[*after]);
+        const double w = (static_cast<double>(frames[f]) - t0) / (t1 - t0);
+        estimate = (1.0 - w) * *from_before + w * *from_after;
+      } else if (from_before) {
+        estimate = from_before;
+      } else if (from_after) {
+        estimate = from_after;
+      }
+      if (!estimate) continue;
+      tracklet->points[f][k] = *estimate;
+      ++stats.filled;
+      if ((from_before && rigid_before) || (from_after && rigid_after)) ++stats.filled_rigid;
+    }
+  }
+  return stats;
+}
+
+}  // namespace mvtrack::triangulation

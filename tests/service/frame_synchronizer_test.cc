@@ -1,0 +1,250 @@
+// FrameSynchronizer: grouping by frame index and by utime, the late-camera deadline, silent
+// cameras, the time-order rejections, flooding, stream restarts and the pending bound.
+
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "service/frame_synchronizer.h"
+
+namespace mvtrack::service {
+namespace {
+
+constexpr std::int64_t kPeriod = 40000;  // 25 Hz
+
+core::CameraFrame Frame(CameraId camera, FrameIndex frame, Utime utime, int detections = 0) {
+  core::CameraFrame f;
+  f.camera_id = camera;
+  f.frame = frame;
+  f.utime = utime;
+  f.detections.resize(static_cast<std::size_t>(detections));
+  return f;
+}
+
+core::CameraFrame At(CameraId camera, FrameIndex frame) {
+  return Frame(camera, frame, 1000000 + frame * kPeriod + camera * 100);
+}
+
+// (frame, camera) of every submit, kEndStream as (-1, -1).
+std::vector<std::pair<FrameIndex, CameraId>> Released(const std::vector<SyncAction>& actions) {
+  std::vector<std::pair<FrameIndex, CameraId>> out;
+  for (const SyncAction& a : actions) {
+    if (a.kind == SyncAction::Kind::kEndStream) {
+      out.emplace_back(-1, -1);
+    } else {
+      out.emplace_back(a.frame.frame, a.frame.camera_id);
+    }
+  }
+  return out;
+}
+
+using Pairs = std::vector<std::pair<FrameIndex, CameraId>>;
+
+SyncOptions Options() {
+  SyncOptions o;
+  o.deadline_us = 3 * kPeriod;
+  o.silent_after_us = 10 * kPeriod;
+  o.max_future_us = 100 * kPeriod;
+  o.max_frame_ahead = 100;
+  o.resync_after_rejections = 3;
+  return o;
+}
+
+TEST_CASE("synchronizer releases a frame once every camera delivered, cameras sorted",
+          "[unit]") {
+  FrameSynchronizer sync({2, 0, 1}, Options());
+  CHECK(sync.Add(At(1, 0)).actions.empty());
+  CHECK(sync.Add(At(2, 0)).actions.empty());
+  const SyncResult r = sync.Add(At(0, 0));
+  CHECK(r.rejection == SyncRejection::kNone);
+  CHECK(Released(r.actions) == Pairs{{0, 0}, {0, 1}, {0, 2}});
+  CHECK(sync.Status().released_complete == 1);
+  CHECK(sync.Status().pending_frames == 0);
+}
+
+TEST_CASE("synchronizer: a late camera is waited for until the deadline, then counted late",
+          "[unit]") {
+  FrameSynchronizer sync({0, 1}, Options());
+  sync.Add(At(0, 0));
+  // Camera 1 misses frame 0; frames 1 and 2 of camera 0 do not reach the deadline yet.
+  CHECK(sync.Add(At(0, 1)).actions.empty());
+  CHECK(sync.Add(At(0, 2)).actions.empty());
+  // Frame 3 of camera 0 is 3 periods after frame 0: frame 0 is released without camera 1.
+  const SyncResult r = sync.Add(At(0, 3));
+  CHECK(Released(r.actions) == Pairs{{0, 0}});
+  CHECK(sync.Status().released_by_deadline == 1);
+  CHECK(sync.Status().cameras[1].missed == 1);
+  // Its frame 0 arriving now is late; its frames 1-3 complete the pending frames.
+  const SyncResult late = sync.Add(At(1, 0));
+  CHECK(late.rejection == SyncRejection::kLate);
+  CHECK(sync.Status().cameras[1].late == 1);
+  CHECK(Released(sync.Add(At(1, 1)).actions) == Pairs{{1, 0}, {1, 1}});
+}
+
+TEST_CASE("synchronizer excludes a silent camera and re-includes it when it returns", "[unit]") {
+  SyncOptions o = Options();
+  FrameSynchronizer sync({0, 1}, o);
+  for (FrameIndex f = 0; f < 3; ++f) {
+    sync.Add(At(0, f));
+    sync.Add(At(1, f));
+  }
+  // Camera 1 goes silent: frames wait for it only until it counts as silent.
+  bool excluded = false;
+  FrameIndex f = 3;
+  for (; f < 30 && !excluded; ++f) {
+    const SyncResult r = sync.Add(At(0, f));
+    for (const CameraTransition& t : r.transitions) {
+      CHECK(t.camera_id == 1);
+      excluded = excluded || t.excluded;
+    }
+  }
+  REQUIRE(excluded);
+  CHECK(sync.Status().cameras[1].excluded);
+  // Now a frame of camera 0 alone is released at once.
+  const SyncResult alone = sync.Add(At(0, f));
+  CHECK(Released(alone.actions).back() == std::make_pair(f, CameraId{0}));
+  CHECK(sync.Status().pending_frames == 0);
+  // Camera 1 returns with the next frame: re-included, and waited for again.
+  const SyncResult back = sync.Add(At(1, f + 1));
+  REQUIRE(back.transitions.size() == 1);
+  CHECK_FALSE(back.transitions[0].excluded);
+  CHECK(back.actions.empty());
+  CHECK(Released(sync.Add(At(0, f + 1)).actions) == Pairs{{f + 1, 0}, {f + 1, 1}});
+}
+
+TEST_CASE("synchronizer rejects time going backwards, duplicates and far-future frames",
+          "[unit]") {
+  FrameSynchronizer sync({0, 1}, Options());
+  sync.Add(At(0, 5));
+  sync.Add(At(1, 5));
+  sync.Add(At(0, 6));
+  SECTION("backwards in utime and in frame index") {
+    CHECK(sync.Add(Frame(0, 7, 1000000 + 4 * kPeriod, 3)).rejection == SyncRejection::kBackwards);
+    CHECK(sync.Add(At(0, 4)).rejection == SyncRejection::kBackwards);
+    CHECK(sync.Status().cameras[0].backwards == 2);
+    CHECK(sync.Status().cameras[0].detections_rejected == 3);
+  }
+  SECTION("duplicates: same utime, or same frame index") {
+    CHECK(sync.Add(At(0, 6)).rejection == SyncRejection::kDuplicate);
+    CHECK(sync.Add(Frame(0, 6, 1000000 + 6 * kPeriod + 999)).rejection ==
+          SyncRejection::kDuplicate);
+    CHECK(sync.Status().cameras[0].duplicates == 2);
+  }
+  SECTION("far future in utime and in frame index") {
+    CHECK(sync.Add(Frame(1, 7, 1000000 + 200 * kPeriod)).rejection == SyncRejection::kFarFuture);
+    CHECK(sync.Add(Frame(1, 6 + 101, 1000000 + 7 * kPeriod)).rejection ==
+          SyncRejection::kFarFuture);
+    CHECK(sync.Status().cameras[1].far_future == 2);
+  }
+  SECTION("unknown cameras") {
+    CHECK(sync.Add(At(9, 6)).rejection == SyncRejection::kUnknownCamera);
+    CHECK(sync.Status().unknown_camera == 1);
+  }
+  // A rejection changes nothing: frame 6 still completes with camera 1.
+  CHECK(Released(sync.Add(At(1, 6)).actions) == Pairs{{6, 0}, {6, 1}});
+}
+
+TEST_CASE("synchronizer drops frames closer than min_frame_interval_us (flooding)", "[unit]") {
+  SyncOptions o = Options();
+  o.mode = SyncMode::kUtime;
+  o.tolerance_us = 1000;
+  o.min_frame_interval_us = kPeriod / 2;
+  FrameSynchronizer sync({0, 1}, o);
+  int flooded = 0;
+  for (FrameIndex f = 0; f < 10; ++f) {
+    const Utime t = 1000000 + f * kPeriod;
+    sync.Add(Frame(0, 0, t));
+    sync.Add(Frame(1, 0, t + 200));
+    // Camera 1 floods at 10x its rate.
+    for (int i = 1; i < 10 && f < 9; ++i) {
+      if (i * kPeriod / 10 >= kPeriod / 2) continue;  // these would be beyond the interval
+      flooded += sync.Add(Frame(1, 0, t + 200 + i * kPeriod / 10)).rejection ==
+                 SyncRejection::kFlood;
+    }
+  }
+  CHECK(flooded == 9 * 4);
+  CHECK(sync.Status().cameras[1].flood == 9 * 4);
+  CHECK(sync.Status().frames_released == 10);
+}
+
+TEST_CASE("synchronizer by utime groups within the tolerance and numbers the frames",
+          "[unit]") {
+  SyncOptions o = Options();
+  o.mode = SyncMode::kUtime;
+  o.tolerance_us = 2000;
+  FrameSynchronizer sync({0, 1, 2}, o);
+  // Free-running cameras: their own frame counters disagree; utimes within 1.5 ms.
+  CHECK(sync.Add(Frame(0, 500, 1000000)).actions.empty());
+  CHECK(sync.Add(Frame(2, 7, 1001500)).actions.empty());
+  CHECK(sync.Add(Frame(2, 8, 1000900)).rejection == SyncRejection::kBackwards);
+  const SyncResult r = sync.Add(Frame(1, 90, 999000));
+  CHECK(Released(r.actions) == Pairs{{0, 0}, {0, 1}, {0, 2}});
+  // Next frame: numbered 1 whatever the cameras' counters say.
+  sync.Add(Frame(1, 91, 1040000));
+  sync.Add(Frame(0, 501, 1039000));
+  const SyncResult second = sync.Add(Frame(2, 9, 1041000));
+  CHECK(Released(second.actions) == Pairs{{1, 0}, {1, 1}, {1, 2}});
+  // Camera-frames for the released frame's time are late.
+  CHECK(sync.Add(Frame(0, 502, 1040500)).rejection == SyncRejection::kLate);
+  CHECK(sync.Add(Frame(1, 92, 1041500)).rejection == SyncRejection::kLate);
+}
+
+TEST_CASE("synchronizer output does not depend on the camera order within a frame", "[unit]") {
+  const std::vector<std::vector<CameraId>> orders = {{0, 1, 2}, {2, 1, 0}, {1, 2, 0}};
+  std::vector<Pairs> outputs;
+  for (const auto& order : orders) {
+    FrameSynchronizer sync({0, 1, 2}, Options());
+    Pairs out;
+    for (FrameIndex f = 0; f < 6; ++f) {
+      for (const CameraId c : order) {
+        for (const auto& p : Released(sync.Add(At(c, f)).actions)) out.push_back(p);
+      }
+    }
+    for (const auto& p : Released(sync.Flush())) out.push_back(p);
+    outputs.push_back(out);
+  }
+  CHECK(outputs[0] == outputs[1]);
+  CHECK(outputs[0] == outputs[2]);
+  CHECK(outputs[0].size() == 18);
+}
+
+TEST_CASE("synchronizer detects a stream restart after consecutive out-of-order frames",
+          "[unit]") {
+  FrameSynchronizer sync({0, 1}, Options());  // resync_after_rejections = 3
+  for (FrameIndex f = 100; f < 103; ++f) {
+    sync.Add(At(0, f));
+    sync.Add(At(1, f));
+  }
+  sync.Add(At(0, 103));  // pending: frame 103 waits for camera 1
+  // The cameras restart at frame 0 with an earlier clock.
+  CHECK(sync.Add(At(0, 0)).rejection == SyncRejection::kBackwards);
+  CHECK(sync.Add(At(1, 0)).rejection == SyncRejection::kBackwards);
+  const SyncResult r = sync.Add(At(0, 1));
+  CHECK(r.resynced);
+  CHECK(r.rejection == SyncRejection::kNone);
+  CHECK(Released(r.actions) == Pairs{{103, 0}, {-1, -1}});
+  CHECK(sync.Status().resyncs == 1);
+  CHECK(Released(sync.Add(At(1, 1)).actions) == Pairs{{1, 0}, {1, 1}});
+}
+
+TEST_CASE("synchronizer bounds the pending frames", "[unit]") {
+  SyncOptions o = Options();
+  o.max_pending_frames = 4;
+  o.deadline_us = 1000 * kPeriod;
+  o.silent_after_us = 1000 * kPeriod;
+  FrameSynchronizer sync({0, 1}, o);
+  std::size_t released = 0;
+  for (FrameIndex f = 0; f < 50; ++f) {
+    released += sync.Add(At(0, f)).actions.size();
+    CHECK(sync.Status().pending_frames <= 4);
+  }
+  CHECK(released == 46);
+  CHECK(sync.Status().released_by_bound == 46);
+  CHECK(Released(sync.Flush()).size() == 4);
+  CHECK(sync.Status().pending_frames == 0);
+}
+
+}  // namespace
+}  // namespace mvtrack::service

@@ -1,0 +1,205 @@
+// Per-window refinement of 3D tracklets (lib/triangulation/refinement.h): duplicate distance,
+// temporal outlier rejection, completion of missing points.
+
+#include <catch2/catch.hpp>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "triangulation/refinement.h"
+
+namespace mvtrack {
+namespace {
+
+using triangulation::RefinementOptions;
+
+// A tracklet over `frames` with `points(t)` per frame.
+template <typename F>
+core::Tracklet3D MakeTracklet3D(const std::vector<FrameIndex>& frames, F points) {
+  core::Tracklet3D t;
+  for (const FrameIndex f : frames) {
+    t.frames.push_back(f);
+    std::vector<std::optional<Vec3>> row;
+    for (const Vec3& p : points(f)) row.emplace_back(p);
+    t.points.push_back(std::move(row));
+  }
+  return t;
+}
+
+// A rigid, non-planar five-point "head" turning about the vertical axis and walking.
+std::vector<Vec3> HeadAt(FrameIndex t) {
+  const std::vector<Vec3> local = {Vec3(0.10, 0.0, 0.0), Vec3(0.07, 0.04, 0.03),
+                                   Vec3(0.07, -0.04, 0.03), Vec3(0.0, 0.08, 0.0),
+                                   Vec3(0.0, -0.08, 0.0)};
+  const double angle = 0.08 * static_cast<double>(t);  // 4.6 degrees per frame
+  const Mat3 r = Eigen::AngleAxisd(angle, Vec3::UnitZ()).toRotationMatrix();
+  const Vec3 origin(0.05 * static_cast<double>(t), 0.02 * static_cast<double>(t), 1.6);
+  std::vector<Vec3> out;
+  for (const Vec3& p : local) out.push_back(origin + r * p);
+  return out;
+}
+
+std::vector<FrameIndex> Range(FrameIndex first, FrameIndex last) {
+  std::vector<FrameIndex> f;
+  for (FrameIndex t = first; t <= last; ++t) f.push_back(t);
+  return f;
+}
+
+TEST_CASE("RefinementOptions: defaults are valid, bad values are named", "[unit][triangulation]") {
+  std::string why;
+  CHECK(RefinementOptions{}.Validate(&why));
+  RefinementOptions o;
+  o.merge_distance_m = std::numeric_limits<double>::quiet_NaN();
+  CHECK_FALSE(o.Validate(&why));
+  CHECK(why.find("merge_distance_m") != std::string::npos);
+  o = {};
+  o.min_person_point_fraction = 1.5;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK(why.find("min_person_point_fraction") != std::string::npos);
+  o = {};
+  o.outlier_distance_m = 0.0;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK(why.find("outlier_distance_m") != std::string::npos);
+  o = {};
+  o.fill_neighbors = 0;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK(why.find("fill_neighbors") != std::string::npos);
+}
+
+TEST_CASE("PointDistance averages common points of common frames", "[unit][triangulation]") {
+  // a: frames 0-2, two points; b: frames 1-3, shifted by 0.1 m (point 0) and 0.3 m (point 1),
+  // point 1 missing at frame 2 in b. Common pairs: frame 1 (2), frame 2 (1) -> 3 pairs.
+  core::Tracklet3D a = MakeTracklet3D(Range(0, 2), [](FrameIndex t) {
+    return std::vector<Vec3>{Vec3(static_cast<double>(t), 0, 0), Vec3(0, 0, 1)};
+  });
+  core::Tracklet3D b = MakeTracklet3D(Range(1, 3), [](FrameIndex t) {
+    return std::vector<Vec3>{Vec3(static_cast<double>(t) + 0.1, 0, 0), Vec3(0, 0.3, 1)};
+  });
+  b.points[1][1].reset();
+  std::int64_t pairs = 0;
+  CHECK(triangulation::PointDistance(a, b, &pairs) == Approx((0.1 + 0.3 + 0.1) / 3.0));
+  CHECK(pairs == 3);
+  const core::Tracklet3D later = MakeTracklet3D(Range(5, 6), [](FrameIndex) {
+    return std::vector<Vec3>{Vec3::Zero(), Vec3::Zero()};
+  });
+  CHECK(std::isinf(triangulation::PointDistance(a, later, &pairs)));
+  CHECK(pairs == 0);
+}
+
+TEST_CASE("MaxPointsPerFrame counts the best frame", "[unit][triangulation]") {
+  core::Tracklet3D t = MakeTracklet3D(Range(0, 2), [](FrameIndex) {
+    return std::vector<Vec3>{Vec3::Zero(), Vec3::Ones(), Vec3::UnitX()};
+  });
+  t.points[0][0].reset();
+  t.points[1][0].reset();
+  t.points[1][1].reset();
+  CHECK(triangulation::MaxPointsPerFrame(t) == 3);
+  t.points[2][2].reset();
+  CHECK(triangulation::MaxPointsPerFrame(t) == 2);
+  CHECK(triangulation::MaxPointsPerFrame(core::Tracklet3D{}) == 0);
+}
+
+TEST_CASE("RejectTemporalOutliers removes spikes and keeps fast straight motion",
+          "[unit][triangulation]") {
+  // Point 0 moves 0.15 m per frame (3.75 m/s at 25 fps), point 1 stands still; point 0 is
+  // replaced by a point 0.5 m off at frame 5 and at frames 8-9 (a two-frame run).
+  core::Tracklet3D t = MakeTracklet3D(Range(0, 14), [](FrameIndex f) {
+    return std::vector<Vec3>{Vec3(0.15 * static_cast<double>(f), 0, 1), Vec3(0, 1, 1)};
+  });
+  const Vec3 off(0, 0.5, 0);
+  *t.points[5][0] += off;
+  *t.points[8][0] += off;
+  *t.points[9][0] += off;
+  RefinementOptions o;
+  o.outlier_half_window = 3;
+  o.outlier_distance_m = 0.2;
+  CHECK(triangulation::RejectTemporalOutliers(&t, o) == 3);
+  for (std::size_t f = 0; f < t.frames.size(); ++f) {
+    const bool spike = f == 5 || f == 8 || f == 9;
+    CHECK(t.points[f][0].has_value() == !spike);
+    CHECK(t.points[f][1].has_value());
+  }
+  // Disabled: nothing happens.
+  core::Tracklet3D u = MakeTracklet3D(Range(0, 6), [](FrameIndex f) {
+    return std::vector<Vec3>{Vec3(0, 0, f == 3 ? 5.0 : 0.0)};
+  });
+  o.outlier_half_window = 0;
+  CHECK(triangulation::RejectTemporalOutliers(&u, o) == 0);
+  o.outlier_half_window = 3;
+  CHECK(triangulation::RejectTemporalOutliers(&u, o) == 1);
+  CHECK_FALSE(u.points[3][0].has_value());
+}
+
+TEST_CASE("CompleteMissingPoints carries a point rigidly with its neighbours",
+          "[unit][triangulation]") {
+  core::Tracklet3D t = MakeTracklet3D(Range(10, 25), HeadAt);
+  // Point 4 (one "ear") is missing on frames 13-17 (two references: 12 and 18) and on
+  // 23-25 (one reference: 22, the tracklet ends).
+  for (const FrameIndex f : {13, 14, 15, 16, 17, 23, 24, 25}) {
+    t.points[static_cast<std::size_t>(f - 10)][4].reset();
+  }
+  RefinementOptions o;
+  o.max_fill_gap = 15;
+  o.fill_neighbors = 4;
+  o.min_points_to_fill = 4;
+  const triangulation::CompletionStats stats = triangulation::CompleteMissingPoints(&t, o);
+  CHECK(stats.filled == 8);
+  CHECK(stats.filled_rigid == 8);
+  for (const FrameIndex f : {13, 14, 15, 16, 17, 23, 24, 25}) {
+    const auto& p = t.points[static_cast<std::size_t>(f - 10)][4];
+    REQUIRE(p.has_value());
+    CHECK((*p - HeadAt(f)[4]).norm() < 1e-9);  // a rigid motion is carried exactly
+  }
+}
+
+TEST_CASE("CompleteMissingPoints: translation with few neighbours, limits respected",
+          "[unit][triangulation]") {
+  // Two points moving apart: point 0 static, point 1 drifting; point 2 moves with point 0.
+  core::Tracklet3D t = MakeTracklet3D(Range(0, 9), [](FrameIndex f) {
+    const double s = static_cast<double>(f);
+    return std::vector<Vec3>{Vec3(s, 0, 0), Vec3(s, 0.1 * s, 0), Vec3(s, 0, 1)};
+  });
+  t.points[4][2].reset();
+  RefinementOptions o;
+  o.fill_neighbors = 1;  // nearest neighbour of point 2 at frame 3 and 5 is point 0
+  o.min_points_to_fill = 2;
+  o.max_fill_gap = 1;
+  auto stats = triangulation::CompleteMissingPoints(&t, o);
+  CHECK(stats.filled == 1);
+  CHECK(stats.filled_rigid == 0);
+  REQUIRE(t.points[4][2].has_value());
+  CHECK((*t.points[4][2] - Vec3(4, 0, 1)).norm() < 1e-12);
+
+  // Point 2 missing on frames 2-6, triangulated on 1 and 7. With max_fill_gap = 2, frames 2-3
+  // reach frame 1 and frames 5-6 reach frame 7, but frame 4 is 3 frames from both: it stays
+  // missing (its filled neighbours never serve as references).
+  core::Tracklet3D u = MakeTracklet3D(Range(0, 9), [](FrameIndex f) {
+    const double s = static_cast<double>(f);
+    return std::vector<Vec3>{Vec3(s, 0, 0), Vec3(s, 1, 0), Vec3(s, 0, 1)};
+  });
+  for (std::size_t f = 2; f <= 6; ++f) u.points[f][2].reset();
+  o.max_fill_gap = 2;
+  stats = triangulation::CompleteMissingPoints(&u, o);
+  CHECK(stats.filled == 4);
+  CHECK_FALSE(u.points[4][2].has_value());
+  CHECK(u.points[3][2].has_value());
+  CHECK(u.points[5][2].has_value());
+
+  // A frame with too few triangulated points is not completed.
+  core::Tracklet3D w = MakeTracklet3D(Range(0, 2), [](FrameIndex f) {
+    const double s = static_cast<double>(f);
+    return std::vector<Vec3>{Vec3(s, 0, 0), Vec3(s, 1, 0), Vec3(s, 0, 1)};
+  });
+  w.points[1][1].reset();
+  w.points[1][2].reset();
+  o.min_points_to_fill = 2;
+  CHECK(triangulation::CompleteMissingPoints(&w, o).filled == 0);
+  o.min_points_to_fill = 1;
+  CHECK(triangulation::CompleteMissingPoints(&w, o).filled == 2);
+}
+
+}  // namespace
+}  // namespace mvtrack

@@ -1,0 +1,193 @@
+#!/usr/bin/env bash
+# Regenerates every figure of docs/RESULTS.md in one command: converts the datasets of
+# ../shared/data (or $MVTRACK_DATA), replays each experiment with `mvtrack replay`, scores it
+# with `mvtrack eval --json`, and writes the tables (markdown + JSON) with
+# tools/dev/results_tables.py.
+#
+# Usage: tools/dev/results.sh [--build] [--mvtrack PATH] [--out DIR] [--data DIR]
+#                             [--update-docs] [--help]
+#   --build        build the `mvtrack` target of the release preset first (build/release)
+#   --mvtrack P    the mvtrack program (default: build/release/tools/mvtrack)
+#   --out DIR      work and output directory (default: build/results-run); replaced entirely
+#                  (refused when it exists, is not empty and holds no earlier manifest.tsv)
+#   --data DIR     dataset root (default: $MVTRACK_DATA, else ../shared/data)
+#   --update-docs  replace the generated part of docs/RESULTS.md (between its markers)
+#
+# Every command is run from the repository root exactly as it is recorded: $R stands for the
+# output directory and `mvtrack` for the chosen program (its directory is put first on PATH).
+# Output: DIR/results.md, DIR/results.json, DIR/commands.sh (every command, runnable),
+# DIR/manifest.tsv, DIR/runs/*.eval.json, DIR/runs/*.jsonl and logs.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+root=$PWD
+
+usage() { sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; }
+build=0
+update_docs=0
+mvtrack_bin=build/release/tools/mvtrack
+out=build/results-run
+data=${MVTRACK_DATA:-$root/../shared/data}
+while [[ $# -gt 0 ]]; do
+  case $1 in
+    --build) build=1 ;;
+    --update-docs) update_docs=1 ;;
+    --mvtrack) mvtrack_bin=${2:?--mvtrack needs a path}; shift ;;
+    --out) out=${2:?--out needs a directory}; shift ;;
+    --data) data=${2:?--data needs a directory}; shift ;;
+    --help | -h) usage; exit 0 ;;
+    *) echo "results.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+
+if [[ $build == 1 ]]; then
+  export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
+  cmake --preset release >/dev/null
+  cmake --build --preset release --target mvtrack
+fi
+if [[ ! -x $mvtrack_bin ]]; then
+  echo "results.sh: $mvtrack_bin: no such program (build it, or pass --build or --mvtrack PATH)" >&2
+  exit 1
+fi
+for d in shelf campus panoptic wildtrack; do
+  if [[ ! -d $data/$d ]]; then
+    echo "results.sh: $data/$d: dataset missing (set --data or MVTRACK_DATA)" >&2
+    exit 1
+  fi
+done
+command -v python3 >/dev/null || { echo "results.sh: python3 is required" >&2; exit 1; }
+
+mvtrack_dir=$(cd "$(dirname "$mvtrack_bin")" && pwd)
+export PATH="$mvtrack_dir:$PATH"
+export MVTRACK_DATA=$data
+R=$out
+if [[ -d $R && -n $(ls -A "$R") && ! -f $R/manifest.tsv ]]; then
+  echo "results.sh: $R exists, is not empty and is not an earlier results directory: not" \
+    "replacing it (choose another --out)" >&2
+  exit 1
+fi
+rm -rf "$R"
+mkdir -p "$R/runs"
+manifest=$R/manifest.tsv
+commands=$R/commands.sh
+printf 'id\tdataset\tconfig\tcommands\teval_json\treplay_log\n' >"$manifest"
+{
+  echo "#!/usr/bin/env bash"
+  echo "# Every command tools/dev/results.sh ran, in order (from the repository root)."
+  echo "set -euo pipefail"
+  echo "R=$R"
+} >"$commands"
+
+step=0
+progress() { step=$((step + 1)); echo "results: [$step] $*" >&2; }
+trap 'echo "results.sh: step $step failed; its command is the last line of $commands" >&2' ERR
+
+# Runs a recorded command line (with $R unexpanded in the record).
+run() {
+  local cmd=$1
+  echo "$cmd" >>"$commands"
+  eval "$cmd"
+}
+
+# convert NAME ARGS...: mvtrack convert into $R/NAME.
+convert() {
+  local name=$1
+  shift
+  progress "convert $name"
+  run "mvtrack convert $* --out \$R/$name --quiet"
+}
+
+# experiment ID DATASET_DIR MODE LAYOUT CONFIG EVAL_ARGS...
+#   replays $R/DATASET_DIR with CONFIG ('-' = defaults) and scores it against its ground truth
+#   (ground_points.jsonl for WILDTRACK).
+experiment() {
+  local id=$1 ds=$2 mode=$3 layout=$4 config=$5
+  shift 5
+  local cfg_arg=""
+  [[ $config != - ]] && cfg_arg=" --config $config"
+  local gt=ground_truth.jsonl
+  [[ -f $R/$ds/ground_points.jsonl ]] && gt=ground_points.jsonl
+  local replay="mvtrack replay --calibration \$R/$ds/calibration.yaml --mode $mode --layout $layout$cfg_arg --jsonl \$R/runs/$id.jsonl --quiet \$R/$ds/detections.lcmlog"
+  local ev="mvtrack eval --gt \$R/$ds/$gt \$R/runs/$id.jsonl $* --json \$R/runs/$id.eval.json"
+  progress "$id"
+  echo "$replay > \$R/runs/$id.replay.txt 2>&1" >>"$commands"
+  eval "$replay" >"$R/runs/$id.replay.txt" 2>&1
+  run "$ev > \$R/runs/$id.eval.txt"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$id" "$ds" "$config" "$replay && $ev" \
+    "runs/$id.eval.json" "runs/$id.replay.txt" >>"$manifest"
+}
+
+# peer ID DATASET_DIR EVAL_ARGS...: scores the dataset's peer.jsonl with our evaluator.
+peer() {
+  local id=$1 ds=$2
+  shift 2
+  local ev="mvtrack eval --gt \$R/$ds/ground_truth.jsonl \$R/$ds/peer.jsonl $* --json \$R/runs/$id.eval.json"
+  progress "$id"
+  run "$ev > \$R/runs/$id.eval.txt"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$id" "$ds" "-" "$ev" "runs/$id.eval.json" "-" >>"$manifest"
+}
+
+ab=docs/examples/ablations
+shelf_eval="--frames 300-600 --distance joints --pcp --actors 0,1,2"
+campus_eval="--frames 350-470,650-750 --distance joints --pcp --actors 0,1,2"
+panoptic_eval="--distance joints --pcp"
+wildtrack_eval="--points"
+
+# ---- Datasets.
+convert shelf shelf
+convert campus campus
+convert campus_clean campus --clean
+for seq in 160906_band1 160906_band2; do
+  for n in 5 10 31; do convert "panoptic_${seq#160906_}_c$n" panoptic --sequence $seq --num-cameras $n; done
+done
+convert wildtrack wildtrack
+
+# ---- Main results (paper Table 6) and the peers' own outputs.
+experiment shelf shelf poses body25 - $shelf_eval
+peer shelf_peer_4da shelf $shelf_eval
+experiment campus campus poses shelf14 - $campus_eval
+experiment campus_clean campus_clean poses shelf14 - $campus_eval
+peer campus_peer_crossview campus $campus_eval
+
+# ---- Ablations on Shelf and Campus: association (Table 5 / appendix), triangulation (Table 7),
+# the nu, delta, lambda grid (Table 8).
+for ds in shelf campus; do
+  if [[ $ds == shelf ]]; then layout=body25; ev=$shelf_eval; else layout=shelf14; ev=$campus_eval; fi
+  for v in association_complete_linkage_empty_as_zero association_complete_linkage_empty_as_upper \
+           association_single_linkage_empty_as_upper triangulation_dlt triangulation_ransac \
+           window_nu30_delta20_lambda0.3 window_nu50_delta30_lambda0.3 \
+           window_nu70_delta50_lambda0.3 window_nu50_delta30_lambda0.1 \
+           window_nu50_delta30_lambda0.6; do
+    experiment "${ds}_$v" $ds poses $layout $ab/$v.yaml $ev
+  done
+done
+
+# ---- Panoptic, 5 / 10 / 31 cameras.
+for seq in band1 band2; do
+  for n in 5 10 31; do
+    experiment "panoptic_${seq}_c$n" "panoptic_${seq}_c$n" poses panoptic19 - $panoptic_eval
+  done
+done
+
+# ---- WILDTRACK footprints against MVDeTr's ground points.
+experiment wildtrack_center wildtrack boxes none - $wildtrack_eval
+experiment wildtrack_bottom_center wildtrack boxes none $ab/box_point_bottom_center.yaml \
+  $wildtrack_eval
+experiment wildtrack_bottom_center_2fps wildtrack boxes none $ab/wildtrack_2fps_windows.yaml \
+  $wildtrack_eval
+for v in association_complete_linkage_empty_as_zero association_complete_linkage_empty_as_upper; do
+  experiment "wildtrack_bottom_center_$v" wildtrack boxes none \
+    $ab/wildtrack_bottom_center_$v.yaml $wildtrack_eval
+done
+
+# ---- Tables.
+progress "tables"
+commit=$(git rev-parse HEAD 2>/dev/null || echo unknown)
+dirty=$(git status --porcelain 2>/dev/null | grep -c . || true)
+version=$(mvtrack --version 2>/dev/null || echo "")
+python3 tools/dev/results_tables.py --out "$R" --commit "$commit" --dirty "$dirty" \
+  --version "$version" --mvtrack "$mvtrack_bin" --data "$data"
+if [[ $update_docs == 1 ]]; then
+  python3 tools/dev/results_tables.py --splice "$R/results.md" docs/RESULTS.md
+fi
+echo "results: wrote $R/results.md and $R/results.json ($step steps)" >&2

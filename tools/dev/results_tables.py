@@ -1,0 +1,427 @@
+#!/usr/bin/env python3
+"""Tables of docs/RESULTS.md from the evaluations tools/dev/results.sh wrote.
+
+  results_tables.py --out R --commit SHA --dirty N --version V --mvtrack P --data D
+      reads R/manifest.tsv and R/runs/*.eval.json, writes R/results.md and R/results.json;
+  results_tables.py --splice R/results.md docs/RESULTS.md
+      replaces the text between the GENERATED markers of docs/RESULTS.md with R/results.md;
+  results_tables.py --floors R
+      prints the bound lines of tests/regression/floors.txt for the runs `shelf`, `campus` and
+      `wildtrack_bottom_center` of R/results.json: the measured values with the margins stated
+      in that file.
+
+Standard library only. The paper's numbers below are copied from the LaTeX source in
+../shared/paper (Yang et al., "A Unified Multi-view Multi-person Tracking Framework"), tables
+"campus_shelf" (Table 6), "ablation_campus_shelf" (Table 7), "ablation_MMPTRACK" (Table 8) and
+"multi-wildtrack_ablation" (Table 5).
+"""
+
+import argparse
+import datetime
+import json
+import os
+import re
+import sys
+
+BEGIN = "<!-- BEGIN GENERATED RESULTS: tools/dev/results.sh --update-docs rewrites this part -->"
+END = "<!-- END GENERATED RESULTS -->"
+
+# Paper Table 6 (published numbers; each method with its own detector / input).
+# (method, actor 1, actor 2, actor 3, average PCP, MOTA or None)
+PAPER_T6_CAMPUS = [
+    ("Belagiannis et al. (CVPR 14)", 82.0, 72.4, 73.7, 75.8, None),
+    ("Belagiannis et al. (ECCVW 14)", 83.0, 73.0, 78.0, 78.0, None),
+    ("Belagiannis et al. (TPAMI 16)", 93.5, 75.7, 84.4, 84.5, None),
+    ("Ershadi-Nasab et al. (MTA 18)", 94.2, 92.9, 84.6, 90.6, None),
+    ("Ye et al. (ECCV 22)", 96.5, 94.1, 97.9, 96.2, None),
+    ("Dong et al. (CVPR 19)", 97.6, 93.3, 98.0, 96.3, None),
+    ("VoxelPose (ECCV 20)", 97.6, 93.8, 98.8, 96.7, None),
+    ("VoxelTrack (TPAMI 22)", 98.1, 93.7, 98.3, 96.7, 89.3),
+    ("Yang et al. w/o appearance (the paper)", 98.2, 94.6, 98.2, 97.0, 89.4),
+    ("Yang et al. w/ appearance (the paper)", 98.2, 94.6, 98.2, 97.0, 90.8),
+]
+PAPER_T6_SHELF = [
+    ("Belagiannis et al. (CVPR 14)", 66.1, 65.0, 83.2, 71.4, None),
+    ("Belagiannis et al. (ECCVW 14)", 75.0, 67.0, 86.0, 76.0, None),
+    ("Belagiannis et al. (TPAMI 16)", 75.3, 69.7, 87.6, 77.5, None),
+    ("Ershadi-Nasab et al. (MTA 18)", 93.3, 75.9, 94.8, 88.0, None),
+    ("Dong et al. (CVPR 19)", 98.8, 94.1, 97.8, 96.9, None),
+    ("VoxelPose (ECCV 20)", 99.3, 94.1, 97.6, 97.0, None),
+    ("VoxelTrack (TPAMI 22)", 98.6, 94.9, 97.7, 97.1, 94.4),
+    ("4D Association (CVPR 20)", 99.0, 96.2, 97.6, 97.6, None),
+    ("Ye et al. (ECCV 22)", 99.4, 96.0, 97.5, 97.6, None),
+    ("Yang et al. w/o appearance (the paper)", 99.5, 96.0, 97.7, 97.7, 94.6),
+    ("Yang et al. w/ appearance (the paper)", 99.5, 96.0, 97.7, 97.7, 94.6),
+]
+# Paper Table 7: (variant, actor 1, actor 2, actor 3, average).
+PAPER_T7 = {
+    "campus": [("w/ Triangulation", 96.1, 93.0, 90.7, 93.3),
+               ("w/ Triangulation+RANSAC", 97.6, 93.0, 95.6, 95.4),
+               ("w/ CMMT", 98.2, 94.6, 98.2, 97.0)],
+    "shelf": [("w/ Triangulation", 96.6, 92.0, 97.7, 95.4),
+              ("w/ Triangulation+RANSAC", 98.5, 93.8, 97.7, 96.6),
+              ("w/ CMMT", 99.5, 96.0, 97.7, 97.7)],
+}
+# Paper Table 8 (MMPTRACK, w/o appearance): (nu, delta, lambda, MOTA %, IDF1 %, FPS).
+PAPER_T8 = [(50, 30, 0.3, 95, 84, 67), (30, 20, 0.3, 94, 83, 60), (70, 50, 0.3, 94, 84, 72),
+            (50, 30, 0.1, 94, 81, 67), (50, 30, 0.6, 95, 83, 67)]
+# Paper Table 5 (WILDTRACK, w/o appearance): (method, IDF1 %, MOTA %, IDs).
+PAPER_T5 = [("complete-linkage clustering", 87.3, 73.6, 24), ("PDNC", 94.7, 94.0, 11)]
+
+ASSOCIATION = [("pdnc", "PDNC (default)"),
+               ("association_complete_linkage_empty_as_zero", "complete linkage, empty = 0 (c)"),
+               ("association_complete_linkage_empty_as_upper",
+                "complete linkage, empty = 1.0 (d)"),
+               ("association_single_linkage_empty_as_upper", "single linkage, empty = 1.0 (e)")]
+TRIANGULATION = [("triangulation_dlt", "DLT (\"w/ Triangulation\")"),
+                 ("triangulation_ransac", "DLT + RANSAC"),
+                 ("cmmt", "CMMT (default)")]
+WINDOWS = [(50, 30, 0.3), (30, 20, 0.3), (70, 50, 0.3), (50, 30, 0.1), (50, 30, 0.6)]
+
+
+def pct(x, digits=1):
+    return "n/a" if x is None else f"{100.0 * x:.{digits}f}"
+
+
+def num(x, digits=1):
+    return "n/a" if x is None else f"{x:.{digits}f}"
+
+
+def mm(x):
+    return "n/a" if x is None else f"{1000.0 * x:.1f}"
+
+
+def table(header, rows):
+    out = ["| " + " | ".join(header) + " |",
+           "|" + "|".join("---" if i == 0 else "---:" for i in range(len(header))) + "|"]
+    for r in rows:
+        out.append("| " + " | ".join(str(c) for c in r) + " |")
+    return "\n".join(out) + "\n"
+
+
+def load(out_dir):
+    runs = {}
+    with open(os.path.join(out_dir, "manifest.tsv"), encoding="utf-8") as f:
+        lines = f.read().splitlines()
+    for line in lines[1:]:
+        rid, ds, config, commands, eval_json, replay_log = line.split("\t")
+        with open(os.path.join(out_dir, eval_json), encoding="utf-8") as f:
+            report = json.load(f)
+        replay = None
+        if replay_log != "-":
+            with open(os.path.join(out_dir, replay_log), encoding="utf-8") as f:
+                replay = f.read()
+        runs[rid] = {"dataset": ds, "config": config, "commands": commands.split(" && "),
+                     "metrics": metrics(report), "replay_summary": replay_summary(replay)}
+    return runs
+
+
+def replay_summary(text):
+    if text is None:
+        return None
+    m = re.search(r"output: (\d+) frame\(s\), (\d+) track id\(s\), (\d+) track-frame\(s\)", text)
+    if not m:
+        return None
+    return {"frames": int(m.group(1)), "track_ids": int(m.group(2)),
+            "track_frames": int(m.group(3))}
+
+
+def metrics(report):
+    out = {}
+    t = report.get("tracking")
+    if t and t.get("valid"):
+        c, i, p = t["clear_mot"], t["identity"], t["pose"]
+        out.update({
+            "mota": c["mota"], "motp_m": c["motp_m"], "idf1": i["idf1"], "idp": i["idp"],
+            "idr": i["idr"], "mt": c["mostly_tracked"], "pt": c["partially_tracked"],
+            "ml": c["mostly_lost"], "fp": c["num_false_positives"], "fn": c["num_misses"],
+            "ids": c["num_switches"], "gt_objects": c["num_objects"],
+            "gt_ids": c["num_unique_objects"], "pred_ids": c["num_unique_predictions"],
+            "mpjpe_m": p["mpjpe_m"], "tracking_frames": t["frame_ranges"],
+            "gate_m": t["threshold_m"], "distance": t["distance"]})
+    pc = report.get("pcp")
+    if pc and pc.get("valid"):
+        out["pcp_average"] = pc["average_pcp"]
+        out["pcp_actors"] = {str(a["actor_id"]): a["pcp"] for a in pc["actors"]}
+        out["pcp_groups"] = dict(zip(pc["group_names"], pc["average_group_pcp"]))
+        out["pcp_recall"] = pc["recall"]
+    pt = report.get("points")
+    if pt and pt.get("valid"):
+        for k in ("num_frames", "num_reference", "num_predicted", "num_matched",
+                  "frames_with_equal_count", "mean_abs_count_difference",
+                  "mean_count_difference", "max_abs_count_difference", "precision", "recall",
+                  "median_distance_m", "mean_distance_m", "p90_distance_m", "max_distance_m",
+                  "gate_m"):
+            out[k] = pt[k]
+    return out
+
+
+def actor_pcp(m, actor):
+    return m.get("pcp_actors", {}).get(str(actor))
+
+
+def pose_row(label, rid, m):
+    return [label, pct(actor_pcp(m, 0)), pct(actor_pcp(m, 1)), pct(actor_pcp(m, 2)),
+            pct(m.get("pcp_average")), mm(m.get("mpjpe_m")), pct(m.get("mota")),
+            pct(m.get("idf1")), m.get("mt", "n/a"), m.get("ml", "n/a"), m.get("fp", "n/a"),
+            m.get("fn", "n/a"), m.get("ids", "n/a"), f"`{rid}`"]
+
+
+POSE_HEADER = ["", "Actor 1", "Actor 2", "Actor 3", "Avg PCP", "MPJPE mm", "MOTA", "IDF1",
+               "MT", "ML", "FP", "FN", "IDs", "run"]
+
+
+def paper_rows(rows):
+    return [[name + " †", num(a1), num(a2), num(a3), num(avg), "", num(mota) if mota else "",
+             "", "", "", "", "", "", "Table 6"] for name, a1, a2, a3, avg, mota in rows]
+
+
+def panoptic_cameras(out_dir, rid):
+    path = os.path.join(out_dir, rid, "README.txt")
+    try:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+    except OSError:
+        return "?"
+    m = re.search(r"into HD cameras (.*?)\s*\(camera id", text, re.S)
+    return " ".join(m.group(1).split()).rstrip(",") if m else "?"
+
+
+def render(out_dir, runs, info):
+    R = runs
+    md = []
+    md.append(f"Generated {info['date']} by `tools/dev/results.sh` from commit `{info['commit']}`"
+              f" ({info['dirty']} uncommitted paths in the tree at the time), mvtrack "
+              f"`{info['version']}`. † = published number copied from the paper (each method "
+              f"with its own detector), not re-run. Every other number is produced by the "
+              f"command listed under its run id in [Commands](#commands). PCP and MOTA in %, "
+              f"MPJPE in mm. MT/ML count ground-truth actors.\n")
+
+    # Targets.
+    s, c = R["shelf"]["metrics"], R["campus"]["metrics"]
+    w = R["wildtrack_bottom_center"]["metrics"]
+    targets = [
+        ("Shelf average PCP (actors 0, 1, 2)", ">= 98.0", pct(s.get("pcp_average")),
+         s.get("pcp_average", 0) >= 0.98, "shelf"),
+        ("Shelf MOTA (4 actors)", ">= 94.6", pct(s.get("mota")), s.get("mota", -9) >= 0.946,
+         "shelf"),
+        ("Shelf IDF1 (4 actors)", ">= 90", pct(s.get("idf1")), s.get("idf1", 0) >= 0.90,
+         "shelf"),
+        ("Campus average PCP, default corruption", ">= 97.0", pct(c.get("pcp_average")),
+         c.get("pcp_average", 0) >= 0.97, "campus"),
+        ("WILDTRACK median footprint distance to MVDeTr's points", "<= 0.10 m",
+         num(w.get("median_distance_m"), 3) + " m",
+         w.get("median_distance_m") is not None and w["median_distance_m"] <= 0.10,
+         "wildtrack_bottom_center"),
+    ]
+    md.append("\n### Targets (issue 3)\n\n")
+    md.append(table(["target", "required", "measured", "met", "run"],
+                    [[a, b, m_, "yes" if ok else "**no**", f"`{rid}`"]
+                     for a, b, m_, ok, rid in targets]))
+
+    md.append("\n### Shelf (real OpenPose detections), next to the paper's Table 6\n\n")
+    rows = paper_rows(PAPER_T6_SHELF)
+    rows.append(pose_row("**mvtrack** (these detections)", "shelf", R["shelf"]["metrics"]))
+    rows.append(pose_row("4D Association, its committed `skel.txt`, scored by our evaluator",
+                         "shelf_peer_4da", R["shelf_peer_4da"]["metrics"]))
+    md.append(table(POSE_HEADER, rows))
+
+    md.append("\n### Campus (2D ground truth through the corruption model), next to the paper's "
+              "Table 6\n\n")
+    rows = paper_rows(PAPER_T6_CAMPUS)
+    rows.append(pose_row("**mvtrack**, default corruption", "campus", R["campus"]["metrics"]))
+    rows.append(pose_row("mvtrack, clean 2D ground truth (`--clean`)", "campus_clean",
+                         R["campus_clean"]["metrics"]))
+    rows.append(pose_row("Cross-View Tracking, its `result_3d.json`, scored by our evaluator",
+                         "campus_peer_crossview", R["campus_peer_crossview"]["metrics"]))
+    md.append(table(POSE_HEADER, rows))
+
+    md.append("\n### Ablation: cross-view association (PDNC vs hierarchical clustering)\n\n")
+    md.append("Paper Table 5 (WILDTRACK, w/o appearance) †: " + "; ".join(
+        f"{n}: IDF1 {a} %, MOTA {b} %, IDs {c_}" for n, a, b, c_ in PAPER_T5) + ".\n\n")
+    hdr = ["dataset", "association", "Avg PCP", "MPJPE mm", "MOTA", "IDF1", "FP", "FN", "IDs",
+           "run"]
+    rows = []
+    for ds in ("shelf", "campus"):
+        for key, label in ASSOCIATION:
+            rid = ds if key == "pdnc" else f"{ds}_{key}"
+            m = R[rid]["metrics"]
+            rows.append([ds.capitalize(), label, pct(m.get("pcp_average")), mm(m.get("mpjpe_m")),
+                         pct(m.get("mota")), pct(m.get("idf1")), m.get("fp"), m.get("fn"),
+                         m.get("ids"), f"`{rid}`"])
+    md.append(table(hdr, rows))
+    rows = []
+    for key, label in ASSOCIATION[:3]:
+        rid = "wildtrack_bottom_center" if key == "pdnc" else f"wildtrack_bottom_center_{key}"
+        m = R[rid]["metrics"]
+        rows.append(["WILDTRACK", label, m.get("num_predicted"), m.get("num_reference"),
+                     num(m.get("mean_abs_count_difference"), 2), pct(m.get("precision")),
+                     pct(m.get("recall")), num(m.get("median_distance_m"), 3), f"`{rid}`"])
+    md.append("\nWILDTRACK has no public ground truth, so only the footprint comparison with "
+              "MVDeTr's ground points is possible (box bottom-centres; see the WILDTRACK "
+              "section):\n\n")
+    md.append(table(["dataset", "association", "our footprints", "MVDeTr points",
+                     "mean abs count diff", "precision", "recall", "median m", "run"], rows))
+
+    md.append("\n### Ablation: triangulation (paper Table 7)\n\n")
+    hdr = ["dataset", "triangulation", "Actor 1", "Actor 2", "Actor 3", "Avg PCP", "MPJPE mm",
+           "MOTA", "run"]
+    rows = []
+    for ds in ("shelf", "campus"):
+        for name, a1, a2, a3, avg in PAPER_T7[ds]:
+            rows.append([ds.capitalize(), name + " †", num(a1), num(a2), num(a3), num(avg), "",
+                         "", "Table 7"])
+        for key, label in TRIANGULATION:
+            rid = ds if key == "cmmt" else f"{ds}_{key}"
+            m = R[rid]["metrics"]
+            rows.append([ds.capitalize(), "mvtrack, " + label, pct(actor_pcp(m, 0)),
+                         pct(actor_pcp(m, 1)), pct(actor_pcp(m, 2)), pct(m.get("pcp_average")),
+                         mm(m.get("mpjpe_m")), pct(m.get("mota")), f"`{rid}`"])
+    md.append(table(hdr, rows))
+
+    md.append("\n### Ablation: window size ν, step δ and association cut λ (paper Table 8 "
+              "grid)\n\n")
+    md.append("The paper's Table 8 is measured on MMPTRACK (not available here) †; the same grid "
+              "on Shelf and Campus:\n\n")
+    hdr = ["ν", "δ", "λ", "paper MOTA †", "paper IDF1 †", "Shelf Avg PCP", "Shelf MOTA",
+           "Shelf IDF1", "Shelf IDs", "Campus Avg PCP", "Campus MOTA", "Campus IDF1",
+           "Campus IDs", "runs"]
+    rows = []
+    for (nu, delta, lam), (_, _, _, pm, pi, _) in zip(WINDOWS, PAPER_T8):
+        v = f"window_nu{nu}_delta{delta}_lambda{lam}"
+        sm, cm = R[f"shelf_{v}"]["metrics"], R[f"campus_{v}"]["metrics"]
+        rows.append([nu, delta, lam, pm, pi, pct(sm.get("pcp_average")), pct(sm.get("mota")),
+                     pct(sm.get("idf1")), sm.get("ids"), pct(cm.get("pcp_average")),
+                     pct(cm.get("mota")), pct(cm.get("idf1")), cm.get("ids"),
+                     f"`shelf_{v}`, `campus_{v}`"])
+    md.append(table(hdr, rows))
+
+    md.append("\n### CMU Panoptic with 5, 10 and 31 cameras\n\n")
+    hdr = ["sequence", "cameras", "HD cameras used", "MPJPE mm", "PCP (all bones)",
+           "PCP recall", "run"]
+    rows = []
+    for seq in ("band1", "band2"):
+        for n in (5, 10, 31):
+            rid = f"panoptic_{seq}_c{n}"
+            m = R[rid]["metrics"]
+            cams = panoptic_cameras(out_dir, rid) if n < 31 else "all 31 (00_00 … 00_30)"
+            rows.append([f"160906_{seq}", n, cams, mm(m.get("mpjpe_m")), pct(m.get("pcp_average")),
+                         pct(m.get("pcp_recall")), f"`{rid}`"])
+    md.append(table(hdr, rows))
+
+    md.append("\n### WILDTRACK footprints against MVDeTr's ground points\n\n")
+    hdr = ["box point, window", "frames", "MVDeTr points", "our footprints", "frames with equal count",
+           "mean count diff", "mean abs count diff", "max abs count diff", "matched",
+           "precision", "recall", "median m", "mean m", "p90 m", "run"]
+    rows = []
+    for rid, label in (("wildtrack_center", "box centre (default), ν = 30, δ = 20"),
+                       ("wildtrack_bottom_center", "bottom centre, ν = 30, δ = 20"),
+                       ("wildtrack_bottom_center_2fps", "bottom centre, ν = 3, δ = 2 (2 fps)")):
+        m = R[rid]["metrics"]
+        rows.append([label, m.get("num_frames"), m.get("num_reference"), m.get("num_predicted"),
+                     f"{m.get('frames_with_equal_count')}/{m.get('num_frames')}",
+                     num(m.get("mean_count_difference"), 2),
+                     num(m.get("mean_abs_count_difference"), 2),
+                     m.get("max_abs_count_difference"), m.get("num_matched"),
+                     pct(m.get("precision")), pct(m.get("recall")),
+                     num(m.get("median_distance_m"), 3), num(m.get("mean_distance_m"), 3),
+                     num(m.get("p90_distance_m"), 3), f"`{rid}`"])
+    md.append(table(hdr, rows))
+
+    md.append("\n### Commands\n\nFrom the repository root, with `R` the output directory "
+              "(`build/results-run` by default) and `mvtrack` the built program on `PATH` "
+              "(`$R/commands.sh` holds them all, runnable, in order).\n\n")
+    md.append("Conversions:\n\n```sh\n")
+    with open(os.path.join(out_dir, "commands.sh"), encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("mvtrack convert "):
+                md.append(line)
+    md.append("```\n\nRuns:\n\n")
+    for rid, run in R.items():
+        md.append(f"- `{rid}`:\n  ```sh\n")
+        for cmd in run["commands"]:
+            md.append(f"  {cmd}\n")
+        md.append("  ```\n")
+    return "".join(md)
+
+
+def floors(out_dir):
+    """Bounds for tests/regression/floors.txt from R/results.json (margins as stated there)."""
+    import math
+    with open(os.path.join(out_dir, "results.json"), encoding="utf-8") as f:
+        runs = json.load(f)["runs"]
+    def floor(value, margin):
+        return math.floor((value - margin) * 10000) / 10000
+
+    lines = []
+    for ds in ("shelf", "campus"):
+        m = runs[ds]["metrics"]
+        lines.append(f"{ds} pcp_average >= {floor(m['pcp_average'], 0.005):.4f}")
+        for actor in ("0", "1", "2"):
+            lines.append(f"{ds} pcp_actor{actor} >= {floor(m['pcp_actors'][actor], 0.005):.4f}")
+        lines.append(f"{ds} mota >= {floor(m['mota'], 0.01):.4f}")
+        lines.append(f"{ds} idf1 >= {floor(m['idf1'], 0.01):.4f}")
+        lines.append(f"{ds} mpjpe_m <= {math.ceil((m['mpjpe_m'] + 0.002) * 10000) / 10000:.4f}")
+        for key, name in (("fp", "false_positives"), ("fn", "misses"), ("ids", "id_switches")):
+            lines.append(f"{ds} {name} <= {m[key] + max(2, math.ceil(0.1 * m[key]))}")
+    m = runs["wildtrack_bottom_center"]["metrics"]
+    for key in ("median_distance_m", "p90_distance_m"):
+        lines.append(f"wildtrack {key} <= {math.ceil((m[key] + 0.01) * 10000) / 10000:.4f}")
+    for key in ("precision", "recall"):
+        lines.append(f"wildtrack {key} >= {floor(m[key], 0.01):.4f}")
+    lines.append(f"wildtrack mean_abs_count_difference <= "
+                 f"{math.ceil((m['mean_abs_count_difference'] + 0.5) * 100) / 100:.2f}")
+    return "\n".join(lines) + "\n"
+
+
+def splice(generated_path, doc_path):
+    with open(generated_path, encoding="utf-8") as f:
+        generated = f.read()
+    with open(doc_path, encoding="utf-8") as f:
+        doc = f.read()
+    if doc.count(BEGIN) != 1 or doc.count(END) != 1 or doc.index(BEGIN) > doc.index(END):
+        sys.exit(f"results_tables.py: {doc_path}: needs exactly one pair of markers\n"
+                 f"  {BEGIN}\n  {END}")
+    head, rest = doc.split(BEGIN, 1)
+    _, tail = rest.split(END, 1)
+    with open(doc_path, "w", encoding="utf-8") as f:
+        f.write(head + BEGIN + "\n\n" + generated + "\n" + END + tail)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out")
+    ap.add_argument("--commit", default="unknown")
+    ap.add_argument("--dirty", default="?")
+    ap.add_argument("--version", default="")
+    ap.add_argument("--mvtrack", default="")
+    ap.add_argument("--data", default="")
+    ap.add_argument("--splice", nargs=2, metavar=("GENERATED_MD", "DOC"))
+    ap.add_argument("--floors", metavar="R")
+    a = ap.parse_args()
+    if a.floors:
+        sys.stdout.write(floors(a.floors))
+        return
+    if a.splice:
+        splice(*a.splice)
+        return
+    if not a.out:
+        ap.error("--out or --splice is required")
+    runs = load(a.out)
+    info = {"commit": a.commit, "dirty": a.dirty, "version": a.version.strip(),
+            "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+            "mvtrack": a.mvtrack, "data": a.data}
+    md = render(a.out, runs, info)
+    with open(os.path.join(a.out, "results.md"), "w", encoding="utf-8") as f:
+        f.write(md)
+    doc = {"schema": "mvtrack.results/1", "generated": info, "runs": runs,
+           "paper": {"table6_shelf": PAPER_T6_SHELF, "table6_campus": PAPER_T6_CAMPUS,
+                     "table7": PAPER_T7, "table8": PAPER_T8, "table5": PAPER_T5}}
+    with open(os.path.join(a.out, "results.json"), "w", encoding="utf-8") as f:
+        json.dump(doc, f, indent=1, sort_keys=True)
+        f.write("\n")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,288 @@
+// mvtrack calib: calibration tools.
+//   mvtrack calib import FORMAT INPUT [INPUT2] --out CAL.yaml   other formats -> ours
+//   mvtrack calib check CAL.yaml [--png FILE]                      sanity, overlap, baselines
+// The importers and the checks are lib/config (calibration_import.h, calibration_check.h), the
+// picture lib/viz (coverage_map.h); this file parses arguments and prints.
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "config/calibration.h"
+#include "config/calibration_check.h"
+#include "config/calibration_import.h"
+#include "mvtrack/cli.h"
+#include "viz/coverage_map.h"
+#include "viz/image_io.h"
+
+namespace mvtrack::cli {
+namespace {
+
+const char kFormats[] =
+    "formats:\n"
+    "  easymocap INTRI.yml EXTRI.yml   OpenCV FileStorage pair (K_<c>, dist_<c>, Rot_<c>/R_<c>,\n"
+    "                                  T_<c> in m; W_<c>/H_<c> or --image-size)\n"
+    "  4da FILE.json                   4D Association calibration.json (K, RT, imgSize)\n"
+    "  voxelpose FILE.json             VoxelPose calibration_<dataset>.json (T = centre in mm;\n"
+    "                                  --image-size required)\n"
+    "  panoptic FILE.json              CMU Panoptic calibration_<seq>.json (HD cameras;\n"
+    "                                  --cameras to choose)\n"
+    "  wildtrack DIR|FILE.json         WILDTRACK calibrations/ (intrinsic_zero/, extrinsic/ XML)\n"
+    "                                  or the derived JSON; image size 1920x1080 unless given\n"
+    "  campus FILE.json                Cross-View Tracking Campus calibration.json (360x288\n"
+    "                                  unless given)\n";
+
+std::string Fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::vector<std::string> SplitComma(const std::string& text) {
+  std::vector<std::string> out;
+  std::string item;
+  std::istringstream in(text);
+  while (std::getline(in, item, ',')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+int RunImport(int argc, char** argv) {
+  Args args;
+  args.Positional("FORMAT", "easymocap, 4da, voxelpose, panoptic, wildtrack or campus")
+      .Positional("INPUT", "the file (or WILDTRACK directory) to import")
+      .Positional("INPUT2", "easymocap: extri.yml", false)
+      .Option("out", "write the calibration (mvtrack.calibration/1) here (required)")
+      .Option("image-size", "WIDTHxHEIGHT for formats without image sizes")
+      .Option("cameras", "panoptic: comma-separated HD cameras (00_xx or 0..30; default: all)");
+  const std::string usage = "mvtrack calib import FORMAT INPUT [INPUT2] --out CAL.yaml [options]";
+  if (!args.Parse(argc,
+                  argv,
+                  usage,
+                  std::string("Converts a calibration into mvtrack.calibration/1 (metres, z up "
+                              "where the source\nsays so, cam_from_world, OpenCV distortion); "
+                              "every camera is validated.\nNotes on the conventions applied "
+                              "go to stderr. docs/FORMATS.md, \"Calibration\nimporters\", "
+                              "specifies each format.\n\n") +
+                      kFormats + "\nExit status: 0 ok, 1 invalid input, 2 usage error.")) {
+    return 0;
+  }
+  if (!args.Has("out")) throw UsageError("--out CAL.yaml is required");
+  const std::string format = args.Get("FORMAT");
+  const std::string input = args.Get("INPUT");
+  const bool two_inputs = format == "easymocap";
+  if (two_inputs && !args.Has("INPUT2")) {
+    throw UsageError("easymocap needs two files: INTRI.yml EXTRI.yml");
+  }
+  if (!two_inputs && args.Has("INPUT2")) {
+    throw UsageError(format + " takes one input, got also '" + args.Get("INPUT2") + "'");
+  }
+  if (args.Has("cameras") && format != "panoptic")
+    throw UsageError("--cameras is for panoptic only");
+  config::ImageSize size;
+  if (args.Has("image-size")) {
+    try {
+      size = config::ParseImageSize(args.Get("image-size"), "--image-size");
+    } catch (const config::ConfigError& e) {
+      throw UsageError(e.reason());
+    }
+    if (format == "4da" || format == "panoptic") {
+      throw UsageError("--image-size: " + format + " files carry their image sizes");
+    }
+  }
+  config::ImportedCalibration imported;
+  if (format == "easymocap") {
+    imported = config::ImportEasyMocap(input, args.Get("INPUT2"), size);
+  } else if (format == "4da") {
+    imported = config::ImportFourDAssociation(input);
+  } else if (format == "voxelpose") {
+    if (!size.given()) {
+      throw UsageError(
+          "voxelpose needs --image-size WxH (the files have none; Shelf 1032x776, "
+          "Campus 360x288)");
+    }
+    imported = config::ImportVoxelPose(input, size);
+  } else if (format == "panoptic") {
+    imported = config::ImportPanoptic(input, SplitComma(args.Get("cameras")));
+  } else if (format == "wildtrack") {
+    imported = config::ImportWildtrack(input, size);
+  } else if (format == "campus") {
+    imported = config::ImportCampus(input, size);
+  } else {
+    throw UsageError("unknown format '" + format + "'\n" + kFormats);
+  }
+  config::SaveCalibration(args.Get("out"), imported.document.cameras, imported.document.names);
+  for (const std::string& note : imported.notes)
+    std::cerr << "calib import: note: " << note << "\n";
+  std::cout << "calib import: wrote " << imported.document.cameras.size() << " camera(s) to "
+            << args.Get("out") << "\n";
+  return 0;
+}
+
+void PrintReport(const std::string& path,
+                 const std::vector<geometry::CameraModel>& cameras,
+                 const config::CalibrationReport& r) {
+  std::ostream& os = std::cout;
+  os << "calibration: " << path << ", " << cameras.size() << " camera(s)\n\n";
+  os << "camera  image        fx       fy       cx      cy     hfov   centre x, y, z (m)      "
+        "pitch  floor seen\n";
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    const geometry::CameraModel& c = cameras[i];
+    const config::CameraCheck& cc = r.cameras[i];
+    char line[256];
+    std::snprintf(line,
+                  sizeof line,
+                  "%6d  %-11s %8.1f %8.1f %7.1f %7.1f %6.1f  %7.2f %7.2f %6.2f  %5.1f  %7.1f m2\n",
+                  c.id,
+                  (std::to_string(c.width_px) + "x" + std::to_string(c.height_px)).c_str(),
+                  c.K(0, 0),
+                  c.K(1, 1),
+                  c.K(0, 2),
+                  c.K(1, 2),
+                  cc.horizontal_fov_deg,
+                  cc.center_m.x(),
+                  cc.center_m.y(),
+                  cc.center_m.z(),
+                  cc.pitch_down_deg,
+                  cc.seen_area_m2);
+    os << line;
+  }
+  const config::FloorRegion& g = r.grid.region;
+  os << "\nfloor region x [" << Fixed(g.x_min_m, 2) << ", " << Fixed(g.x_max_m, 2) << "] y ["
+     << Fixed(g.y_min_m, 2) << ", " << Fixed(g.y_max_m, 2)
+     << "] m, sampled at z = " << Fixed(r.options.sample_height_m, 2) << " m every "
+     << Fixed(r.grid.cell_m, 3) << " m\n";
+  os << "area: triangulable " << Fixed(r.area_triangulable_m2, 1) << " m2, weak (angle < "
+     << Fixed(r.options.min_triangulation_angle_deg, 1) << " deg) " << Fixed(r.area_weak_m2, 1)
+     << " m2, one camera only " << Fixed(r.area_single_view_m2, 1) << " m2, unseen "
+     << Fixed(r.area_unseen_m2, 1) << " m2\n\n";
+  os << "camera pairs with common floor (overlap graph):\n"
+        "  pair      common     baseline  median dist  median angle\n";
+  int shown = 0;
+  for (const config::PairCheck& p : r.pairs) {
+    if (!(p.common_area_m2 > 0.0)) continue;
+    char line[200];
+    std::snprintf(line,
+                  sizeof line,
+                  "  %3d-%-3d %8.1f m2 %8.2f m %9.2f m %10.1f deg%s\n",
+                  p.a,
+                  p.b,
+                  p.common_area_m2,
+                  p.baseline_m,
+                  p.median_distance_m,
+                  p.median_angle_deg,
+                  p.short_baseline ? "  SHORT BASELINE" : "");
+    os << line;
+    ++shown;
+  }
+  if (shown == 0) os << "  (none: no two cameras see a common floor point)\n";
+  os << "\n";
+  for (const std::string& w : r.warnings) os << "warning: " << w << "\n";
+  for (const config::CameraCheck& cc : r.cameras) {
+    for (const std::string& w : cc.warnings) os << "warning: camera " << cc.id << ": " << w << "\n";
+  }
+  os << r.WarningCount() << " warning(s)\n";
+}
+
+int RunCheck(int argc, char** argv) {
+  Args args;
+  args.Positional("CAL.yaml", "calibration file (mvtrack.calibration/1)")
+      .Option("png", "write the coverage picture (cameras per floor cell, overlap graph) here")
+      .Option("region",
+              "floor region to sample, X0,Y0,X1,Y1 in metres (default: the camera "
+              "centres and where their optical axes meet the sample plane, + --margin)")
+      .Option("margin", "margin around the default region, m", "1")
+      .Option("cell", "grid cell size, m", "0.1")
+      .Option("height", "height of the sampled points above the floor, m", "1")
+      .Option("min-angle",
+              "pairs with a smaller median triangulation angle are short-baseline, "
+              "degrees",
+              "10")
+      .Flag("strict", "exit with status 3 when there are warnings");
+  if (!args.Parse(argc,
+                  argv,
+                  "mvtrack calib check CAL.yaml [--png FILE] [options]",
+                  "Checks a calibration: per camera the image size, intrinsics, field of view,\n"
+                  "centre and pitch, principal point inside the image, distortion invertible\n"
+                  "over the image, looking at the floor; the overlap graph: the floor region is\n"
+                  "sampled on a grid at --height and every cell counts the cameras that see it\n"
+                  "(in front, inside the image); each camera pair reports its common floor area\n"
+                  "and median triangulation angle (the angle between the two viewing rays).\n"
+                  "Warnings: areas only one camera sees (no 3D position possible), and short\n"
+                  "baselines: a pair whose median triangulation angle is below --min-angle\n"
+                  "(about baseline / distance < 0.17 rad at 10 deg; the depth error grows like\n"
+                  "1 / angle), the failure case the paper names for cameras close together.\n\n"
+                  "Exit status: 0 ok (warnings allowed), 1 invalid calibration, 2 usage error,\n"
+                  "3 warnings with --strict.")) {
+    return 0;
+  }
+  config::CalibrationCheckOptions options;
+  options.margin_m = args.GetDouble("margin");
+  options.cell_m = args.GetDouble("cell");
+  options.sample_height_m = args.GetDouble("height");
+  options.min_triangulation_angle_deg = args.GetDouble("min-angle");
+  if (args.Has("region")) {
+    const std::vector<std::string> parts = SplitComma(args.Get("region"));
+    if (parts.size() != 4) throw UsageError("--region: expected X0,Y0,X1,Y1");
+    double v[4];
+    for (int i = 0; i < 4; ++i) {
+      char* end = nullptr;
+      v[i] = std::strtod(parts[static_cast<std::size_t>(i)].c_str(), &end);
+      if (end == nullptr || *end != '\0' || !std::isfinite(v[i])) {
+        throw UsageError("--region: '" + parts[static_cast<std::size_t>(i)] + "' is not a number");
+      }
+    }
+    options.region = config::FloorRegion{v[0], v[1], v[2], v[3]};
+  }
+  std::string why;
+  if (!options.Validate(&why)) throw UsageError(why);
+  if (options.region) {
+    const double cells =
+        options.region->width_m() * options.region->depth_m() / (options.cell_m * options.cell_m);
+    if (cells > static_cast<double>(config::CalibrationCheckOptions::kMaxCells)) {
+      std::cerr << "calib check: note: the region has more than "
+                << config::CalibrationCheckOptions::kMaxCells
+                << " cells of --cell; the cell size is enlarged\n";
+    }
+  }
+  const std::string path = args.Get("CAL.yaml");
+  const std::vector<geometry::CameraModel> cameras = config::LoadCalibration(path);
+  const config::CalibrationReport report = config::CheckCalibration(cameras, options);
+  PrintReport(path, cameras, report);
+  if (args.Has("png")) {
+    if (!viz::WriteImage(args.Get("png"), viz::RenderCoverageMap(cameras, report), &why)) {
+      throw std::runtime_error(why);
+    }
+    std::cout << "wrote " << args.Get("png") << "\n";
+  }
+  return args.Has("strict") && report.WarningCount() > 0 ? 3 : 0;
+}
+
+}  // namespace
+
+int RunCalib(int argc, char** argv) {
+  const char* usage =
+      "usage: mvtrack calib <import|check> ... (mvtrack calib <command> --help for details)\n\n"
+      "  import   convert a calibration (EasyMocap, 4D Association, VoxelPose, Panoptic,\n"
+      "           WILDTRACK, Campus) into mvtrack.calibration/1\n"
+      "  check    sanity checks, camera overlap graph and short-baseline warnings\n";
+  if (argc < 2) {
+    std::cerr << usage;
+    return 2;
+  }
+  const std::string command = argv[1];
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::cout << usage;
+    return 0;
+  }
+  if (command == "import") return RunImport(argc - 1, argv + 1);
+  if (command == "check") return RunCheck(argc - 1, argv + 1);
+  throw UsageError("unknown calib command '" + command + "' (import or check)");
+}
+
+}  // namespace mvtrack::cli

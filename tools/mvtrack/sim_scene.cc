@@ -1,0 +1,149 @@
+#include "mvtrack/sim_scene.h"
+
+#include <cstdio>
+#include <string>
+
+#include "sim/scene_presets.h"
+
+namespace mvtrack::cli {
+namespace {
+
+// "WxH" -> (W, H); UsageError naming `option` otherwise.
+std::pair<double, double> ParsePair(const std::string& text, const std::string& option) {
+  const std::size_t x = text.find('x');
+  try {
+    if (x == std::string::npos) throw std::invalid_argument(text);
+    std::size_t used_a = 0, used_b = 0;
+    const double a = std::stod(text.substr(0, x), &used_a);
+    const double b = std::stod(text.substr(x + 1), &used_b);
+    if (used_a != x || used_b != text.size() - x - 1) throw std::invalid_argument(text);
+    return {a, b};
+  } catch (const std::exception&) {
+    throw UsageError("--" + option + ": expected WIDTHxHEIGHT (e.g. 20x15), got '" + text + "'");
+  }
+}
+
+}  // namespace
+
+void DeclareSceneOptions(Args* args) {
+  args->Option("cameras", "number of cameras", "4")
+      .Option("people", "number of people (maximum present at once with --enter-leave)", "8")
+      .Option("frames", "frames to simulate", "300")
+      .Option("mode", "'poses' (boxes + COCO-17 keypoints) or 'boxes'", "poses")
+      .Option("seed", "simulation seed (everything random derives from it)", "1")
+      .Option("layout",
+              "camera mounting: 'auto' (ring up to 8 cameras on a floor side <= 10 m, else "
+              "ceiling grid), 'ring' or 'grid'",
+              "auto")
+      .Option("room", "floor size WIDTHxDEPTH in metres (default: 4 m^2 per person, >= 6x6)")
+      .Option("camera-height", "camera height in metres (default: 3 ring, 4 grid)")
+      .Option("image", "image size WIDTHxHEIGHT in pixels (default: 1280x720 ring, 1920x1080 grid)")
+      .Option("fov", "horizontal field of view in degrees (default: 80 ring, 90 grid)")
+      .Option("grid-pitch", "ceiling grid: camera pitch below the horizontal, degrees (default 50)")
+      .Option("fps", "frame rate", "30")
+      .Option("noise-px", "pixel noise (Gaussian sigma) on box edges and keypoints", "1.5")
+      .Option("miss-rate", "probability that a visible person is not detected in a view", "0.05")
+      .Option("false-positives", "mean false-positive detections per camera-frame", "0.2")
+      .Option("keypoint-dropout", "probability that a visible keypoint is reported missing", "0.02")
+      .Option("occlusion-threshold",
+              "a person covered to this fraction by nearer people is not detected", "0.7")
+      .Flag("no-occlusion", "no occlusion by depth order (everyone in view is a candidate)")
+      .Flag("enter-leave", "people enter and leave through the walls (new ids on re-entry)")
+      .Option("mean-stay", "--enter-leave: mean stay in the room, seconds", "8");
+}
+
+sim::SceneOptions SceneOptionsFromArgs(const Args& args) {
+  const std::string mode = args.Get("mode");
+  if (mode != "poses" && mode != "boxes") throw UsageError("--mode must be 'poses' or 'boxes'");
+  const std::int64_t cameras = args.GetInt("cameras");
+  const std::int64_t people = args.GetInt("people");
+  if (cameras < 1 || cameras > 4096) throw UsageError("--cameras must be in [1, 4096]");
+  if (people < 0 || people > 100000) throw UsageError("--people must be in [0, 100000]");
+  const std::int64_t seed = args.GetInt("seed");
+  if (seed < 0) throw UsageError("--seed must be >= 0");
+  sim::SceneOptions o = sim::SizedScene(static_cast<int>(cameras), static_cast<int>(people),
+                                        mode == "poses", static_cast<std::uint64_t>(seed));
+  const std::int64_t frames = args.GetInt("frames");
+  if (frames < 0 || frames > 100000000) throw UsageError("--frames must be in [0, 1e8]");
+  o.num_frames = static_cast<int>(frames);
+  if (args.Has("room")) {
+    const auto [w, d] = ParsePair(args.Get("room"), "room");
+    o.room_width_m = w;
+    o.room_depth_m = d;
+  }
+  const std::string layout = args.Get("layout");
+  if (layout == "ring" || layout == "grid") {
+    // Switching layout: take that layout's defaults from a preset that chose it.
+    const sim::SceneOptions ref = layout == "ring" ? sim::SizedScene(2, 2, true, 1)
+                                                   : sim::SizedScene(32, 100, true, 1);
+    o.camera_layout = ref.camera_layout;
+    o.camera_height_m = ref.camera_height_m;
+    o.image_width_px = ref.image_width_px;
+    o.image_height_px = ref.image_height_px;
+    o.horizontal_fov_deg = ref.horizontal_fov_deg;
+  } else if (layout != "auto") {
+    throw UsageError("--layout must be 'auto', 'ring' or 'grid'");
+  }
+  if (args.Has("camera-height")) o.camera_height_m = args.GetDouble("camera-height");
+  if (args.Has("image")) {
+    const auto [w, h] = ParsePair(args.Get("image"), "image");
+    if (w != static_cast<double>(static_cast<int>(w)) || h != static_cast<double>(static_cast<int>(h))) {
+      throw UsageError("--image: width and height must be whole pixels");
+    }
+    o.image_width_px = static_cast<int>(w);
+    o.image_height_px = static_cast<int>(h);
+  }
+  if (args.Has("fov")) o.horizontal_fov_deg = args.GetDouble("fov");
+  if (args.Has("grid-pitch")) o.grid_pitch_deg = args.GetDouble("grid-pitch");
+  o.fps = args.GetDouble("fps");
+  o.pixel_noise_px = args.GetDouble("noise-px");
+  o.miss_rate = args.GetDouble("miss-rate");
+  o.false_positives_per_frame = args.GetDouble("false-positives");
+  o.keypoint_dropout = args.GetDouble("keypoint-dropout");
+  o.occlusion_threshold = args.GetDouble("occlusion-threshold");
+  o.occlusion = !args.Has("no-occlusion");
+  o.enter_and_leave = args.Has("enter-leave");
+  o.mean_stay_s = args.GetDouble("mean-stay");
+  std::string why;
+  if (!o.Validate(&why)) throw UsageError("scene: " + why);
+  return o;
+}
+
+std::string DescribeScene(const sim::SceneOptions& o) {
+  char line[512];
+  std::snprintf(line, sizeof(line),
+                "%d cameras (%s, %dx%d px, %.0f deg, %.1f m high), %d people%s on %.0f x %.0f m, "
+                "%d frames at %.0f fps, %s; noise %.1f px, miss %.2f, false positives %.2f/frame, "
+                "occlusion %s, seed %llu",
+                o.num_cameras, o.camera_layout == sim::CameraLayout::kRing ? "ring" : "ceiling grid",
+                o.image_width_px, o.image_height_px, o.horizontal_fov_deg, o.camera_height_m,
+                o.num_people, o.enter_and_leave ? " (entering and leaving)" : "", o.room_width_m,
+                o.room_depth_m, o.num_frames, o.fps, o.poses ? "poses" : "boxes", o.pixel_noise_px,
+                o.miss_rate, o.false_positives_per_frame, o.occlusion ? "on" : "off",
+                static_cast<unsigned long long>(o.seed));
+  return line;
+}
+
+eval::EvalFrame TruthEvalFrame(const sim::FrameTruth& truth, bool with_joints) {
+  eval::EvalFrame f;
+  f.frame = truth.frame;
+  for (const sim::PersonTruth& p : truth.people) {
+    eval::EvalObject o;
+    o.id = p.id;
+    o.position = p.footprint_m;
+    if (with_joints) {
+      for (const Vec3& j : p.joints_m) o.joints.emplace_back(j);
+    }
+    f.objects.push_back(std::move(o));
+  }
+  return f;
+}
+
+eval::EvalFrame TrackEvalFrame(const tracker::Frame3D& frame) {
+  eval::EvalFrame f;
+  f.frame = frame.frame;
+  for (const tracker::Track3D& t : frame.tracks) f.objects.push_back({t.id, t.position, t.joints});
+  return f;
+}
+
+}  // namespace mvtrack::cli
