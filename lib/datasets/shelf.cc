@@ -12,6 +12,7 @@
 #include "datasets/internal/common.h"
 #include "datasets/internal/json_document.h"
 #include "datasets/internal/skel_text.h"
+#include "eval/head_rule.h"
 
 namespace mvtrack::datasets {
 namespace {
@@ -172,10 +173,8 @@ std::vector<std::optional<Vec3>> Skel19ToShelf14(const std::vector<std::optional
     const Vec3 head_bottom = shoulder_centre + 0.5 * (head_centre - shoulder_centre);
     out[12] = head_bottom;
     if (has({kNeck, kMidHip})) {
-      const Vec3 face = (at(kNeck) - at(kMidHip)).cross(at(kRShoulder) - at(kLShoulder));
-      if (face.norm() > 0.0) {
-        out[13] = head_bottom + 0.125 * face.normalized() + 0.145 * Vec3::UnitZ();
-      }
+      out[13] = eval::FourDAssociationHeadTop(head_bottom, at(kNeck), at(kMidHip),
+                                              at(kRShoulder), at(kLShoulder));
     }
   }
   return out;

@@ -24,7 +24,7 @@ gt=ground_truth.jsonl
 case $DATASET in
   shelf)
     replay_args=(--mode poses --layout body25)
-    eval_args=(--frames 300-600 --distance joints --pcp --actors 0,1,2) ;;
+    eval_args=(--frames 300-600 --distance joints --pcp --actors 0,1,2 --head-rule shelf-4da) ;;
   campus)
     replay_args=(--mode poses --layout shelf14)
     eval_args=(--frames 350-470,650-750 --distance joints --pcp --actors 0,1,2) ;;

@@ -22,6 +22,26 @@ json_assert "$OUT/pcp.json" \
   'd["tracking"]["distance"] == "mean_joint"' "--distance joints ignored" \
   'd["pcp"]["average_pcp"] >= 0.95' "PCP below the floor 0.95"
 pcp=$(json_get "$OUT/pcp.json" 'd["pcp"]["average_pcp"]')
+# --head-rule shelf-4da: head_top of both mapped sides by 4D Association's rule, stated in the
+# mapping and in the PCP protocol; the other parts are unchanged; an unknown rule is a usage error.
+expect_exit 0 "$OUT/pcp4da.txt" "$MVTRACK" eval --gt "$GT" --pred "$OUT/tracks.jsonl" --layout shelf14 \
+  --distance joints --pcp --head-rule shelf-4da --json "$OUT/pcp4da.json"
+expect_grep "head_top +<- instead \(--head-rule shelf-4da" "$OUT/pcp4da.txt"
+json_assert "$OUT/pcp4da.json" \
+  '"shelf-4da" in d["pcp"]["protocol"]' "head rule missing from the PCP protocol" \
+  'd["pcp"]["average_pcp"] >= 0.95' "PCP with the 4D Association head rule below the floor 0.95"
+python3 - "$OUT/pcp.json" "$OUT/pcp4da.json" <<'PY' || fail "--head-rule changed parts other than the head"
+import json, sys
+a, b = (json.load(open(p))["pcp"] for p in sys.argv[1:])
+head = a["group_names"].index("head")
+for x, y in zip(a["actors"], b["actors"]):
+    for g, (u, v) in enumerate(zip(x["group_pcp"], y["group_pcp"])):
+        if g != head and u != v:
+            sys.exit(f"group {a['group_names'][g]}: {u} != {v}")
+PY
+expect_exit 2 "$OUT/badrule.txt" "$MVTRACK" eval --gt "$GT" --pred "$OUT/tracks.jsonl" --pcp \
+  --head-rule 4da
+expect_grep "head-rule must be 'campus' or 'shelf-4da'" "$OUT/badrule.txt"
 expect_exit 0 "$OUT/pcp17.txt" "$MVTRACK" eval --gt "$GT" --pred "$OUT/tracks.jsonl" --pcp \
   --frames 0-99,200-239 --actors 0,1 --json "$OUT/pcp17.json"
 json_assert "$OUT/pcp17.json" \

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/keypoint_layout.h"
+#include "eval/head_rule.h"
 #include "eval/pcp.h"
 #include "eval/point_comparison.h"
 #include "eval/report.h"
@@ -88,9 +89,10 @@ bool HasJoints(const TrackFile& file) {
 }
 
 // The frames of `file` as an evaluation sequence; joints dropped (`keep_joints` false), kept, or
-// mapped with `mapping` (when not null).
+// mapped with `mapping` (when not null; head_top then follows `head_rule` when the target is
+// shelf14).
 eval::EvalSequence ToSequence(const TrackFile& file, bool keep_joints,
-                              const core::KeypointMapping* mapping) {
+                              const core::KeypointMapping* mapping, eval::HeadRule head_rule) {
   eval::EvalSequence seq;
   seq.reserve(file.frames.size());
   std::vector<Vec3> points;
@@ -119,6 +121,9 @@ eval::EvalSequence ToSequence(const TrackFile& file, bool keep_joints,
         o.joints.resize(mapped_points.size());
         for (std::size_t j = 0; j < mapped_points.size(); ++j) {
           if (mapped_valid[j]) o.joints[j] = mapped_points[j];
+        }
+        if (mapping->to == core::KeypointLayoutId::kShelf14) {
+          eval::ApplyHeadRule(head_rule, mapping->from, t.joints, &o.joints);
         }
       }
       ef.objects.push_back(std::move(o));
@@ -189,7 +194,8 @@ int RunPointComparison(const Args& args,
   out << "joints: not compared (--points: footprints only, ids ignored on both sides)\n\n";
   eval::EvaluationReport report;
   report.points = eval::ComparePoints(
-      ToSequence(gt, false, nullptr), ToSequence(pred, false, nullptr), options);
+      ToSequence(gt, false, nullptr, eval::HeadRule::kCampus),
+      ToSequence(pred, false, nullptr, eval::HeadRule::kCampus), options);
   if (!report.points->valid) {
     std::cerr << "mvtrack eval: point comparison failed: " << report.points->error << "\n";
     return 1;
@@ -216,6 +222,12 @@ int RunEval(int argc, char** argv) {
       .Option("threshold", "matching gate, metres", "0.5")
       .Option("frames", "evaluate only these frames: A-B[,C-D...] (inclusive; default: all)")
       .Option("actors", "PCP only: GT actor ids scored, e.g. 0,1,2 (default: every actor)")
+      .Option("head-rule",
+              "how head_top is derived when joints are mapped to shelf14: campus (VoxelPose's "
+              "coco2campus3D, affine) or shelf-4da (4D Association's Shelf evaluation, "
+              "MappingToShelf: facing direction + fixed offsets; the protocol of its published "
+              "Shelf numbers)",
+              "campus")
       .Flag("points",
             "instead of tracking metrics, compare footprints with reference points that carry no "
             "identities (GT = e.g. WILDTRACK's ground_points.jsonl): per-frame counts and the "
@@ -227,7 +239,7 @@ int RunEval(int argc, char** argv) {
   if (!args.Parse(argc, argv,
                   "mvtrack eval --gt GT [--pred] TRACKS [--layout NAME] "
                   "[--distance footprint|joints] [--threshold M] [--frames A-B[,C-D]] "
-                  "[--actors 0,1,2] [--pcp | --points] [--json OUT.json]",
+                  "[--actors 0,1,2] [--head-rule campus|shelf-4da] [--pcp | --points] [--json OUT.json]",
                   "Scores tracks against ground truth with CLEAR MOT (MOTA, MOTP, FP, FN, IDSW, MT,\n"
                   "ML; py-motmetrics semantics), identity F1 (IDF1, IDP, IDR) and MPJPE, and with\n"
                   "--pcp the PCP of Belagiannis et al. as the Shelf/Campus evaluations compute it.\n"
@@ -271,6 +283,11 @@ int RunEval(int argc, char** argv) {
     throw UsageError("--points compares footprints: --distance must be footprint");
   }
   if (args.Has("actors") && !pcp) throw UsageError("--actors applies to PCP only: add --pcp");
+  const std::optional<eval::HeadRule> head_rule = eval::HeadRuleFromName(args.Get("head-rule"));
+  if (!head_rule) {
+    throw UsageError("--head-rule must be 'campus' or 'shelf-4da', not '" + args.Get("head-rule") +
+                     "'");
+  }
   std::optional<core::KeypointLayoutId> requested_layout;
   if (args.Has("layout")) {
     requested_layout = core::KeypointLayoutFromName(args.Get("layout"));
@@ -317,9 +334,9 @@ int RunEval(int argc, char** argv) {
     pred_mapping = core::MakeKeypointMapping(*pred.layout, eval_layout);
   }
   const eval::EvalSequence gt_seq =
-      ToSequence(gt, compare_joints, gt_mapping ? &*gt_mapping : nullptr);
+      ToSequence(gt, compare_joints, gt_mapping ? &*gt_mapping : nullptr, *head_rule);
   const eval::EvalSequence pred_seq =
-      ToSequence(pred, compare_joints, pred_mapping ? &*pred_mapping : nullptr);
+      ToSequence(pred, compare_joints, pred_mapping ? &*pred_mapping : nullptr, *head_rule);
 
   const bool json_to_stdout = args.Has("json") && args.Get("json") == "-";
   std::ostream& out = json_to_stdout ? std::cerr : std::cout;
@@ -348,6 +365,12 @@ int RunEval(int argc, char** argv) {
       out << "  " << name << " mapped " << LayoutName((*mapping)->from) << " -> "
           << LayoutName((*mapping)->to) << " (core::MakeKeypointMapping):\n"
           << DescribeMapping(**mapping);
+      if ((*mapping)->to == core::KeypointLayoutId::kShelf14 &&
+          *head_rule == eval::HeadRule::kShelf4da) {
+        out << "  head_top    <- instead (--head-rule shelf-4da, 4D Association's MappingToShelf): "
+               "head_bottom + 0.125 m * unit((neck - mid_hip) x (r_shoulder - l_shoulder)) + "
+               "0.145 m * z\n";
+      }
     }
   }
   out << "\n";
@@ -361,9 +384,13 @@ int RunEval(int argc, char** argv) {
     return 1;
   }
   if (pcp) {
-    const eval::PcpProtocol protocol = eval_layout == core::KeypointLayoutId::kShelf14
-                                           ? eval::ShelfCampusPcpProtocol()
-                                           : eval::LayoutPcpProtocol(eval_layout);
+    eval::PcpProtocol protocol = eval_layout == core::KeypointLayoutId::kShelf14
+                                     ? eval::ShelfCampusPcpProtocol()
+                                     : eval::LayoutPcpProtocol(eval_layout);
+    if (eval_layout == core::KeypointLayoutId::kShelf14) {
+      protocol.name += std::string(", head_top of mapped predictions by --head-rule ") +
+                       std::string(eval::HeadRuleName(*head_rule));
+    }
     eval::PcpOptions pcp_options;
     pcp_options.frame_ranges = tracking_options.frame_ranges;
     if (args.Has("actors")) pcp_options.actor_ids = ParseActors(args.Get("actors"));
