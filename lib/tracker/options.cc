@@ -34,9 +34,9 @@ bool TrackerOptions::Validate(std::string* why) const {
   std::string nested;
   if (!sort.Validate(&nested)) return fail("sort: " + nested);
   if (!association.Validate(&nested)) return fail("association: " + nested);
-  if (!triangulation.Validate(&nested)) return fail("triangulation: " + nested);
+  if (!triangulation.Validate(&nested)) return fail(nested);  // already prefixed "triangulation: "
   if (!linking.Validate(&nested)) return fail("linking: " + nested);
-  if (!refinement.Validate(&nested)) return fail(nested);
+  if (!refinement.Validate(&nested)) return fail(nested);  // already prefixed "refinement: "
   return true;
 }
 

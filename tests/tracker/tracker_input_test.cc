@@ -49,6 +49,18 @@ TEST_CASE("invalid options are refused naming the field", "[unit][tracker]") {
   o.association.lambda = -1.0;
   CHECK(tracker::Tracker::Create(geometry::CameraRig(scene.cameras), o, &why) == nullptr);
   CHECK_THAT(why, Catch::Contains("association"));
+  // Nested option groups are named once: "triangulation: phi ...", not "triangulation:
+  // triangulation: ...".
+  o = {};
+  o.triangulation.phi = -1;
+  CHECK(tracker::Tracker::Create(geometry::CameraRig(scene.cameras), o, &why) == nullptr);
+  CHECK_THAT(why, Catch::Contains("triangulation: phi"));
+  CHECK_THAT(why, !Catch::Contains("triangulation: triangulation"));
+  o = {};
+  o.refinement.outlier_half_window = -1;
+  CHECK(tracker::Tracker::Create(geometry::CameraRig(scene.cameras), o, &why) == nullptr);
+  CHECK_THAT(why, Catch::Contains("refinement: outlier_half_window"));
+  CHECK_THAT(why, !Catch::Contains("refinement: refinement"));
 }
 
 TEST_CASE("unknown camera, stale frame, duplicate camera, flood: rejected and counted",
