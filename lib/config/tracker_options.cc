@@ -223,6 +223,18 @@ std::vector<Field> MakeFields() {
   f.push_back(IntField("refinement", "min_duplicate_pairs",
                        [](auto& o) -> auto& { return o.refinement.min_duplicate_pairs; }, 1,
                        kIntMax));
+  f.push_back(DoubleField("refinement", "box_merge_distance_m",
+                          [](auto& o) -> auto& { return o.refinement.box_merge_distance_m; },
+                          DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField("refinement", "box_min_height_m",
+                          [](auto& o) -> auto& { return o.refinement.box_min_height_m; },
+                          DoubleRange::Any()));
+  f.push_back(DoubleField("refinement", "box_max_height_m",
+                          [](auto& o) -> auto& { return o.refinement.box_max_height_m; },
+                          DoubleRange::Any()));
+  f.push_back(DoubleField("refinement", "box_split_residual",
+                          [](auto& o) -> auto& { return o.refinement.box_split_residual; },
+                          DoubleRange::AtLeast(0.0)));
   f.push_back(DoubleField("refinement", "min_person_point_fraction",
                           [](auto& o) -> auto& { return o.refinement.min_person_point_fraction; },
                           unit));

@@ -17,10 +17,7 @@ namespace {
 // largest possible number of feasible pairs -- and (2) among those has the least total feasible
 // cost. The shortest-augmenting-path algorithm only adds, subtracts and compares costs, so it
 // is valid in any totally ordered abelian group.
-struct LexCost {
-  std::int64_t forbidden = 0;
-  double cost = 0.0;
-};
+using internal::LexCost;
 
 LexCost operator+(const LexCost& a, const LexCost& b) {
   return {a.forbidden + b.forbidden, a.cost + b.cost};
@@ -46,19 +43,36 @@ bool IsFeasible(double cost, double max_cost) { return std::isfinite(cost) && co
 // Rows are inserted in increasing order; within a scan the first (lowest-index) column with the
 // strictly smallest reduced cost wins, so ties resolve towards low indices and the result is a
 // pure function of the input.
-std::vector<int> SolveRowsNotMoreThanCols(const std::vector<LexCost>& a, int n, int m) {
+// Scratch vectors of one solve (owned by an AssignmentWorkspace).
+struct SolverBuffers {
+  std::vector<LexCost>& u;
+  std::vector<LexCost>& v;
+  std::vector<int>& row_of_col;
+  std::vector<int>& way;
+  std::vector<LexCost>& min_reduced;
+  std::vector<char>& used;
+};
+
+void SolveRowsNotMoreThanCols(const std::vector<LexCost>& a, int n, int m, SolverBuffers buf,
+                              std::vector<int>* col_of_row_out) {
   const auto at = [&](int i, int j) {
     return a[static_cast<std::size_t>(i) * static_cast<std::size_t>(m) +
              static_cast<std::size_t>(j)];
   };
   const auto sm = static_cast<std::size_t>(m) + 1;
   // 1-based rows and columns; column 0 is the virtual root of each search tree.
-  std::vector<LexCost> u(static_cast<std::size_t>(n) + 1);
-  std::vector<LexCost> v(sm);
-  std::vector<int> row_of_col(sm, 0);  // p in the classical formulation; 0 = free column
-  std::vector<int> way(sm, 0);
-  std::vector<LexCost> min_reduced(sm);
-  std::vector<char> used(sm);
+  std::vector<LexCost>& u = buf.u;
+  std::vector<LexCost>& v = buf.v;
+  std::vector<int>& row_of_col = buf.row_of_col;  // p in the classical formulation; 0 = free
+  std::vector<int>& way = buf.way;
+  std::vector<LexCost>& min_reduced = buf.min_reduced;
+  std::vector<char>& used = buf.used;
+  u.assign(static_cast<std::size_t>(n) + 1, LexCost{});
+  v.assign(sm, LexCost{});
+  row_of_col.assign(sm, 0);
+  way.assign(sm, 0);
+  min_reduced.resize(sm);
+  used.resize(sm);
 
   for (int i = 1; i <= n; ++i) {
     row_of_col[0] = i;
@@ -104,27 +118,43 @@ std::vector<int> SolveRowsNotMoreThanCols(const std::vector<LexCost>& a, int n, 
     } while (j0 != 0);
   }
 
-  std::vector<int> col_of_row(static_cast<std::size_t>(n), -1);
+  std::vector<int>& col_of_row = *col_of_row_out;
+  col_of_row.assign(static_cast<std::size_t>(n), -1);
   for (int j = 1; j <= m; ++j) {
     const int r = row_of_col[static_cast<std::size_t>(j)];
     if (r != 0) col_of_row[static_cast<std::size_t>(r - 1)] = j - 1;
   }
-  return col_of_row;
 }
 
 }  // namespace
 
 Assignment SolveAssignment(const Eigen::MatrixXd& cost, double max_cost) {
+  AssignmentWorkspace workspace;
+  Assignment result;
+  SolveAssignment(cost, max_cost, &workspace, &result);
+  return result;
+}
+
+void SolveAssignment(const Eigen::MatrixXd& cost, double max_cost, AssignmentWorkspace* workspace,
+                     Assignment* result_out) {
+  MVTRACK_CHECK(workspace != nullptr && result_out != nullptr);
+  AssignmentWorkspace& ws = *workspace;
+  Assignment& result = *result_out;
+  result.matches.clear();
+  result.unmatched_rows.clear();
+  result.unmatched_cols.clear();
   const int rows = static_cast<int>(cost.rows());
   const int cols = static_cast<int>(cost.cols());
-  Assignment result;
 
   // Rows and columns without a single feasible pair can only ever be matched to forbidden
   // pairs; removing them shrinks the problem without changing the optimum.
-  std::vector<int> active_rows;
-  std::vector<int> active_cols;
+  std::vector<int>& active_rows = ws.active_rows_;
+  std::vector<int>& active_cols = ws.active_cols_;
+  active_rows.clear();
+  active_cols.clear();
   {
-    std::vector<char> col_has_feasible(static_cast<std::size_t>(cols), 0);
+    std::vector<char>& col_has_feasible = ws.col_flag_;
+    col_has_feasible.assign(static_cast<std::size_t>(cols), 0);
     for (int i = 0; i < rows; ++i) {
       bool row_has_feasible = false;
       for (int j = 0; j < cols; ++j) {
@@ -140,7 +170,8 @@ Assignment SolveAssignment(const Eigen::MatrixXd& cost, double max_cost) {
     }
   }
 
-  std::vector<int> col_of_row(static_cast<std::size_t>(rows), -1);
+  std::vector<int>& col_of_row = ws.col_of_row_;
+  col_of_row.assign(static_cast<std::size_t>(rows), -1);
   const int n_rows = static_cast<int>(active_rows.size());
   const int n_cols = static_cast<int>(active_cols.size());
   if (n_rows > 0 && n_cols > 0) {
@@ -158,7 +189,8 @@ Assignment SolveAssignment(const Eigen::MatrixXd& cost, double max_cost) {
       }
     }
     const double scale = max_abs > kLargeCost ? std::ldexp(1.0, -std::ilogb(max_abs)) : 1.0;
-    std::vector<LexCost> lex(static_cast<std::size_t>(n) * static_cast<std::size_t>(m));
+    std::vector<LexCost>& lex = ws.lex_;
+    lex.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(m));
     for (int a = 0; a < n; ++a) {
       for (int b = 0; b < m; ++b) {
         const int i = active_rows[static_cast<std::size_t>(transpose ? b : a)];
@@ -169,7 +201,11 @@ Assignment SolveAssignment(const Eigen::MatrixXd& cost, double max_cost) {
         lex[k] = IsFeasible(c, max_cost) ? LexCost{0, c * scale} : LexCost{1, 0.0};
       }
     }
-    const std::vector<int> solved = SolveRowsNotMoreThanCols(lex, n, m);
+    std::vector<int>& solved = ws.solved_;
+    SolveRowsNotMoreThanCols(lex, n, m,
+                             SolverBuffers{ws.u_, ws.v_, ws.row_of_col_, ws.way_,
+                                           ws.min_reduced_, ws.used_},
+                             &solved);
     for (int a = 0; a < n; ++a) {
       const int b = solved[static_cast<std::size_t>(a)];
       if (b < 0) continue;
@@ -180,7 +216,8 @@ Assignment SolveAssignment(const Eigen::MatrixXd& cost, double max_cost) {
     }
   }
 
-  std::vector<char> col_matched(static_cast<std::size_t>(cols), 0);
+  std::vector<char>& col_matched = ws.col_flag_;
+  col_matched.assign(static_cast<std::size_t>(cols), 0);
   for (int i = 0; i < rows; ++i) {
     const int j = col_of_row[static_cast<std::size_t>(i)];
     if (j >= 0) {
@@ -193,7 +230,6 @@ Assignment SolveAssignment(const Eigen::MatrixXd& cost, double max_cost) {
   for (int j = 0; j < cols; ++j) {
     if (!col_matched[static_cast<std::size_t>(j)]) result.unmatched_cols.push_back(j);
   }
-  return result;
 }
 
 }  // namespace mvtrack::core

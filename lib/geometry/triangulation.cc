@@ -36,14 +36,25 @@ void FillRows(const Mat34& p, const Vec2& x, double w, Eigen::Ref<Eigen::Matrix<
 
 std::optional<Vec3> TriangulateTwoView(const Mat34& p_a, const Vec2& x_a, const Mat34& p_b,
                                        const Vec2& x_b) {
-  if (!x_a.allFinite() || !x_b.allFinite()) return std::nullopt;
+  return TriangulateTwoView(MakeTwoViewRows(p_a, x_a), MakeTwoViewRows(p_b, x_b));
+}
+
+TwoViewRows MakeTwoViewRows(const Mat34& p, const Vec2& x) {
+  TwoViewRows out;
+  out.finite = x.allFinite();
+  if (out.finite) FillRows(p, x, 1.0, out.rows);
+  return out;
+}
+
+std::optional<Vec3> TriangulateTwoView(const TwoViewRows& rows_a, const TwoViewRows& rows_b) {
+  if (!rows_a.finite || !rows_b.finite) return std::nullopt;
   // Hot path of CMMT (every camera pair, every point, every frame): the inhomogeneous form of
   // Eq. 5, X = (x, y, z, 1), solved by 3x3 normal equations on unit-normalised rows. It equals
   // the homogeneous solution for exact data and is within round-off of it for finite points,
   // at a fraction of the cost of a 4x4 eigen-decomposition.
   Eigen::Matrix4d a;
-  FillRows(p_a, x_a, 1.0, a.topRows<2>());
-  FillRows(p_b, x_b, 1.0, a.bottomRows<2>());
+  a.topRows<2>() = rows_a.rows;
+  a.bottomRows<2>() = rows_b.rows;
   const Eigen::Matrix<double, 4, 3> a3 = a.leftCols<3>();
   const Mat3 m = a3.transpose() * a3;
   const Vec3 rhs = -(a3.transpose() * a.col(3));

@@ -14,6 +14,21 @@ namespace mvtrack::geometry {
 std::optional<Vec3> TriangulateTwoView(const Mat34& p_a, const Vec2& x_a, const Mat34& p_b,
                                        const Vec2& x_b);
 
+/// The two rows one view contributes to the two-view DLT (Eq. 5), unit-normalised: everything
+/// of TriangulateTwoView that depends on one view only, so a caller pairing one point with many
+/// others computes it once.
+struct TwoViewRows {
+  Eigen::Matrix<double, 2, 4> rows = Eigen::Matrix<double, 2, 4>::Zero();  ///< x P3 - P1, y P3 - P2
+  bool finite = false;  ///< the pixel was finite (otherwise the pair is degenerate)
+};
+
+/// The rows of pixel `x` in the view with projection `p`.
+TwoViewRows MakeTwoViewRows(const Mat34& p, const Vec2& x);
+
+/// TriangulateTwoView from precomputed rows: bit-identical to TriangulateTwoView(p_a, x_a, p_b,
+/// x_b) when a = MakeTwoViewRows(p_a, x_a) and b = MakeTwoViewRows(p_b, x_b).
+std::optional<Vec3> TriangulateTwoView(const TwoViewRows& a, const TwoViewRows& b);
+
 /// N-view DLT (N >= 2) with optional per-view weights (empty = all 1). nullopt if degenerate.
 std::optional<Vec3> TriangulateDlt(std::span<const Mat34> projections,
                                    std::span<const Vec2> points_px,

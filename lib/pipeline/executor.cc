@@ -1,7 +1,9 @@
 #include "pipeline/executor.h"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
+#include <memory>
 #include <utility>
 
 #include "core/check.h"
@@ -38,6 +40,13 @@ bool CompleteGuarded(const Executor::Completion& completion, const JobOutcome& o
 }
 
 }  // namespace
+
+// --- Executor ----------------------------------------------------------------------------------
+
+void Executor::ParallelFor(int caller_worker, int n,
+                           const std::function<void(int index, int worker)>& fn) {
+  for (int i = 0; i < n; ++i) fn(i, caller_worker);
+}
 
 // --- InlineExecutor ----------------------------------------------------------------------------
 
@@ -105,14 +114,70 @@ bool ThreadPoolExecutor::Submit(Job job, Completion completion) {
   {
     std::unique_lock<std::mutex> lock(mu_);
     space_cv_.wait(lock, [&] {
-      return stopping_ || queue_.size() < static_cast<std::size_t>(options_.queue_capacity);
+      // ParallelFor helpers do not take up room.
+      return stopping_ || queue_.size() - queued_helpers_ <
+                              static_cast<std::size_t>(options_.queue_capacity);
     });
     if (stopping_) return false;
-    queue_.push_back(Task{next_seq_++, std::move(job), std::move(completion)});
+    queue_.push_back(Task{next_seq_++, std::move(job), std::move(completion), nullptr});
     ++unfinished_;
   }
   work_cv_.notify_one();
   return true;
+}
+
+// The shared state of one ParallelFor: the next unclaimed index and the count of finished calls.
+// Helpers hold it by shared_ptr, so one that starts after the ParallelFor returned only finds
+// no index left.
+struct ThreadPoolExecutor::ForState {
+  explicit ForState(int count, const std::function<void(int, int)>* f) : n(count), fn(f) {}
+  const int n;
+  const std::function<void(int, int)>* const fn;  // valid while an index is unfinished
+  std::atomic<int> next{0};
+  std::mutex mu;
+  std::condition_variable done_cv;
+  int done = 0;                // guarded by mu
+  std::exception_ptr error;    // first exception of a call, guarded by mu
+
+  // Claims and runs indices until none is left.
+  void Work(int worker) {
+    while (true) {
+      const int i = next.fetch_add(1);
+      if (i >= n) return;
+      std::exception_ptr thrown;
+      try {
+        (*fn)(i, worker);
+      } catch (...) {
+        thrown = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mu);
+      if (thrown && !error) error = thrown;
+      if (++done == n) done_cv.notify_all();
+    }
+  }
+};
+
+void ThreadPoolExecutor::ParallelFor(int caller_worker, int n,
+                                     const std::function<void(int index, int worker)>& fn) {
+  if (n <= 0) return;
+  const int helpers = std::min(n - 1, options_.num_workers - 1);
+  auto state = std::make_shared<ForState>(n, &fn);
+  if (helpers > 0) {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      for (int h = 0; h < helpers; ++h) {
+        Task task;
+        task.helper = state;
+        queue_.push_front(std::move(task));
+        ++queued_helpers_;
+      }
+    }
+    work_cv_.notify_all();
+  }
+  state->Work(caller_worker);
+  std::unique_lock<std::mutex> lock(state->mu);
+  state->done_cv.wait(lock, [&] { return state->done == n; });
+  if (state->error) std::rethrow_exception(state->error);
 }
 
 void ThreadPoolExecutor::WorkerLoop(int worker) {
@@ -124,7 +189,17 @@ void ThreadPoolExecutor::WorkerLoop(int worker) {
       if (queue_.empty()) return;  // stopping, and every accepted job has been taken
       task = std::move(queue_.front());
       queue_.pop_front();
-      ++running_;
+      if (task.helper) {
+        --queued_helpers_;
+      } else {
+        ++running_;
+      }
+    }
+    if (task.helper) {
+      // A ParallelFor helper: not a job (no outcome, completion or counters).
+      task.helper->Work(worker);
+      task = Task{};
+      continue;
     }
     space_cv_.notify_one();
     const JobOutcome outcome = RunGuarded(task.job, worker, task.seq);
@@ -172,7 +247,7 @@ ExecutorStats ThreadPoolExecutor::stats() const {
   ExecutorStats s;
   s.num_workers = options_.num_workers;
   s.queue_capacity = static_cast<std::size_t>(options_.queue_capacity);
-  s.queued = queue_.size();
+  s.queued = queue_.size() - queued_helpers_;
   s.running = running_;
   s.submitted = static_cast<std::int64_t>(next_seq_);
   s.completed = completed_;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -67,6 +68,15 @@ class Executor {
   virtual void Stop() = 0;
   /// Number of workers (distinct `worker` indices passed to jobs).
   virtual int num_workers() const = 0;
+  /// Fans one job's work out: runs fn(index, worker) for every index in [0, n) and returns when
+  /// all calls have returned. Must be called from inside a job, with that job's `caller_worker`;
+  /// the caller runs calls itself and idle workers may help. `worker` is the index of the thread
+  /// running a call, and a worker runs one job or call at a time, so per-worker scratch space
+  /// stays exclusive. Never waits for a busy worker (no deadlock when every worker fans out).
+  /// The first exception thrown by a call is rethrown once all calls have returned. This default
+  /// runs every call in index order on the caller.
+  virtual void ParallelFor(int caller_worker, int n,
+                           const std::function<void(int index, int worker)>& fn);
   /// A snapshot of the counters; thread-safe.
   virtual ExecutorStats stats() const = 0;
 };
@@ -140,14 +150,21 @@ class ThreadPoolExecutor final : public Executor {
   void Stop() override;
   /// ThreadPoolOptions::num_workers.
   int num_workers() const override { return options_.num_workers; }
+  /// Queues up to num_workers - 1 helper tasks ahead of every waiting job (beyond the queue's
+  /// capacity; they are not counted as jobs) and takes part itself: each taker claims the next
+  /// index until none is left; a helper that starts after that returns at once.
+  void ParallelFor(int caller_worker, int n,
+                   const std::function<void(int index, int worker)>& fn) override;
   /// A consistent snapshot (taken under the queue's lock).
   ExecutorStats stats() const override;
 
  private:
+  struct ForState;
   struct Task {
     std::uint64_t seq = 0;
     Job job;
     Completion completion;
+    std::shared_ptr<ForState> helper;  // set: a ParallelFor helper, not a job
   };
 
   void WorkerLoop(int worker);
@@ -158,6 +175,7 @@ class ThreadPoolExecutor final : public Executor {
   std::condition_variable space_cv_;  // the queue has room, or stopping
   std::condition_variable idle_cv_;   // every accepted task has finished
   std::deque<Task> queue_;
+  std::size_t queued_helpers_ = 0;  // ParallelFor helpers in queue_
   bool stopping_ = false;
   int running_ = 0;
   std::int64_t unfinished_ = 0;  // accepted, completion not yet returned

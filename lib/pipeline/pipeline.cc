@@ -250,8 +250,18 @@ void Pipeline::DispatchOutput(tracker::BuilderOutput* output) {
   const bool submitted = executor_->Submit(
       [this, job, slot](int worker) {
         MVTRACK_CHECK(worker >= 0 && static_cast<std::size_t>(worker) < workspaces_.size());
+        // The window's persons are spread over idle workers (each on its own workspace); the
+        // result is the same as on one thread.
+        const tracker::PersonLoop person_loop = [this, worker](int n,
+                                                               const tracker::PersonTask& task) {
+          executor_->ParallelFor(worker, n, [&](int i, int w) {
+            MVTRACK_CHECK(w >= 0 && static_cast<std::size_t>(w) < workspaces_.size());
+            task(i, &workspaces_[static_cast<std::size_t>(w)]);
+          });
+        };
         *slot = tracker::ProcessWindowJob(rig_, options_, *job,
-                                          &workspaces_[static_cast<std::size_t>(worker)]);
+                                          &workspaces_[static_cast<std::size_t>(worker)],
+                                          person_loop);
       },
       [this, job, slot](const JobOutcome& outcome) {
         FinishWindow(*job, std::move(*slot), outcome);

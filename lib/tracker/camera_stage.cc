@@ -120,9 +120,10 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame, std::int
   out.utime = frame.utime;
   const std::vector<tracking2d::TrackedDetection> tracked = sort_.Update(frame.frame, boxes);
   out.observations.reserve(tracked.size());
+  // Each detection belongs to at most one track, so its observation can be moved out.
   for (const tracking2d::TrackedDetection& td : tracked) {
-    out.observations.emplace_back(td.track_id,
-                                  observations[static_cast<std::size_t>(td.detection_index)]);
+    out.observations.emplace_back(
+        td.track_id, std::move(observations[static_cast<std::size_t>(td.detection_index)]));
   }
   return out;
 }

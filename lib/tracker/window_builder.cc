@@ -113,16 +113,24 @@ void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIn
   // Crop every camera's 2D tracks to the window (cameras in rig order, tracks by id).
   for (std::size_t c = 0; c < tracks_.size(); ++c) {
     for (const auto& [track_id, observations] : tracks_[c]) {
-      core::Tracklet2D t;
+      // Observations are in frame order: the window's are one contiguous run. Tracklets too
+      // short for the window are skipped before copying anything.
+      const auto first = std::lower_bound(
+          observations.begin(), observations.end(), begin,
+          [](const TimedObservation& o, FrameIndex f) { return o.frame < f; });
+      const auto last = std::lower_bound(
+          first, observations.end(), end,
+          [](const TimedObservation& o, FrameIndex f) { return o.frame < f; });
+      const auto count = static_cast<std::size_t>(last - first);
+      if (static_cast<int>(count) < min_tracklet_length_) continue;
+      core::Tracklet2D& t = job.tracklets.emplace_back();
       t.camera_id = camera_ids_[c];
       t.track_id = track_id;
-      for (const TimedObservation& o : observations) {
-        if (o.frame < begin || o.frame >= end) continue;
-        t.frames.push_back(o.frame);
-        t.observations.push_back(o.observation);
-      }
-      if (static_cast<int>(t.frames.size()) >= min_tracklet_length_) {
-        job.tracklets.push_back(std::move(t));
+      t.frames.reserve(count);
+      t.observations.reserve(count);
+      for (auto it = first; it != last; ++it) {
+        t.frames.push_back(it->frame);
+        t.observations.push_back(it->observation);
       }
     }
   }

@@ -6,6 +6,7 @@
 /// depends on the previous windows and runs in window order in the WindowFinalizer.
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/observation.h"
@@ -43,7 +44,9 @@ struct WindowResult {
   /// triangulated frame, in cluster order. Pose mode refines them (TrackerOptions::refinement):
   /// duplicates are merged (the united clusters triangulated again, in the place of the first),
   /// fragments dropped, temporal outliers removed and missing joints completed; the
-  /// `source_tracklets` of a merged person list both clusters' tracklets.
+  /// `source_tracklets` of a merged person list both clusters' tracklets. Box mode removes
+  /// points at implausible heights (box_min_height_m, box_max_height_m; a person left without
+  /// points is dropped) and merges duplicates by footprint distance (box_merge_distance_m).
   std::vector<core::Tracklet3D> persons;
 };
 
@@ -67,8 +70,8 @@ class WindowWorkspace {
 };
 
 /// Processes one window: association (Eq. 2-4 + PDNC) of the job's tracklets, then CMMT
-/// (Algorithm 2) of every cluster whose tracklets come from at least two cameras, then, in
-/// pose mode, the refinement of triangulation/refinement.h (see WindowResult::persons).
+/// (Algorithm 2) of every cluster whose tracklets come from at least two cameras, then the
+/// refinement of triangulation/refinement.h for the mode (see WindowResult::persons).
 ///
 /// Pure and thread-compatible: it reads `rig`, `options` and `job` only (any number of threads
 /// may run it concurrently on shared immutable inputs) and writes only `workspace` and its
@@ -76,6 +79,19 @@ class WindowWorkspace {
 /// have been made for options.triangulation (checked).
 WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,
                               const WindowJob& job, WindowWorkspace* workspace);
+
+/// One person's triangulation inside ProcessWindowJob: person `index` on workspace `ws`.
+using PersonTask = std::function<void(int index, WindowWorkspace* ws)>;
+/// Runs task(i, ws) for every i in [0, n) and returns when all calls have returned, in any order
+/// and on any threads, each call with a workspace (made for the same triangulation options) that
+/// no concurrent call uses. Lets a threaded caller spread one window's persons over its workers.
+using PersonLoop = std::function<void(int n, const PersonTask& task)>;
+
+/// ProcessWindowJob with the persons' triangulation (CMMT and its per-person box gating) run by
+/// `person_loop` (empty: in order, on `workspace`). The result is identical either way.
+WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,
+                              const WindowJob& job, WindowWorkspace* workspace,
+                              const PersonLoop& person_loop);
 
 /// As above with a fresh workspace.
 WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,

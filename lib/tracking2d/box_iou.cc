@@ -12,6 +12,10 @@ bool IsUsableBox(const core::BoxPx& box) {
 
 double BoxIou(const core::BoxPx& a, const core::BoxPx& b) {
   if (!IsUsableBox(a) || !IsUsableBox(b)) return 0.0;
+  return BoxIouOfUsable(a, b);
+}
+
+double BoxIouOfUsable(const core::BoxPx& a, const core::BoxPx& b) {
   const double inter_w = std::min(a.x_max, b.x_max) - std::max(a.x_min, b.x_min);
   const double inter_h = std::min(a.y_max, b.y_max) - std::max(a.y_min, b.y_min);
   if (inter_w <= 0.0 || inter_h <= 0.0) return 0.0;

@@ -12,6 +12,10 @@ namespace mvtrack::tracking2d {
 /// (non-positive width or height), non-finite, or when the boxes do not overlap.
 double BoxIou(const core::BoxPx& a, const core::BoxPx& b);
 
+/// BoxIou for two boxes that are known to satisfy IsUsableBox (not checked): the same value
+/// without the two validity checks, for SORT's cost matrix (tracks x detections per frame).
+double BoxIouOfUsable(const core::BoxPx& a, const core::BoxPx& b);
+
 /// True when all coordinates are finite and the width and height are strictly positive: the
 /// boxes SortTracker can turn into a Kalman measurement.
 bool IsUsableBox(const core::BoxPx& box);

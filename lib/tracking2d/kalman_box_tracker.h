@@ -58,6 +58,9 @@ class KalmanBoxTracker {
   static core::BoxPx MeasurementToBox(const Measurement& z);
 
  private:
+  // The dense-matrix form of Update (Eigen expressions); Update's fallback at a zero pivot.
+  void UpdateDense(const Measurement& innovation);
+
   State x_;
   StateCovariance p_;
 };

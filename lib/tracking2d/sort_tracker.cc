@@ -52,7 +52,8 @@ std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
   std::erase_if(tracks_, [](const Track& t) { return !t.filter.HasValidBox(); });
 
   // 3. Associate (SORT Sec. 3.3): cost 1 - IoU between predicted track boxes (rows) and usable
-  //    detections (columns); pairs with IoU < iou_threshold are forbidden.
+  //    detections (columns); pairs with IoU < iou_threshold are forbidden. Both sides are usable
+  //    boxes here (HasValidBox above, IsUsableBox below), so the unchecked IoU applies.
   std::vector<int>& usable = usable_;
   usable.clear();
   for (std::size_t d = 0; d < boxes.size(); ++d) {
@@ -66,10 +67,11 @@ std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
     const core::BoxPx predicted = tracks_[static_cast<std::size_t>(r)].filter.Box();
     for (Eigen::Index c = 0; c < num_usable; ++c) {
       const auto detection = static_cast<std::size_t>(usable[static_cast<std::size_t>(c)]);
-      cost(r, c) = 1.0 - BoxIou(predicted, boxes[detection]);
+      cost(r, c) = 1.0 - BoxIouOfUsable(predicted, boxes[detection]);
     }
   }
-  const core::Assignment assignment = core::SolveAssignment(cost, 1.0 - options_.iou_threshold);
+  core::SolveAssignment(cost, 1.0 - options_.iou_threshold, &assignment_workspace_, &assignment_);
+  const core::Assignment& assignment = assignment_;
 
   std::vector<TrackedDetection> reported;
   reported.reserve(usable.size());

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/detection.h"
+#include "core/linear_assignment.h"
 #include "core/types.h"
 #include "tracking2d/kalman_box_tracker.h"
 
@@ -107,6 +108,8 @@ class SortTracker {
   // (the cost matrix only when its shape changes).
   std::vector<int> usable_;
   Eigen::MatrixXd cost_;
+  core::AssignmentWorkspace assignment_workspace_;
+  core::Assignment assignment_;
 };
 
 }  // namespace mvtrack::tracking2d

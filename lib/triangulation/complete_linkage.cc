@@ -79,16 +79,6 @@ bool Better(const ClusterScore& a, const ClusterScore& b) {
 
 }  // namespace
 
-int ClusterVoter::Find(int i) {
-  auto& p = parent_;
-  while (p[static_cast<std::size_t>(i)] != i) {
-    const auto ui = static_cast<std::size_t>(i);
-    p[ui] = p[static_cast<std::size_t>(p[ui])];  // path halving
-    i = p[ui];
-  }
-  return i;
-}
-
 void ClusterVoter::FindComponents(std::span<const Vec3> candidates, double kappa_m) {
   valid_.clear();
   for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -106,9 +96,16 @@ void ClusterVoter::FindComponents(std::span<const Vec3> candidates, double kappa
     return;
   }
 
-  // Connected components of the "distance <= kappa" graph by a sweep along x.
-  parent_.resize(n);
-  std::iota(parent_.begin(), parent_.end(), 0);
+  // Connected components of the "distance <= kappa" graph by a sweep along x. Each component
+  // is a linked list of positions headed by its representative, and every position carries its
+  // representative's id (relabelling the smaller list on a union), so "already connected" is
+  // one comparison.
+  label_.resize(n);
+  std::iota(label_.begin(), label_.end(), 0);
+  member_next_.assign(n, -1);
+  member_tail_.resize(n);
+  std::iota(member_tail_.begin(), member_tail_.end(), 0);
+  member_count_.assign(n, 1);
   order_.resize(n);
   std::iota(order_.begin(), order_.end(), 0);
   const double far_sq = FarSquared(kappa_m);
@@ -122,19 +119,25 @@ void ClusterVoter::FindComponents(std::span<const Vec3> candidates, double kappa
   for (std::size_t ii = 0; ii < n; ++ii) {
     const int i = order_[ii];
     const Vec3& pi = candidates[static_cast<std::size_t>(valid_[static_cast<std::size_t>(i)])];
-    // Root of i's component, kept current across the unions below (only they can change it).
-    int ri = Find(i);
     for (std::size_t jj = ii + 1; jj < n; ++jj) {
       const int j = order_[jj];
       const Vec3& pj = candidates[static_cast<std::size_t>(valid_[static_cast<std::size_t>(j)])];
       if (pj.x() - pi.x() > kappa_m) break;
+      const int li = label_[static_cast<std::size_t>(i)];
+      const int lj = label_[static_cast<std::size_t>(j)];
       // Already connected: the edge could not change the components, skip its distance.
-      const int rj = Find(j);
-      if (ri == rj) continue;
+      if (li == lj) continue;
       if (DistanceWithin(pi, pj, kappa_m, far_sq) > kappa_m) continue;
-      // The root is always the smallest position of its component.
-      parent_[static_cast<std::size_t>(std::max(ri, rj))] = std::min(ri, rj);
-      ri = std::min(ri, rj);
+      const bool li_larger = member_count_[static_cast<std::size_t>(li)] >=
+                             member_count_[static_cast<std::size_t>(lj)];
+      const int big = li_larger ? li : lj;
+      const int small = li_larger ? lj : li;
+      for (int u = small; u >= 0; u = member_next_[static_cast<std::size_t>(u)]) {
+        label_[static_cast<std::size_t>(u)] = big;
+      }
+      member_next_[static_cast<std::size_t>(member_tail_[static_cast<std::size_t>(big)])] = small;
+      member_tail_[static_cast<std::size_t>(big)] = member_tail_[static_cast<std::size_t>(small)];
+      member_count_[static_cast<std::size_t>(big)] += member_count_[static_cast<std::size_t>(small)];
     }
   }
 
@@ -142,12 +145,12 @@ void ClusterVoter::FindComponents(std::span<const Vec3> candidates, double kappa
   comp_of_root_.assign(n, -1);
   int num_comps = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const auto r = static_cast<std::size_t>(Find(static_cast<int>(i)));
+    const auto r = static_cast<std::size_t>(label_[i]);
     if (comp_of_root_[r] < 0) comp_of_root_[r] = num_comps++;
   }
   comp_offsets_.assign(static_cast<std::size_t>(num_comps) + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto r = static_cast<std::size_t>(Find(static_cast<int>(i)));
+    const auto r = static_cast<std::size_t>(label_[i]);
     ++comp_offsets_[static_cast<std::size_t>(comp_of_root_[r]) + 1];
   }
   for (std::size_t c = 0; c < static_cast<std::size_t>(num_comps); ++c) {
@@ -157,7 +160,7 @@ void ClusterVoter::FindComponents(std::span<const Vec3> candidates, double kappa
   // order_ is reused as the fill cursor of each component.
   order_.assign(comp_offsets_.begin(), comp_offsets_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto r = static_cast<std::size_t>(Find(static_cast<int>(i)));
+    const auto r = static_cast<std::size_t>(label_[i]);
     const auto c = static_cast<std::size_t>(comp_of_root_[r]);
     comp_members_[static_cast<std::size_t>(order_[c]++)] = valid_[i];
   }
@@ -176,13 +179,14 @@ void ClusterVoter::ClusterComponent(std::span<const Vec3> candidates, int comp, 
     return;
   }
 
-  // Full symmetric s x s distance matrix (row-major, diagonal unused) so the nearest-neighbour
+  // Full symmetric s x s distance matrix (row-major, diagonal +inf) so the nearest-neighbour
   // scans read one contiguous row; pairs further apart than kappa can never share a cluster.
   dist_.resize(s * s);
   const double far_sq = FarSquared(kappa_m);
   for (std::size_t i = 0; i < s; ++i) {
     const Vec3& pi = candidates[static_cast<std::size_t>(members[i])];
     float* row_i = dist_.data() + i * s;
+    row_i[i] = kNotMergeable;  // never a nearest neighbour of itself
     for (std::size_t j = i + 1; j < s; ++j) {
       const double d =
           DistanceWithin(pi, candidates[static_cast<std::size_t>(members[j])], kappa_m, far_sq);
@@ -213,8 +217,9 @@ void ClusterVoter::ClusterComponent(std::span<const Vec3> candidates, int comp, 
     const float* row_a = row(a);
     int b = prev;
     float best = prev >= 0 ? row_a[prev] : kNotMergeable;
+    // Neither a (its diagonal is +inf) nor prev (equal to best, not below it) can win, so the
+    // scan needs no tests for them.
     for (const int j : active_) {
-      if (j == a || j == prev) continue;
       const float dj = row_a[j];
       if (dj < best) {
         best = dj;
@@ -241,8 +246,9 @@ void ClusterVoter::ClusterComponent(std::span<const Vec3> candidates, int comp, 
     const int keep = std::min(a, b), drop = std::max(a, b);
     float* row_keep = row(keep);
     const float* row_b = row(b);
+    // For j = a or b one operand is a diagonal (+inf): keep's diagonal stays +inf and drop's
+    // entries are never read again, so they need no test either.
     for (const int j : active_) {
-      if (j == a || j == b) continue;
       const float merged = std::max(row_a[j], row_b[j]);
       row_keep[j] = merged;
       row(j)[keep] = merged;

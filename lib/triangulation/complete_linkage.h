@@ -66,11 +66,13 @@ class ClusterVoter {
   void FindComponents(std::span<const Vec3> candidates, double kappa_m);
   // Clusters component `comp` and appends its clusters to cluster_members_/cluster_offsets_.
   void ClusterComponent(std::span<const Vec3> candidates, int comp, double kappa_m);
-  int Find(int i);
 
   std::vector<int> valid_;           // indices of finite candidates, ascending
   std::vector<int> order_;           // positions into valid_ sorted by x
-  std::vector<int> parent_;          // union-find over positions into valid_
+  std::vector<int> label_;           // per position into valid_: its component's representative
+  std::vector<int> member_next_;     // per position: next position of its component, -1 at the end
+  std::vector<int> member_tail_;     // per representative: last position of its component
+  std::vector<int> member_count_;    // per representative: positions in its component
   std::vector<int> comp_of_root_;
   std::vector<int> comp_members_;    // original indices, grouped by component
   std::vector<int> comp_offsets_;

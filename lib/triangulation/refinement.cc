@@ -78,6 +78,16 @@ bool RefinementOptions::Validate(std::string* why) const {
     return fail("merge_distance_m must be finite and >= 0");
   }
   if (min_duplicate_pairs < 1) return fail("min_duplicate_pairs must be >= 1");
+  if (!(std::isfinite(box_merge_distance_m) && box_merge_distance_m >= 0.0)) {
+    return fail("box_merge_distance_m must be finite and >= 0");
+  }
+  if (!(std::isfinite(box_min_height_m) && std::isfinite(box_max_height_m) &&
+        box_min_height_m < box_max_height_m)) {
+    return fail("box_min_height_m and box_max_height_m must be finite, min < max");
+  }
+  if (!(std::isfinite(box_split_residual) && box_split_residual >= 0.0)) {
+    return fail("box_split_residual must be finite and >= 0");
+  }
   if (!(min_person_point_fraction >= 0.0 && min_person_point_fraction <= 1.0)) {
     return fail("min_person_point_fraction must be in [0, 1]");
   }
@@ -118,6 +128,132 @@ double PointDistance(const core::Tracklet3D& a, const core::Tracklet3D& b, std::
   if (pairs != nullptr) *pairs = count;
   if (count == 0) return std::numeric_limits<double>::infinity();
   return sum / static_cast<double>(count);
+}
+
+double FootprintDistance(const core::Tracklet3D& a, const core::Tracklet3D& b,
+                         std::int64_t* frames) {
+  // The (x, y) of the mean of the present points of one frame; nullopt without a point.
+  auto footprint = [](const Row& row) -> std::optional<Vec2> {
+    Vec2 sum = Vec2::Zero();
+    int n = 0;
+    for (const std::optional<Vec3>& p : row) {
+      if (!p) continue;
+      sum += p->head<2>();
+      ++n;
+    }
+    if (n == 0) return std::nullopt;
+    return Vec2(sum / static_cast<double>(n));
+  };
+  std::vector<double> d;
+  std::size_t i = 0;
+  std::size_t j = 0;
+  while (i < a.frames.size() && j < b.frames.size()) {
+    if (a.frames[i] < b.frames[j]) {
+      ++i;
+    } else if (b.frames[j] < a.frames[i]) {
+      ++j;
+    } else {
+      const std::optional<Vec2> fa = footprint(a.points[i]);
+      const std::optional<Vec2> fb = footprint(b.points[j]);
+      if (fa && fb) d.push_back((*fa - *fb).norm());
+      ++i;
+      ++j;
+    }
+  }
+  if (frames != nullptr) *frames = static_cast<std::int64_t>(d.size());
+  if (d.empty()) return std::numeric_limits<double>::infinity();
+  const std::size_t mid = d.size() / 2;
+  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(mid), d.end());
+  double m = d[mid];
+  if (d.size() % 2 == 0) {
+    m = 0.5 * (m + *std::max_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(mid)));
+  }
+  return m;
+}
+
+std::int64_t RemovePointsOutsideHeights(core::Tracklet3D* tracklet, double min_z, double max_z) {
+  MVTRACK_CHECK(tracklet != nullptr);
+  MVTRACK_CHECK_MSG(tracklet->frames.size() == tracklet->points.size(),
+                    "tracklet frames and points differ in length");
+  std::int64_t removed = 0;
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < tracklet->frames.size(); ++f) {
+    Row& row = tracklet->points[f];
+    bool any = false;
+    for (std::optional<Vec3>& p : row) {
+      if (!p) continue;
+      if (p->z() >= min_z && p->z() <= max_z) {
+        any = true;
+      } else {
+        p.reset();
+        ++removed;
+      }
+    }
+    if (!any) continue;
+    if (kept != f) {
+      tracklet->frames[kept] = tracklet->frames[f];
+      tracklet->points[kept] = std::move(row);
+    }
+    ++kept;
+  }
+  tracklet->frames.resize(kept);
+  tracklet->points.resize(kept);
+  return removed;
+}
+
+std::optional<double> ReprojectionResidual(const geometry::CameraRig& rig,
+                                           const core::Tracklet2D& tracklet,
+                                           const core::Tracklet3D& person,
+                                           double min_confidence) {
+  const std::optional<int> index = rig.IndexOf(tracklet.camera_id);
+  MVTRACK_CHECK_MSG(index.has_value(), "the tracklet's camera is not in the rig");
+  const geometry::CameraModel& camera = rig.camera(*index);
+  std::vector<double> per_frame;
+  for (std::size_t f = 0; f < tracklet.frames.size(); ++f) {
+    const int r = person.IndexOf(tracklet.frames[f]);
+    if (r < 0) continue;
+    const Row& row = person.points[static_cast<std::size_t>(r)];
+    const core::Observation2D& obs = tracklet.observations[f];
+    if (!(obs.scale_px > 0.0)) continue;
+    const std::size_t n = std::min({row.size(), obs.points_px.size(), obs.confidence.size()});
+    double sum = 0.0;
+    int count = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double c = obs.confidence[k];
+      if (!row[k] || !(c > 0.0) || c < min_confidence) continue;
+      const std::optional<Vec2> x = camera.ProjectUndistorted(*row[k]);
+      sum += x ? (*x - obs.points_px[k]).norm() / obs.scale_px
+               : std::numeric_limits<double>::infinity();
+      ++count;
+    }
+    if (count > 0) per_frame.push_back(sum / static_cast<double>(count));
+  }
+  if (per_frame.empty()) return std::nullopt;
+  const std::size_t mid = per_frame.size() / 2;
+  std::nth_element(per_frame.begin(), per_frame.begin() + static_cast<std::ptrdiff_t>(mid),
+                   per_frame.end());
+  double m = per_frame[mid];
+  if (per_frame.size() % 2 == 0) {
+    m = 0.5 * (m + *std::max_element(per_frame.begin(),
+                                      per_frame.begin() + static_cast<std::ptrdiff_t>(mid)));
+  }
+  return m;
+}
+
+std::vector<int> InconsistentTracklets(const geometry::CameraRig& rig,
+                                       const std::vector<core::Tracklet2D>& tracklets,
+                                       const std::vector<int>& cluster,
+                                       const core::Tracklet3D& person,
+                                       double max_residual, double min_confidence) {
+  std::vector<int> out;
+  if (max_residual <= 0.0) return out;
+  for (const int i : cluster) {
+    MVTRACK_CHECK(i >= 0 && static_cast<std::size_t>(i) < tracklets.size());
+    const std::optional<double> r =
+        ReprojectionResidual(rig, tracklets[static_cast<std::size_t>(i)], person, min_confidence);
+    if (r && *r > max_residual) out.push_back(i);
+  }
+  return out;
 }
 
 int MaxPointsPerFrame(const core::Tracklet3D& tracklet) {

@@ -13,9 +13,12 @@
 /// Stateless functions. Pure: no I/O, no globals.
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/observation.h"
+#include "geometry/camera_rig.h"
 
 namespace mvtrack::triangulation {
 
@@ -27,7 +30,34 @@ struct RefinementOptions {
   /// people >= 0.27 m (docs/ACCURACY.md). 0 disables merging.
   double merge_distance_m = 0.2;
   /// Common (frame, point) pairs needed before PointDistance is trusted for a merge; >= 1.
+  /// Box mode uses it too: common frames needed before FootprintDistance is trusted.
   int min_duplicate_pairs = 10;
+  /// Box mode: two persons of one window whose FootprintDistance (median ground-plane distance
+  /// over common frames) is at most this (metres) over at least min_duplicate_pairs common
+  /// frames are one person that association split (a box clipped at the image border moves its
+  /// centre, so on a ceiling grid PDNC's complete linkage splits people seen by many cameras):
+  /// their clusters are merged and triangulated together. Must stay below the closest distance
+  /// two people keep for a whole window (shoulder to shoulder about 0.45 m between body axes);
+  /// 0 disables.
+  double box_merge_distance_m = 0.3;
+  /// Box mode: a triangulated box point lower than this above the floor
+  /// (TrackerOptions::ground_height_m) is removed (RemovePointsOutsideHeights), and so is a
+  /// person left without points. A box centre of a standing person lies about 0.5-1.2 m above
+  /// the floor and a box bottom centre at it, so a point far below the floor or above 2 m is
+  /// the crossing of rays of different people (a wrong cluster or a box clipped at the image
+  /// border), not a person. Metres, finite, < box_max_height_m.
+  double box_min_height_m = -0.3;
+  /// Box mode: see box_min_height_m; the upper bound, metres above the floor, finite.
+  double box_max_height_m = 2.0;
+  /// Box mode: a tracklet of a person's cluster whose ReprojectionResidual against the person
+  /// is above this (a fraction of its box scale |w + h|, the units of the association's lambda)
+  /// shows somebody else: association's complete linkage put it there because in crowded top-
+  /// down views many people lie near one epipolar line. Such tracklets are split off; the
+  /// person is triangulated again from the rest (if they still span two cameras) and the
+  /// split-off tracklets, if they span two cameras, become a person of their own (before
+  /// duplicates are merged). Same-person tracklets reproject within about 0.1 (a box clipped at
+  /// the image border moves its centre by more). 0 disables.
+  double box_split_residual = 0.2;
   /// A person (a window's 3D tracklet) whose best frame has fewer than this fraction of the
   /// layout's points triangulated is dropped: fragments of one or two joints from partial 2D
   /// detections are not people, and as tracks they steal identities (docs/ACCURACY.md). In
@@ -55,7 +85,9 @@ struct RefinementOptions {
   /// (a frame with fewer carries too little evidence of the body's pose); >= 1.
   int min_points_to_fill = 4;
 
-  /// Checks ranges: merge_distance_m finite and >= 0, min_duplicate_pairs >= 1,
+  /// Checks ranges: merge_distance_m and box_merge_distance_m finite and >= 0,
+  /// box_min_height_m < box_max_height_m, both finite, box_split_residual finite and >= 0,
+  /// min_duplicate_pairs >= 1,
   /// min_person_point_fraction in [0, 1], outlier_half_window >= 0, outlier_distance_m finite and > 0,
   /// max_fill_gap >= 0, fill_neighbors >= 1, min_points_to_fill >= 1. On failure sets `why`
   /// (if non-null) and returns false.
@@ -67,6 +99,40 @@ struct RefinementOptions {
 /// their number. +infinity when there is none.
 double PointDistance(const core::Tracklet3D& a, const core::Tracklet3D& b,
                      std::int64_t* pairs = nullptr);
+
+/// Median ground-plane distance between the footprints of `a` and `b` over their common frames:
+/// a frame's footprint is the (x, y) of the mean of its present points (box mode: the one
+/// point); frames where either has no point are skipped. The median (of an even count: the mean
+/// of the two middle values) ignores the few frames where one of two coinciding persons is
+/// triangulated far off. `frames` (if non-null) receives the number of frames compared.
+/// +infinity when there is none. Deterministic.
+double FootprintDistance(const core::Tracklet3D& a, const core::Tracklet3D& b,
+                         std::int64_t* frames = nullptr);
+
+/// Removes every point of `tracklet` whose z is outside [min_z, max_z] (world frame, metres),
+/// then every frame left without a point (a tracklet left without frames is empty). Returns the
+/// number of points removed. Deterministic.
+std::int64_t RemovePointsOutsideHeights(core::Tracklet3D* tracklet, double min_z, double max_z);
+
+/// How far `tracklet`'s observations are from where `person` projects in its camera: per frame
+/// where both have points, the mean over points usable in the observation (confidence >=
+/// min_confidence and > 0) and present in the person of |projection - observed| / scale_px
+/// (undistorted pixels; a point behind the camera counts as +infinity); the median over those
+/// frames (of an even count: the mean of the two middle values). nullopt when no frame
+/// compares. The tracklet's camera must be in `rig` (checked). Deterministic.
+std::optional<double> ReprojectionResidual(const geometry::CameraRig& rig,
+                                           const core::Tracklet2D& tracklet,
+                                           const core::Tracklet3D& person,
+                                           double min_confidence);
+
+/// The members of `cluster` (indices into `tracklets`, in cluster order) whose
+/// ReprojectionResidual against `person` is above `max_residual`; members without a comparable
+/// frame are kept (no evidence). Empty when max_residual is 0 (disabled).
+std::vector<int> InconsistentTracklets(const geometry::CameraRig& rig,
+                                       const std::vector<core::Tracklet2D>& tracklets,
+                                       const std::vector<int>& cluster,
+                                       const core::Tracklet3D& person,
+                                       double max_residual, double min_confidence);
 
 /// The largest number of points present in one frame of `tracklet` (0 when it has no frame).
 int MaxPointsPerFrame(const core::Tracklet3D& tracklet);

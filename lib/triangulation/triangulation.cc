@@ -188,6 +188,15 @@ std::optional<Vec3> PersonTriangulator::SolveCmmt(TriangulationStats* stats) {
   // Algorithm 2 a): every cross-view pair of (observed or interpolated) points -> Eq. 5.
   candidates_.clear();
   std::int64_t pairs = 0;
+  // Each point's DLT rows depend on its own view only: computed once, not once per pair.
+  rows_.resize(points_.size());
+  for (const int vi : sel_views_) {
+    const auto v = static_cast<std::size_t>(vi);
+    for (int i = view_offsets_[v]; i < view_offsets_[v + 1]; ++i) {
+      const auto ui = static_cast<std::size_t>(i);
+      rows_[ui] = geometry::MakeTwoViewRows(view_projections_[v], points_[ui].x_px);
+    }
+  }
   for (std::size_t sa = 0; sa < sel_views_.size(); ++sa) {
     const auto va = static_cast<std::size_t>(sel_views_[sa]);
     const Mat34& pa = view_projections_[va];
@@ -195,11 +204,10 @@ std::optional<Vec3> PersonTriangulator::SolveCmmt(TriangulationStats* stats) {
       const auto vb = static_cast<std::size_t>(sel_views_[sb]);
       const Mat34& pb = view_projections_[vb];
       for (int ia = view_offsets_[va]; ia < view_offsets_[va + 1]; ++ia) {
-        const Vec2& xa = points_[static_cast<std::size_t>(ia)].x_px;
+        const geometry::TwoViewRows& ra = rows_[static_cast<std::size_t>(ia)];
         for (int ib = view_offsets_[vb]; ib < view_offsets_[vb + 1]; ++ib) {
           ++pairs;
-          const auto x = geometry::TriangulateTwoView(pa, xa, pb,
-                                                      points_[static_cast<std::size_t>(ib)].x_px);
+          const auto x = geometry::TriangulateTwoView(ra, rows_[static_cast<std::size_t>(ib)]);
           if (x && geometry::InFront(pa, *x) && geometry::InFront(pb, *x)) {
             candidates_.push_back(*x);
           }

@@ -17,6 +17,7 @@
 #include "core/observation.h"
 #include "core/types.h"
 #include "geometry/camera_rig.h"
+#include "geometry/triangulation.h"
 #include "triangulation/complete_linkage.h"
 
 namespace mvtrack::triangulation {
@@ -139,6 +140,7 @@ class PersonTriangulator {
   std::vector<int> sel_views_;           // views taking part, ascending
   std::vector<double> min_distance_;     // SelectViews: distance to the chosen set
   std::vector<char> chosen_;
+  std::vector<geometry::TwoViewRows> rows_;  // CMMT: DLT rows of points_ (selected views)
   std::vector<Vec3> candidates_;
   std::vector<Mat34> sel_projections_;   // DLT / RANSAC: one entry per view with a point
   std::vector<Vec2> sel_points_;

@@ -62,6 +62,10 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.linking.max_speed_m_per_frame == b.linking.max_speed_m_per_frame);
   REQUIRE(a.refinement.merge_distance_m == b.refinement.merge_distance_m);
   REQUIRE(a.refinement.min_duplicate_pairs == b.refinement.min_duplicate_pairs);
+  REQUIRE(a.refinement.box_merge_distance_m == b.refinement.box_merge_distance_m);
+  REQUIRE(a.refinement.box_min_height_m == b.refinement.box_min_height_m);
+  REQUIRE(a.refinement.box_max_height_m == b.refinement.box_max_height_m);
+  REQUIRE(a.refinement.box_split_residual == b.refinement.box_split_residual);
   REQUIRE(a.refinement.min_person_point_fraction == b.refinement.min_person_point_fraction);
   REQUIRE(a.refinement.outlier_half_window == b.refinement.outlier_half_window);
   REQUIRE(a.refinement.outlier_distance_m == b.refinement.outlier_distance_m);
@@ -114,6 +118,10 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.linking.max_speed_m_per_frame = unit(*rng);
   o.refinement.merge_distance_m = unit(*rng);
   o.refinement.min_duplicate_pairs = small(1, 30);
+  o.refinement.box_merge_distance_m = unit(*rng);
+  o.refinement.box_min_height_m = -unit(*rng);
+  o.refinement.box_max_height_m = 0.01 + 3.0 * unit(*rng);
+  o.refinement.box_split_residual = unit(*rng);
   o.refinement.min_person_point_fraction = unit(*rng);
   o.refinement.outlier_half_window = small(0, 10);
   o.refinement.outlier_distance_m = 0.01 + unit(*rng);
@@ -151,8 +159,8 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   CHECK(sizeof(association::AssociationOptions) == 32);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
   CHECK(sizeof(linking::LinkerOptions) == 24);
-  CHECK(sizeof(triangulation::RefinementOptions) == 56);
-  CHECK(sizeof(TrackerOptions) == 248);
+  CHECK(sizeof(triangulation::RefinementOptions) == 88);
+  CHECK(sizeof(TrackerOptions) == 280);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -208,6 +216,10 @@ TEST_CASE("Every key sets its own field", "[unit]") {
       "  refinement:\n"
       "    merge_distance_m: 0.15\n"
       "    min_duplicate_pairs: 7\n"
+      "    box_merge_distance_m: 0.25\n"
+      "    box_min_height_m: -0.5\n"
+      "    box_max_height_m: 2.5\n"
+      "    box_split_residual: 0.35\n"
       "    min_person_point_fraction: 0.375\n"
       "    outlier_half_window: 5\n"
       "    outlier_distance_m: 0.3\n"
@@ -248,6 +260,10 @@ TEST_CASE("Every key sets its own field", "[unit]") {
   CHECK(o.linking.max_speed_m_per_frame == 0.2);
   CHECK(o.refinement.merge_distance_m == 0.15);
   CHECK(o.refinement.min_duplicate_pairs == 7);
+  CHECK(o.refinement.box_merge_distance_m == 0.25);
+  CHECK(o.refinement.box_min_height_m == -0.5);
+  CHECK(o.refinement.box_max_height_m == 2.5);
+  CHECK(o.refinement.box_split_residual == 0.35);
   CHECK(o.refinement.min_person_point_fraction == 0.375);
   CHECK(o.refinement.outlier_half_window == 5);
   CHECK(o.refinement.outlier_distance_m == 0.3);
@@ -301,7 +317,8 @@ TEST_CASE("Options round-trip exactly: defaults and random sets", "[unit]") {
 TEST_CASE("ToYaml lists every option and the example documents exactly those", "[unit]") {
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
-  CHECK(written.size() == 39);  // 13 + 3 (sort) + 4 (association) + 7 (triangulation) + 4
+  // 13 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
+  CHECK(written.size() == 43);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

@@ -151,6 +151,30 @@ TEST_CASE("SolveAssignment equals brute force on random small matrices", "[unit]
   REQUIRE(checked == 36 * 4 * 6);
 }
 
+TEST_CASE("SolveAssignment with a reused workspace equals the one-shot form", "[unit]") {
+  std::mt19937 rng(20240612);
+  const Flavour flavours[] = {
+      Flavour::kContinuous, Flavour::kIntegerTies, Flavour::kGated, Flavour::kNonFinite};
+  AssignmentWorkspace workspace;
+  Assignment reused;
+  int checked = 0;
+  // Shapes grow and shrink so that stale buffer contents would show.
+  for (int trial = 0; trial < 400; ++trial) {
+    const int rows = 1 + static_cast<int>(rng() % 12);
+    const int cols = 1 + static_cast<int>(rng() % 12);
+    const Flavour flavour = flavours[rng() % 4];
+    const Eigen::MatrixXd cost = RandomCost(rows, cols, flavour, &rng);
+    const double max_cost = flavour == Flavour::kGated ? 0.5 : 2.0;
+    const Assignment fresh = SolveAssignment(cost, max_cost);
+    SolveAssignment(cost, max_cost, &workspace, &reused);
+    REQUIRE(reused.matches == fresh.matches);
+    REQUIRE(reused.unmatched_rows == fresh.unmatched_rows);
+    REQUIRE(reused.unmatched_cols == fresh.unmatched_cols);
+    ++checked;
+  }
+  REQUIRE(checked == 400);
+}
+
 TEST_CASE("SolveAssignment prefers more feasible matches over a cheaper partial one", "[unit]") {
   // Solving without the gate and dropping gated pairs afterwards would pick (0,0)+(1,1)
   // (total 0.61) and then lose (1,1) to the gate, leaving one match. Both rows can be

@@ -84,6 +84,39 @@ TEST_CASE("TriangulateTwoView recovers points exactly from clean projections", "
   }
 }
 
+TEST_CASE("TriangulateTwoView from precomputed rows equals the pixel form bit for bit",
+          "[unit]") {
+  const std::vector<Mat34> p = Projections(EightCameraRing());
+  std::mt19937 rng(302);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  int compared = 0;
+  for (std::size_t a = 0; a < p.size(); ++a) {
+    for (std::size_t b = 0; b < p.size(); ++b) {
+      if (a == b) continue;
+      for (int k = 0; k < 20; ++k) {
+        const Vec3 point = RandomPointInRoom(&rng);
+        const Vec2 xa = ProjectWith(p[a], point) + Vec2(noise(rng), noise(rng));
+        const Vec2 xb = ProjectWith(p[b], point) + Vec2(noise(rng), noise(rng));
+        const std::optional<Vec3> direct = TriangulateTwoView(p[a], xa, p[b], xb);
+        const std::optional<Vec3> from_rows =
+            TriangulateTwoView(MakeTwoViewRows(p[a], xa), MakeTwoViewRows(p[b], xb));
+        REQUIRE(direct.has_value() == from_rows.has_value());
+        if (direct) {
+          REQUIRE(direct->x() == from_rows->x());
+          REQUIRE(direct->y() == from_rows->y());
+          REQUIRE(direct->z() == from_rows->z());
+        }
+        ++compared;
+      }
+    }
+  }
+  REQUIRE(compared == 8 * 7 * 20);
+  // A non-finite pixel makes its rows unusable, as in the pixel form.
+  const Vec2 bad(std::numeric_limits<double>::quiet_NaN(), 10.0);
+  CHECK_FALSE(MakeTwoViewRows(p[0], bad).finite);
+  CHECK_FALSE(TriangulateTwoView(MakeTwoViewRows(p[0], bad), MakeTwoViewRows(p[1], Vec2(1, 2))));
+}
+
 TEST_CASE("TriangulateDlt recovers points exactly from 2 to 8 clean views", "[unit]") {
   const std::vector<Mat34> all = Projections(EightCameraRing());
   std::mt19937 rng(302);

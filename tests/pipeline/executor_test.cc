@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <latch>
 #include <mutex>
 #include <stdexcept>
@@ -200,6 +201,105 @@ TEST_CASE("ThreadPoolOptions are validated", "[unit][pipeline]") {
   CHECK_THAT(why, Catch::Contains("num_workers"));
   CHECK_FALSE(ThreadPoolOptions{2, 0}.Validate(&why));
   CHECK_THAT(why, Catch::Contains("queue_capacity"));
+}
+
+TEST_CASE("ParallelFor runs every index once, each worker on one call at a time",
+          "[unit][threads][pipeline]") {
+  ThreadPoolOptions options;
+  options.num_workers = 3;
+  ThreadPoolExecutor executor(options);
+  constexpr int kJobs = 6;
+  constexpr int kIndices = 200;
+  std::vector<std::atomic<int>> runs(kJobs * kIndices);
+  std::vector<std::atomic<int>> busy(3);
+  std::atomic<int> overlaps{0};
+  std::atomic<int> bad_worker{0};
+  for (int job = 0; job < kJobs; ++job) {
+    REQUIRE(executor.Submit([&, job](int caller) {
+      // Every job fans out, so workers are often busy with their own job's calls.
+      executor.ParallelFor(caller, kIndices, [&, job](int index, int worker) {
+        if (worker < 0 || worker >= 3) {
+          ++bad_worker;
+          return;
+        }
+        if (busy[static_cast<std::size_t>(worker)].fetch_add(1) != 0) ++overlaps;
+        ++runs[static_cast<std::size_t>(job * kIndices + index)];
+        std::this_thread::sleep_for(std::chrono::microseconds(50));
+        busy[static_cast<std::size_t>(worker)].fetch_sub(1);
+      });
+    }, {}));
+  }
+  executor.Drain();
+  CHECK(bad_worker == 0);
+  CHECK(overlaps == 0);
+  for (const std::atomic<int>& r : runs) REQUIRE(r == 1);
+  const ExecutorStats stats = executor.stats();
+  CHECK(stats.submitted == kJobs);
+  CHECK(stats.completed == kJobs);
+  CHECK(stats.failed == 0);
+}
+
+TEST_CASE("ParallelFor: an idle worker takes part", "[unit][threads][pipeline]") {
+  ThreadPoolOptions options;
+  options.num_workers = 2;
+  ThreadPoolExecutor executor(options);
+  std::atomic<int> index0_worker{-1};
+  std::atomic<int> index1_worker{-1};
+  std::atomic<bool> index1_started{false};
+  REQUIRE(executor.Submit([&](int caller) {
+    executor.ParallelFor(caller, 2, [&](int index, int worker) {
+      if (index == 1) {
+        index1_worker = worker;
+        index1_started = true;
+        return;
+      }
+      // Index 0 holds its taker until index 1 has started: only another worker can take it.
+      index0_worker = worker;
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (!index1_started && std::chrono::steady_clock::now() < give_up) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    });
+  }, {}));
+  executor.Drain();
+  REQUIRE(index1_started);
+  CHECK(index0_worker != index1_worker);
+}
+
+TEST_CASE("ParallelFor rethrows a call's exception after every call returned",
+          "[unit][threads][pipeline]") {
+  ThreadPoolOptions options;
+  options.num_workers = 2;
+  ThreadPoolExecutor executor(options);
+  std::atomic<int> calls{0};
+  std::vector<JobOutcome> outcomes;
+  std::mutex mu;
+  REQUIRE(executor.Submit([&](int caller) {
+    executor.ParallelFor(caller, 50, [&](int index, int) {
+      ++calls;
+      if (index == 7) throw std::runtime_error("index 7 failed");
+    });
+  }, [&](const JobOutcome& o) {
+    std::lock_guard<std::mutex> lock(mu);
+    outcomes.push_back(o);
+  }));
+  executor.Drain();
+  CHECK(calls == 50);
+  REQUIRE(outcomes.size() == 1);
+  CHECK(outcomes[0].status == JobStatus::kFailed);
+  CHECK(outcomes[0].error == "index 7 failed");
+}
+
+TEST_CASE("InlineExecutor ParallelFor runs the calls in order on worker 0", "[unit][pipeline]") {
+  InlineExecutor executor;
+  std::vector<int> order;
+  REQUIRE(executor.Submit([&](int caller) {
+    executor.ParallelFor(caller, 5, [&](int index, int worker) {
+      CHECK(worker == 0);
+      order.push_back(index);
+    });
+  }, {}));
+  CHECK(order == std::vector<int>{0, 1, 2, 3, 4});
 }
 
 }  // namespace

@@ -318,5 +318,67 @@ TEST_CASE("windows processed out of order on one reused workspace give the Track
   CHECK(tracks > 0);
 }
 
+TEST_CASE("a PersonLoop spreading persons over workspaces gives the same window results",
+          "[unit][tracker]") {
+  for (const bool poses : {false, true}) {
+    INFO((poses ? "poses" : "boxes"));
+    const sim::Scene scene = SmallScene(90, poses, 5);
+    const geometry::CameraRig rig(scene.cameras);
+    tracker::TrackerOptions options;
+    options.mode = poses ? tracker::InputMode::kPoses : tracker::InputMode::kBoxes;
+    tracker::FrameGate gate(rig, options);
+    std::vector<tracker::CameraStage> stages;
+    for (int c = 0; c < rig.size(); ++c) stages.emplace_back(rig.camera(c), c, options);
+    tracker::WindowBuilder builder(rig, options);
+    std::vector<tracker::BuilderOutput> outputs;
+    for (const auto& cams : scene.detections) {
+      for (const core::CameraFrame& cf : cams) {
+        const tracker::FrameAdmission a = gate.Admit(cf);
+        REQUIRE(a.rejection == tracker::FrameRejection::kNone);
+        tracker::CameraStageCounters counters;
+        builder.Add(a.events,
+                    stages[static_cast<std::size_t>(a.camera_index)].Process(cf, a.stream_epoch,
+                                                                              &counters),
+                    &outputs);
+      }
+    }
+    gate.Flush();
+    builder.Flush(&outputs);
+
+    tracker::WindowWorkspace sequential(options.triangulation);
+    std::vector<tracker::WindowWorkspace> pool;
+    for (int w = 0; w < 3; ++w) pool.emplace_back(options.triangulation);
+    // Persons in reverse order, round-robin over three workspaces.
+    int calls = 0;
+    const tracker::PersonLoop reversed = [&](int n, const tracker::PersonTask& task) {
+      for (int i = n - 1; i >= 0; --i) {
+        task(i, &pool[static_cast<std::size_t>(calls++ % 3)]);
+      }
+    };
+    int windows = 0;
+    std::size_t persons = 0;
+    for (const tracker::BuilderOutput& output : outputs) {
+      const auto* job = std::get_if<tracker::WindowJob>(&output);
+      if (job == nullptr) continue;
+      const tracker::WindowResult a = tracker::ProcessWindowJob(rig, options, *job, &sequential);
+      const tracker::WindowResult b =
+          tracker::ProcessWindowJob(rig, options, *job, &sequential, reversed);
+      REQUIRE(a.clusters == b.clusters);
+      REQUIRE(a.persons.size() == b.persons.size());
+      for (std::size_t i = 0; i < a.persons.size(); ++i) {
+        REQUIRE(a.persons[i].frames == b.persons[i].frames);
+        REQUIRE(a.persons[i].points == b.persons[i].points);
+        REQUIRE(a.persons[i].cameras == b.persons[i].cameras);
+        REQUIRE(a.persons[i].source_tracklets == b.persons[i].source_tracklets);
+      }
+      persons += a.persons.size();
+      ++windows;
+    }
+    CHECK(windows >= 3);
+    CHECK(persons > 0);
+    CHECK(calls > 0);
+  }
+}
+
 }  // namespace
 }  // namespace mvtrack

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <limits>
+#include <random>
 
 #include "tracking2d/box_iou.h"
 
@@ -34,6 +35,20 @@ TEST_CASE("BoxIou is zero for disjoint, touching and degenerate boxes", "[unit]"
   REQUIRE_FALSE(IsUsableBox(Box(nan, 0, 10, 10)));
   REQUIRE_FALSE(IsUsableBox(Box(0, 0, std::numeric_limits<double>::infinity(), 10)));
   REQUIRE(IsUsableBox(a));
+}
+
+TEST_CASE("BoxIouOfUsable equals BoxIou on usable boxes", "[unit]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> pos(0.0, 200.0);
+  std::uniform_real_distribution<double> size(0.5, 80.0);
+  for (int k = 0; k < 5000; ++k) {
+    const double ax = pos(rng), ay = pos(rng), bx = pos(rng), by = pos(rng);
+    const core::BoxPx a{ax, ay, ax + size(rng), ay + size(rng)};
+    const core::BoxPx b{bx, by, bx + size(rng), by + size(rng)};
+    REQUIRE(IsUsableBox(a));
+    REQUIRE(IsUsableBox(b));
+    REQUIRE(BoxIouOfUsable(a, b) == BoxIou(a, b));
+  }
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <random>
+
+#include <Eigen/Cholesky>
 
 #include "tracking2d/kalman_box_tracker.h"
 
@@ -108,6 +111,77 @@ TEST_CASE("KalmanBoxTracker never predicts a non-positive area from a shrinking 
     REQUIRE(kf.state()(2) > 0.0);
   }
   REQUIRE(kf.HasValidBox());
+}
+
+// The textbook dense form of SORT's filter (filterpy): x = F x, P = F P F^T + Q; K = P H^T S^-1
+// by Eigen's LDLT, x += K y, Joseph form P = (I - K H) P (I - K H)^T + K R K^T. KalmanBoxTracker
+// writes these out on their non-zero blocks in Eigen's evaluation order; both must agree to the
+// last bit (SORT's matching, hence every output, depends on them).
+struct DenseFilter {
+  KalmanBoxTracker::State x;
+  KalmanBoxTracker::StateCovariance p;
+
+  void Predict() {
+    if (x(6) + x(2) <= 0.0) x(6) = 0.0;
+    KalmanBoxTracker::StateCovariance f = KalmanBoxTracker::StateCovariance::Identity();
+    f.topRightCorner<3, 3>().setIdentity();
+    KalmanBoxTracker::State q;
+    q << 1.0, 1.0, 1.0, 1.0, 0.01, 0.01, 0.0001;
+    x = f * x;
+    p = f * p * f.transpose();
+    p.diagonal() += q;
+  }
+  void Update(const core::BoxPx& box) {
+    Eigen::Matrix4d r = Eigen::Vector4d(1.0, 1.0, 10.0, 10.0).asDiagonal();
+    const KalmanBoxTracker::Measurement innovation =
+        KalmanBoxTracker::BoxToMeasurement(box) - x.head<4>();
+    const Eigen::Matrix4d s = p.topLeftCorner<4, 4>() + r;
+    const Eigen::Matrix<double, 7, 4> k = s.ldlt().solve(p.topRows<4>()).transpose();
+    x += k * innovation;
+    KalmanBoxTracker::StateCovariance i_kh = KalmanBoxTracker::StateCovariance::Identity();
+    i_kh.leftCols<4>() -= k;
+    p = i_kh * p * i_kh.transpose() + k * r * k.transpose();
+  }
+};
+
+TEST_CASE("KalmanBoxTracker equals the dense Joseph-form filter bit for bit", "[unit]") {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  int updates = 0;
+  int mismatches = 0;
+  for (int track = 0; track < 300; ++track) {
+    // Pedestrian-like boxes of any size and speed, with detector noise, misses and gaps.
+    const double cx0 = 100.0 + 1000.0 * uniform(rng);
+    const double cy0 = 100.0 + 500.0 * uniform(rng);
+    const double h0 = 20.0 + 400.0 * uniform(rng);
+    const double vx = 10.0 * noise(rng);
+    const double vy = 3.0 * noise(rng);
+    const double vh = 0.5 * noise(rng);
+    const double noise_px = 0.2 + 5.0 * uniform(rng);
+    auto box_at = [&](int t) {
+      const double h = std::max(5.0, h0 + vh * t + noise_px * noise(rng));
+      const double w = std::max(2.0, 0.4 * h + noise_px * noise(rng));
+      const double cx = cx0 + vx * t + noise_px * noise(rng);
+      const double cy = cy0 + vy * t + noise_px * noise(rng);
+      return core::BoxPx{cx - 0.5 * w, cy - 0.5 * h, cx + 0.5 * w, cy + 0.5 * h};
+    };
+    const core::BoxPx first = box_at(0);
+    KalmanBoxTracker kf(first);
+    DenseFilter dense{kf.state(), kf.covariance()};
+    for (int t = 1; t < 150; ++t) {
+      kf.Predict();
+      dense.Predict();
+      if (uniform(rng) < 0.15) continue;  // missed detection: predict only
+      const core::BoxPx box = box_at(t);
+      kf.Update(box);
+      dense.Update(box);
+      ++updates;
+      if (kf.state() != dense.x || kf.covariance() != dense.p) ++mismatches;
+    }
+  }
+  REQUIRE(updates > 30000);
+  REQUIRE(mismatches == 0);
 }
 
 }  // namespace

@@ -4,12 +4,15 @@
 #include <catch2/catch.hpp>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "triangulation/refinement.h"
+#include "triangulation/synthetic_person.h"
 
 namespace mvtrack {
 namespace {
@@ -87,6 +90,145 @@ TEST_CASE("PointDistance averages common points of common frames", "[unit][trian
   });
   CHECK(std::isinf(triangulation::PointDistance(a, later, &pairs)));
   CHECK(pairs == 0);
+}
+
+TEST_CASE("RefinementOptions: box merge and height bounds are validated", "[unit][triangulation]") {
+  std::string why;
+  RefinementOptions o;
+  o.box_merge_distance_m = -0.1;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK(why.find("box_merge_distance_m") != std::string::npos);
+  o = {};
+  o.box_min_height_m = 2.0;  // not below box_max_height_m (2.0)
+  CHECK_FALSE(o.Validate(&why));
+  CHECK(why.find("box_min_height_m") != std::string::npos);
+  o = {};
+  o.box_max_height_m = std::numeric_limits<double>::infinity();
+  CHECK_FALSE(o.Validate(&why));
+  o = {};
+  o.box_min_height_m = -1.0;
+  o.box_max_height_m = 3.0;
+  CHECK(o.Validate(&why));
+}
+
+TEST_CASE("FootprintDistance is the median ground-plane distance of common frames",
+          "[unit][triangulation]") {
+  // a: frames 0-5 at (t, 0, 1); b: frames 1-6, 0.2 m beside a in y and 0.5 m higher, except
+  // frame 3, where b is triangulated 5 m off. Common frames 1-5: distances 0.2 (x4) and 5.
+  core::Tracklet3D a = MakeTracklet3D(Range(0, 5), [](FrameIndex t) {
+    return std::vector<Vec3>{Vec3(static_cast<double>(t), 0, 1)};
+  });
+  core::Tracklet3D b = MakeTracklet3D(Range(1, 6), [](FrameIndex t) {
+    const double off = t == 3 ? 5.0 : 0.2;
+    return std::vector<Vec3>{Vec3(static_cast<double>(t), off, 1.5)};
+  });
+  std::int64_t frames = 0;
+  CHECK(triangulation::FootprintDistance(a, b, &frames) == Approx(0.2));
+  CHECK(frames == 5);
+  CHECK(triangulation::FootprintDistance(b, a) == Approx(0.2));
+  // The mean (what PointDistance takes, in 3D) is dominated by the far frame.
+  CHECK(triangulation::PointDistance(a, b) > 1.0);
+  // Even count: the mean of the two middle values (frames 1-4: 0.2, 0.2, 5, 0.2 -> 0.2;
+  // frames 2-3 only: 0.2 and 5 -> 2.6).
+  core::Tracklet3D b23 = b;
+  b23.frames = {2, 3};
+  b23.points = {b.points[1], b.points[2]};
+  CHECK(triangulation::FootprintDistance(a, b23, &frames) == Approx(2.6));
+  CHECK(frames == 2);
+  // Missing points are skipped; a frame's footprint is the mean of its present points.
+  b23.points[1][0].reset();
+  CHECK(triangulation::FootprintDistance(a, b23, &frames) == Approx(0.2));
+  CHECK(frames == 1);
+  core::Tracklet3D two = MakeTracklet3D(Range(2, 2), [](FrameIndex) {
+    return std::vector<Vec3>{Vec3(1.0, 0.0, 0.0), Vec3(3.0, 0.6, 9.0)};  // mean (2, 0.3)
+  });
+  CHECK(triangulation::FootprintDistance(a, two) == Approx(0.3));
+  // No common frame.
+  core::Tracklet3D late = MakeTracklet3D(Range(10, 12), [](FrameIndex) {
+    return std::vector<Vec3>{Vec3(0, 0, 0)};
+  });
+  CHECK(std::isinf(triangulation::FootprintDistance(a, late, &frames)));
+  CHECK(frames == 0);
+}
+
+TEST_CASE("RemovePointsOutsideHeights drops implausible points and empty frames",
+          "[unit][triangulation]") {
+  // Frames 0-4, two points: point 0 at z = t - 1 (-1, 0, 1, 2, 3), point 1 at z = 1 except
+  // frame 4 (z = 5). Bounds [-0.5, 2] (inclusive): point 0 goes at frames 0 and 4, point 1 at
+  // frame 4, which is then empty and dropped.
+  core::Tracklet3D t = MakeTracklet3D(Range(0, 4), [](FrameIndex f) {
+    const double z = static_cast<double>(f);
+    return std::vector<Vec3>{Vec3(0, 0, z - 1.0), Vec3(1, 0, f == 4 ? 5.0 : 1.0)};
+  });
+  CHECK(triangulation::RemovePointsOutsideHeights(&t, -0.5, 2.0) == 3);
+  REQUIRE(t.frames == std::vector<FrameIndex>{0, 1, 2, 3});
+  REQUIRE(t.points.size() == 4);
+  CHECK_FALSE(t.points[0][0].has_value());
+  CHECK(t.points[0][1]->z() == 1.0);
+  CHECK(t.points[1][0]->z() == 0.0);
+  CHECK(t.points[3][0]->z() == 2.0);  // on the bound: kept
+  // Everything out: the tracklet is empty.
+  CHECK(triangulation::RemovePointsOutsideHeights(&t, 10.0, 11.0) == 7);
+  CHECK(t.frames.empty());
+  CHECK(t.points.empty());
+}
+
+TEST_CASE("ReprojectionResidual and InconsistentTracklets find another person's tracklet",
+          "[unit][triangulation]") {
+  // Person A (its exact pelvis track over frames 0-29) and four box tracklets: A seen by
+  // cameras 3, 5 and 8 (0.5 px noise), and B, walking 1.5 m beside A, seen by camera 13.
+  const auto cameras = testing::RoomCameras();
+  const geometry::CameraRig rig = testing::MakeRig(cameras);
+  const testing::Walker a;
+  testing::Walker b = a;
+  b.start += Vec3(0.0, 1.5, 0.0);
+  const auto frames = testing::FrameRange(0, 29);
+  core::Tracklet3D person = MakeTracklet3D(frames, [&](FrameIndex t) {
+    return std::vector<Vec3>{a.Pelvis(t)};
+  });
+  std::mt19937 rng(8);
+  const testing::ViewSpec spec{true, 0.5};
+  std::vector<core::Tracklet2D> tracklets;
+  for (std::size_t c = 0; c < 3; ++c) {
+    tracklets.push_back(testing::MakeTracklet(cameras[c], 1, a, frames, spec, &rng));
+  }
+  tracklets.push_back(testing::MakeTracklet(cameras[3], 2, b, frames, spec, &rng));
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::optional<double> r =
+        triangulation::ReprojectionResidual(rig, tracklets[i], person, 0.1);
+    REQUIRE(r.has_value());
+    CHECK(*r < 0.01);  // 0.5 px noise on a scale of hundreds of pixels
+  }
+  const std::optional<double> rb =
+      triangulation::ReprojectionResidual(rig, tracklets[3], person, 0.1);
+  REQUIRE(rb.has_value());
+  CHECK(*rb > 0.2);
+  const std::vector<int> cluster = {0, 1, 2, 3};
+  CHECK(triangulation::InconsistentTracklets(rig, tracklets, cluster, person, 0.2, 0.1) ==
+        std::vector<int>{3});
+  // A limit above B's residual keeps everyone; 0 disables the test.
+  CHECK(triangulation::InconsistentTracklets(rig, tracklets, cluster, person, *rb + 0.01, 0.1)
+            .empty());
+  CHECK(triangulation::InconsistentTracklets(rig, tracklets, cluster, person, 0.0, 0.1).empty());
+  // Points below the confidence limit do not compare; a tracklet without a comparable frame has
+  // no residual and is kept.
+  core::Tracklet2D unsure = tracklets[3];
+  for (core::Observation2D& obs : unsure.observations) obs.confidence[0] = 0.05;
+  CHECK_FALSE(triangulation::ReprojectionResidual(rig, unsure, person, 0.1).has_value());
+  tracklets.push_back(unsure);
+  CHECK(triangulation::InconsistentTracklets(rig, tracklets, {0, 1, 2, 3, 4}, person, 0.2,
+                                             0.1) == std::vector<int>{3});
+  // The median over frames follows the majority of frames: with A's projections in 14 of 30
+  // frames the tracklet is still B (split off), with them in 16 of 30 it is A (kept).
+  core::Tracklet2D mostly_b = tracklets[3];
+  core::Tracklet2D mostly_a = tracklets[3];
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    const Vec2 at_a = *cameras[3].ProjectUndistorted(a.Pelvis(frames[f]));
+    if (f < 14) mostly_b.observations[f].points_px[0] = at_a;
+    if (f >= 14) mostly_a.observations[f].points_px[0] = at_a;
+  }
+  CHECK(*triangulation::ReprojectionResidual(rig, mostly_b, person, 0.1) > 0.2);
+  CHECK(*triangulation::ReprojectionResidual(rig, mostly_a, person, 0.1) < 0.01);
 }
 
 TEST_CASE("MaxPointsPerFrame counts the best frame", "[unit][triangulation]") {

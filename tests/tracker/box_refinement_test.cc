@@ -1,0 +1,154 @@
+// Box-mode refinement inside ProcessWindowJob (TrackerOptions::refinement): duplicates of one
+// person (association split its tracklets into two clusters) are merged by footprint distance
+// (box_merge_distance_m), two real people walking side by side are not, and box points at
+// implausible heights (box_min_height_m, box_max_height_m) are removed.
+
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "tracker/window_job.h"
+#include "triangulation/synthetic_person.h"
+
+namespace mvtrack {
+namespace {
+
+using testing::FrameRange;
+using testing::MakeRig;
+using testing::MakeTracklet;
+using testing::RoomCameras;
+using testing::ViewSpec;
+using testing::Walker;
+
+tracker::TrackerOptions BoxOptions() {
+  tracker::TrackerOptions o;
+  o.mode = tracker::InputMode::kBoxes;
+  o.layout = core::KeypointLayoutId::kNone;
+  return o;
+}
+
+tracker::WindowJob EmptyJob() {
+  tracker::WindowJob job;
+  job.window_id = 0;
+  job.begin = 0;
+  job.end = 30;
+  job.finalize_from = 0;
+  job.finalize_to = 30;
+  return job;
+}
+
+// Largest distance between a person's points and the walker's pelvis over its frames.
+double WorstError(const core::Tracklet3D& person, const Walker& walker) {
+  double worst = 0.0;
+  for (std::size_t f = 0; f < person.frames.size(); ++f) {
+    REQUIRE(person.points[f][0].has_value());
+    worst = std::max(worst, (*person.points[f][0] - walker.Pelvis(person.frames[f])).norm());
+  }
+  return worst;
+}
+
+// One walker seen by all four cameras over [0, 30); cameras 3 and 5 (the first two) also report
+// a second, simultaneous box track on the same body (a detector's duplicate box), with its own
+// pixel noise. The cannot-link rule (two tracks of one camera at the same time) keeps each
+// camera's two tracks in different clusters, so association yields a second person on the
+// same body: a duplicate a few centimetres from the first.
+TEST_CASE("Box mode: a duplicate of a person is merged back into it", "[unit][tracker]") {
+  const auto cameras = RoomCameras();
+  const geometry::CameraRig rig = MakeRig(cameras);
+  const Walker walker;
+  std::mt19937 rng(3);
+  const ViewSpec spec{true, 1.0};
+  tracker::WindowJob job = EmptyJob();
+  const auto frames = FrameRange(0, 29);
+  for (std::size_t c = 0; c < cameras.size(); ++c) {
+    job.tracklets.push_back(MakeTracklet(cameras[c], 1, walker, frames, spec, &rng));
+    if (c < 2) job.tracklets.push_back(MakeTracklet(cameras[c], 2, walker, frames, spec, &rng));
+  }
+  tracker::TrackerOptions options = BoxOptions();
+
+  options.refinement.box_merge_distance_m = 0.0;  // merging off: the duplicate shows
+  const tracker::WindowResult unmerged = tracker::ProcessWindowJob(rig, options, job);
+  REQUIRE(unmerged.persons.size() == 2);
+  // Both are the walker: the duplicate coincides with the person (it is not a wrong cluster).
+  for (const core::Tracklet3D& person : unmerged.persons) CHECK(WorstError(person, walker) < 0.1);
+
+  options.refinement.box_merge_distance_m = 0.3;
+  const tracker::WindowResult merged = tracker::ProcessWindowJob(rig, options, job);
+  REQUIRE(merged.persons.size() == 1);
+  const core::Tracklet3D& person = merged.persons.front();
+  std::vector<int> sources = person.source_tracklets;
+  std::sort(sources.begin(), sources.end());
+  CHECK(sources == std::vector<int>{0, 1, 2, 3, 4, 5});
+  CHECK(person.frames.size() == 30);
+  CHECK(WorstError(person, walker) < 0.1);
+}
+
+// Two people walking side by side, 0.7 m apart (body axes), seen by all four cameras. They are
+// real people: the 0.3 m default keeps them apart, while a merge limit above their distance
+// (1 m) would unite them, so the test proves the limit and not association decides.
+TEST_CASE("Box mode: two people 0.7 m apart are not merged", "[unit][tracker]") {
+  const auto cameras = RoomCameras();
+  const geometry::CameraRig rig = MakeRig(cameras);
+  const Walker a;
+  Walker b = a;
+  const Vec3 left = Vec3::UnitZ().cross(a.velocity_mps.normalized());
+  b.start = a.start + 0.7 * left;
+  std::mt19937 rng(4);
+  const ViewSpec spec{true, 1.0};
+  tracker::WindowJob job = EmptyJob();
+  const auto frames = FrameRange(0, 29);
+  for (const auto& camera : cameras) {
+    job.tracklets.push_back(MakeTracklet(camera, 1, a, frames, spec, &rng));
+    job.tracklets.push_back(MakeTracklet(camera, 2, b, frames, spec, &rng));
+  }
+  tracker::TrackerOptions options = BoxOptions();
+  REQUIRE(options.refinement.box_merge_distance_m == 0.3);
+  const tracker::WindowResult r = tracker::ProcessWindowJob(rig, options, job);
+  REQUIRE(r.persons.size() == 2);
+  // One person per walker, each where its walker is.
+  const double a0 = WorstError(r.persons[0], a) < 0.1 ? 0.0 : 1.0;
+  const core::Tracklet3D& pa = a0 == 0.0 ? r.persons[0] : r.persons[1];
+  const core::Tracklet3D& pb = a0 == 0.0 ? r.persons[1] : r.persons[0];
+  CHECK(WorstError(pa, a) < 0.1);
+  CHECK(WorstError(pb, b) < 0.1);
+
+  options.refinement.box_merge_distance_m = 1.0;
+  CHECK(tracker::ProcessWindowJob(rig, options, job).persons.size() == 1);
+}
+
+// A cluster whose box points triangulate below the floor (here a walker whose pelvis is 1 m
+// under it: what the rays of two different people or of a clipped box can meet at) is no person.
+TEST_CASE("Box mode: points at implausible heights are removed", "[unit][tracker]") {
+  const auto cameras = RoomCameras();
+  const geometry::CameraRig rig = MakeRig(cameras);
+  const Walker person;
+  Walker under = person;
+  under.start = Vec3(1.0, 1.5, -2.0);  // pelvis at -1.05 m
+  std::mt19937 rng(6);
+  const ViewSpec spec{true, 0.5};
+  tracker::WindowJob job = EmptyJob();
+  const auto frames = FrameRange(0, 29);
+  for (const auto& camera : cameras) {
+    job.tracklets.push_back(MakeTracklet(camera, 1, person, frames, spec, &rng));
+    job.tracklets.push_back(MakeTracklet(camera, 2, under, frames, spec, &rng));
+  }
+  tracker::TrackerOptions options = BoxOptions();
+  options.refinement.box_min_height_m = -5.0;  // gate wide open: both are triangulated
+  REQUIRE(tracker::ProcessWindowJob(rig, options, job).persons.size() == 2);
+
+  options.refinement.box_min_height_m = -0.3;
+  const tracker::WindowResult r = tracker::ProcessWindowJob(rig, options, job);
+  REQUIRE(r.persons.size() == 1);
+  CHECK(WorstError(r.persons.front(), person) < 0.1);
+
+  // The gate is relative to the floor: with the floor 1.2 m lower, the low walker's pelvis is
+  // 0.15 m above it (plausible) and the other's 2.15 m (not).
+  options.ground_height_m = -1.2;
+  const tracker::WindowResult lowered = tracker::ProcessWindowJob(rig, options, job);
+  REQUIRE(lowered.persons.size() == 1);
+  CHECK(WorstError(lowered.persons.front(), under) < 0.1);
+}
+
+}  // namespace
+}  // namespace mvtrack
