@@ -29,11 +29,17 @@ DetectionCheck Rejected(std::string reason) {
   return DetectionCheck{DetectionVerdict::kRejected, std::move(reason)};
 }
 
+// kNone or one of AllKeypointLayouts(), without building that list (this runs per detection).
 bool IsKnownLayout(KeypointLayoutId id) {
-  for (KeypointLayoutId known : AllKeypointLayouts()) {
-    if (id == known) return true;
+  switch (id) {
+    case KeypointLayoutId::kNone:
+    case KeypointLayoutId::kCoco17:
+    case KeypointLayoutId::kBody25:
+    case KeypointLayoutId::kShelf14:
+    case KeypointLayoutId::kPanoptic19:
+      return true;
   }
-  return id == KeypointLayoutId::kNone;
+  return false;
 }
 
 // The region in which boxes and keypoints may lie: the image grown by the margin on every side.

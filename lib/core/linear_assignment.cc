@@ -152,29 +152,46 @@ void SolveAssignment(const Eigen::MatrixXd& cost, double max_cost, AssignmentWor
   std::vector<int>& active_cols = ws.active_cols_;
   active_rows.clear();
   active_cols.clear();
+  std::vector<int>& col_of_row = ws.col_of_row_;
+  col_of_row.assign(static_cast<std::size_t>(rows), -1);
+  // Whether every row and every column has at most one feasible pair. Then the feasible pairs
+  // are disjoint, and the one assignment that matches all of them is the unique optimum (it is
+  // the only one without a forbidden pair among the active rows and columns), so it is taken
+  // directly: the solver would return exactly it.
+  bool disjoint_pairs = true;
   {
-    std::vector<char>& col_has_feasible = ws.col_flag_;
-    col_has_feasible.assign(static_cast<std::size_t>(cols), 0);
+    // Per column: 0, 1 or 2 (two or more) feasible pairs.
+    std::vector<char>& col_feasible = ws.col_flag_;
+    col_feasible.assign(static_cast<std::size_t>(cols), 0);
     for (int i = 0; i < rows; ++i) {
-      bool row_has_feasible = false;
+      int row_feasible = 0;
+      int feasible_col = -1;
       for (int j = 0; j < cols; ++j) {
         if (IsFeasible(cost(i, j), max_cost)) {
-          row_has_feasible = true;
-          col_has_feasible[static_cast<std::size_t>(j)] = 1;
+          ++row_feasible;
+          feasible_col = j;
+          char& count = col_feasible[static_cast<std::size_t>(j)];
+          if (count < 2) ++count;
         }
       }
-      if (row_has_feasible) active_rows.push_back(i);
+      if (row_feasible > 0) active_rows.push_back(i);
+      if (row_feasible == 1) {
+        col_of_row[static_cast<std::size_t>(i)] = feasible_col;
+      } else if (row_feasible > 1) {
+        disjoint_pairs = false;
+      }
     }
     for (int j = 0; j < cols; ++j) {
-      if (col_has_feasible[static_cast<std::size_t>(j)]) active_cols.push_back(j);
+      const char count = col_feasible[static_cast<std::size_t>(j)];
+      if (count > 0) active_cols.push_back(j);
+      if (count > 1) disjoint_pairs = false;
     }
   }
 
-  std::vector<int>& col_of_row = ws.col_of_row_;
-  col_of_row.assign(static_cast<std::size_t>(rows), -1);
   const int n_rows = static_cast<int>(active_rows.size());
   const int n_cols = static_cast<int>(active_cols.size());
-  if (n_rows > 0 && n_cols > 0) {
+  if (!disjoint_pairs) col_of_row.assign(static_cast<std::size_t>(rows), -1);
+  if (!disjoint_pairs && n_rows > 0 && n_cols > 0) {
     // Solve with the smaller side as rows (the algorithm needs rows <= columns).
     const bool transpose = n_rows > n_cols;
     const int n = transpose ? n_cols : n_rows;

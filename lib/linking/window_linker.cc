@@ -94,9 +94,12 @@ bool LinkerOptions::Validate(std::string* why) const {
   return true;
 }
 
-std::optional<double> MeanOverlapDistance(const core::Tracklet3D& a, const core::Tracklet3D& b) {
-  CheckWellFormed(a);
-  CheckWellFormed(b);
+namespace {
+
+// MeanOverlapDistance of two tracklets already checked by CheckWellFormed (WindowLinker::Link
+// checks every tracklet once when it arrives, so its pairwise loop skips the re-checks).
+std::optional<double> MeanOverlapDistanceOfChecked(const core::Tracklet3D& a,
+                                                   const core::Tracklet3D& b) {
   // Eq. 8: D_ij = 1/|Psi_i ∩ Psi_j| * sum over the common frames; the frames are sorted, so a
   // merge walk finds Psi_i ∩ Psi_j. Frames without a common valid point carry no measurement
   // and are left out of both the sum and the count.
@@ -120,6 +123,14 @@ std::optional<double> MeanOverlapDistance(const core::Tracklet3D& a, const core:
   }
   if (frames == 0) return std::nullopt;
   return sum / static_cast<double>(frames);
+}
+
+}  // namespace
+
+std::optional<double> MeanOverlapDistance(const core::Tracklet3D& a, const core::Tracklet3D& b) {
+  CheckWellFormed(a);
+  CheckWellFormed(b);
+  return MeanOverlapDistanceOfChecked(a, b);
 }
 
 std::optional<GapMeasurement> MeasureGap(const core::Tracklet3D& from, const core::Tracklet3D& to) {
@@ -211,7 +222,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     const auto sr = static_cast<std::size_t>(r);
     for (Eigen::Index c = 0; c < num_cols; ++c) {
       const auto sc = static_cast<std::size_t>(c);
-      const auto d = MeanOverlapDistance(tracks_[sr].last_tracklet, tracklets[sc]);
+      const auto d = MeanOverlapDistanceOfChecked(tracks_[sr].last_tracklet, tracklets[sc]);
       if (!d.has_value()) continue;
       has_overlap[sr * num_tracklets + sc] = 1;
       if (*d <= options_.max_link_distance_m) overlap_cost(r, c) = *d;

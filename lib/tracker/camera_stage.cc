@@ -90,8 +90,10 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame, std::int
   limits.image_width_px = camera_.width_px;
   limits.image_height_px = camera_.height_px;
   limits.box_margin_fraction = options_.box_margin_fraction;
-  std::vector<core::BoxPx> boxes;
-  std::vector<core::Observation2D> observations;
+  std::vector<core::BoxPx>& boxes = boxes_;
+  std::vector<core::Observation2D>& observations = observations_;
+  boxes.clear();
+  observations.clear();
   boxes.reserve(frame.detections.size());
   observations.reserve(frame.detections.size());
   for (const core::Detection2D& original : frame.detections) {

@@ -79,6 +79,10 @@ class CameraStage {
   std::map<core::KeypointLayoutId, core::KeypointMapping> mappings_;
   tracking2d::SortTracker sort_;
   std::int64_t stream_epoch_ = 0;
+  // Scratch of Process, kept between calls for its capacity: the boxes SORT tracks and the
+  // observations of the usable detections (parallel).
+  std::vector<core::BoxPx> boxes_;
+  std::vector<core::Observation2D> observations_;
 };
 
 }  // namespace mvtrack::tracker

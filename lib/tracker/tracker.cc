@@ -46,9 +46,10 @@ AddResult Tracker::Add(const core::CameraFrame& frame) {
   CameraStageCounters counters;
   TrackedCameraFrame tracked = cameras_[static_cast<std::size_t>(admission.camera_index)].Process(
       frame, admission.stream_epoch, &counters);
-  std::vector<BuilderOutput> outputs;
-  builder_.Add(admission.events, std::move(tracked), &outputs);
-  RunOutputs(&outputs, &result.finalized);
+  outputs_.clear();
+  builder_.Add(admission.events, std::move(tracked), &outputs_);
+  RunOutputs(&outputs_, &result.finalized);
+  outputs_.clear();  // releases the processed window jobs now; the capacity stays
 
   result.reason = std::move(counters.first_rejection_reason);
   result.detections_used = counters.detections_used;

@@ -122,6 +122,7 @@ class Tracker {
   WindowFinalizer finalizer_;
   std::optional<WindowOutput> last_window_;
   TrackerStats stats_;
+  std::vector<BuilderOutput> outputs_;  // Add's scratch, emptied after each call
 };
 
 }  // namespace mvtrack::tracker

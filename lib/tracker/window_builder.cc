@@ -110,9 +110,15 @@ void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIn
   job.end = end;
   job.finalize_from = finalize_from;
   job.finalize_to = finalize_to;
+  // Observations before keep_from are dropped right after this window (no later window needs
+  // them), so the window takes them by move; only the overlap with the next window is copied.
+  const FrameIndex keep_from = begin + window_step_;
+  std::size_t num_tracks = 0;
+  for (const auto& camera_tracks : tracks_) num_tracks += camera_tracks.size();
+  job.tracklets.reserve(num_tracks);
   // Crop every camera's 2D tracks to the window (cameras in rig order, tracks by id).
   for (std::size_t c = 0; c < tracks_.size(); ++c) {
-    for (const auto& [track_id, observations] : tracks_[c]) {
+    for (auto& [track_id, observations] : tracks_[c]) {
       // Observations are in frame order: the window's are one contiguous run. Tracklets too
       // short for the window are skipped before copying anything.
       const auto first = std::lower_bound(
@@ -130,14 +136,18 @@ void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIn
       t.observations.reserve(count);
       for (auto it = first; it != last; ++it) {
         t.frames.push_back(it->frame);
-        t.observations.push_back(it->observation);
+        if (it->frame < keep_from) {
+          t.observations.push_back(std::move(it->observation));
+        } else {
+          t.observations.push_back(it->observation);
+        }
       }
     }
   }
   out->push_back(std::move(job));
 
-  // Trim observations no later window needs (the next window begins at begin + δ).
-  const FrameIndex keep_from = begin + window_step_;
+  // Trim observations no later window needs (the next window begins at begin + δ); those in
+  // this window were moved out above.
   for (auto& camera_tracks : tracks_) {
     for (auto it = camera_tracks.begin(); it != camera_tracks.end();) {
       auto& obs = it->second;

@@ -1,6 +1,7 @@
 #include "tracker/window_finalizer.h"
 
 #include <algorithm>
+#include <iterator>
 #include <utility>
 
 #include "core/check.h"
@@ -66,15 +67,17 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
   linking::LinkResult link = linker_.Link(result.window_id, result.persons);
   counters_.windows_processed += 1;
   counters_.tracks_born += static_cast<std::int64_t>(link.born.size());
-  std::map<TrackId3D, const linking::LinkedTrack*> alive;
-  for (const linking::LinkedTrack& t : linker_.tracks()) alive[t.id] = &t;
+  // The linker's alive tracks, sorted by id (WindowLinker::tracks()): looked up by bisection.
+  const std::vector<linking::LinkedTrack>& alive = linker_.tracks();
   for (std::size_t i = 0; i < result.persons.size(); ++i) {
     const core::Tracklet3D& person = result.persons[i];
     const TrackId3D id = link.track_of_tracklet[i];
     auto first = first_frame_of_track_.try_emplace(id, person.frames.front()).first;
     first->second = std::min(first->second, person.frames.front());
-    auto it = alive.find(id);
-    if (it == alive.end() || it->second->state == linking::TrackState::kTentative) continue;
+    const auto it = std::lower_bound(
+        alive.begin(), alive.end(), id,
+        [](const linking::LinkedTrack& t, TrackId3D wanted) { return t.id < wanted; });
+    if (it == alive.end() || it->id != id || it->state == linking::TrackState::kTentative) continue;
     for (std::size_t f = 0; f < person.frames.size(); ++f) {
       const FrameIndex frame = person.frames[f];
       if (frame < result.finalize_from || frame >= result.finalize_to) continue;
@@ -91,7 +94,10 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
       track.confidence = static_cast<double>(valid) / static_cast<double>(num_points_);
       track.cameras = person.cameras;
       track.age_frames = frame - first->second;
-      track.state = it->second->state;
+      track.state = it->state;
+      // All of a frame's tracks come from the one window that finalizes it: at most one per
+      // person of that window.
+      if (pending->second.tracks.empty()) pending->second.tracks.reserve(result.persons.size());
       pending->second.tracks.push_back(std::move(track));
     }
   }
@@ -110,6 +116,11 @@ void WindowFinalizer::EndStream(std::vector<Frame3D>* out) {
 }
 
 void WindowFinalizer::EmitFinal(FrameIndex up_to, std::vector<Frame3D>* out) {
+  // Room for every frame emitted below at once (geometric growth kept for long-lived outputs).
+  const auto count = static_cast<std::size_t>(
+      std::distance(pending_.begin(), pending_.lower_bound(up_to)));
+  const std::size_t needed = out->size() + count;
+  if (needed > out->capacity()) out->reserve(std::max(needed, 2 * out->capacity()));
   while (!pending_.empty() && pending_.begin()->first < up_to) {
     PendingFrame& p = pending_.begin()->second;
     Frame3D f;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include "core/check.h"
@@ -40,6 +41,10 @@ StateCovariance InitialCovariance() {
   return d.asDiagonal();
 }
 
+// The small fixed-trip loops of FactorLdlt and Update are fully unrolled ("#pragma GCC unroll"):
+// that removes loop control and index arithmetic only; every floating-point operation and its
+// order stay as written.
+
 // Eigen's LDLT (ldlt_inplace<Lower>::unblocked) of a 4x4 matrix, operation for operation:
 // diagonal pivoting (first largest |diagonal|), the same swaps of the lower triangle, the same
 // left-to-right sums; only the lower triangle of `s` is read. Returns false at a zero pivot
@@ -47,9 +52,11 @@ StateCovariance InitialCovariance() {
 bool FactorLdlt(const Eigen::Matrix4d& s, Eigen::Matrix4d* out, std::array<int, 4>* perm) {
   Eigen::Matrix4d& mat = *out;
   mat = s;
+  #pragma GCC unroll 8
   for (int k = 0; k < 4; ++k) {
     int big = k;
     double big_abs = std::abs(mat(k, k));
+    #pragma GCC unroll 8
     for (int i = k + 1; i < 4; ++i) {
       if (std::abs(mat(i, i)) > big_abs) {
         big_abs = std::abs(mat(i, i));
@@ -58,9 +65,12 @@ bool FactorLdlt(const Eigen::Matrix4d& s, Eigen::Matrix4d* out, std::array<int, 
     }
     (*perm)[static_cast<std::size_t>(k)] = big;
     if (big != k) {
+      #pragma GCC unroll 8
       for (int j = 0; j < k; ++j) std::swap(mat(k, j), mat(big, j));
+      #pragma GCC unroll 8
       for (int i = big + 1; i < 4; ++i) std::swap(mat(i, k), mat(i, big));
       std::swap(mat(k, k), mat(big, big));
+      #pragma GCC unroll 8
       for (int i = k + 1; i < big; ++i) {
         const double tmp = mat(i, k);
         mat(i, k) = mat(big, i);
@@ -69,18 +79,23 @@ bool FactorLdlt(const Eigen::Matrix4d& s, Eigen::Matrix4d* out, std::array<int, 
     }
     if (k > 0) {
       std::array<double, 4> temp{};
+      #pragma GCC unroll 8
       for (int j = 0; j < k; ++j) temp[static_cast<std::size_t>(j)] = mat(j, j) * mat(k, j);
       double dot = mat(k, 0) * temp[0];
+      #pragma GCC unroll 8
       for (int j = 1; j < k; ++j) dot = dot + mat(k, j) * temp[static_cast<std::size_t>(j)];
       mat(k, k) -= dot;
+      #pragma GCC unroll 8
       for (int row = k + 1; row < 4; ++row) {
         double acc = mat(row, 0) * temp[0];
+        #pragma GCC unroll 8
         for (int j = 1; j < k; ++j) acc = acc + mat(row, j) * temp[static_cast<std::size_t>(j)];
         mat(row, k) = mat(row, k) - acc;
       }
     }
     const double akk = mat(k, k);
     if (!(std::abs(akk) > 0.0)) return false;
+    #pragma GCC unroll 8
     for (int row = k + 1; row < 4; ++row) mat(row, k) /= akk;
   }
   return true;
@@ -151,15 +166,19 @@ void KalmanBoxTracker::Update(const core::BoxPx& box) {
   Gain k;
   k.topRows<kStateDim>() = p_.topRows<kMeasurementDim>().transpose();
   k.row(7).setZero();
+  #pragma GCC unroll 8
   for (int i = 0; i < kMeasurementDim; ++i) {
     const int pi = perm[static_cast<std::size_t>(i)];
     if (pi != i) k.col(i).swap(k.col(pi));
   }
   // Unit lower solve, column-major kernel: each row subtracts the earlier rows in order.
+  #pragma GCC unroll 8
   for (int i = 0; i < kMeasurementDim; ++i) {
+    #pragma GCC unroll 8
     for (int q = i + 1; q < kMeasurementDim; ++q) k.col(q) -= k.col(i) * l(q, i);
   }
   // D^+ (LDLT treats |d| <= the smallest normal double as zero).
+  #pragma GCC unroll 8
   for (int i = 0; i < kMeasurementDim; ++i) {
     const double d = l(i, i);
     if (std::abs(d) > std::numeric_limits<double>::min()) {
@@ -169,11 +188,14 @@ void KalmanBoxTracker::Update(const core::BoxPx& box) {
     }
   }
   // Unit upper solve with L^T (row-major kernel): a left-to-right dot of the later rows.
+  #pragma GCC unroll 8
   for (int i = kMeasurementDim - 2; i >= 0; --i) {
     Column dot = k.col(i + 1) * l(i + 1, i);
+    #pragma GCC unroll 8
     for (int q = i + 2; q < kMeasurementDim; ++q) dot = dot + k.col(q) * l(q, i);
     k.col(i) -= dot;
   }
+  #pragma GCC unroll 8
   for (int i = kMeasurementDim - 1; i >= 0; --i) {
     const int pi = perm[static_cast<std::size_t>(i)];
     if (pi != i) k.col(i).swap(k.col(pi));
@@ -188,9 +210,11 @@ void KalmanBoxTracker::Update(const core::BoxPx& box) {
            (k(6, 2) * innovation(2) + k(6, 3) * innovation(3));
   // a = the first four columns of I - K H (the others are those of I).
   Gain a = -k;
+  #pragma GCC unroll 8
   for (int c = 0; c < kMeasurementDim; ++c) a(c, c) = 1.0 - k(c, c);
   // t1 = (I - K H) P: rows 0-5 left to right, row 6 pairwise.
   Eigen::Matrix<double, 8, kStateDim> t1;
+  #pragma GCC unroll 8
   for (int j = 0; j < kStateDim; ++j) {
     t1.col(j) = ((a.col(0) * p_(0, j) + a.col(1) * p_(1, j)) + a.col(2) * p_(2, j)) +
                 a.col(3) * p_(3, j);
@@ -202,7 +226,9 @@ void KalmanBoxTracker::Update(const core::BoxPx& box) {
   // P = t1 (I - K H)^T + (K R) K^T: P aliases the right-hand side, so Eigen evaluates both
   // products by scalar (pairwise) reductions for every entry.
   Gain kr;
+  #pragma GCC unroll 8
   for (int c = 0; c < kMeasurementDim; ++c) kr.col(c) = k.col(c) * r(c, c);
+  #pragma GCC unroll 8
   for (int j = 0; j < kStateDim; ++j) {
     const Column head = t1.col(0) * a(j, 0) + (t1.col(1) * a(j, 1) + t1.col(2) * a(j, 2));
     const Column tail = j < kMeasurementDim ? Column(t1.col(3) * a(j, 3))
@@ -229,8 +255,13 @@ core::BoxPx KalmanBoxTracker::Box() const {
   return MeasurementToBox(x_.head<kMeasurementDim>());
 }
 
-bool KalmanBoxTracker::HasValidBox() const {
-  return x_.allFinite() && x_(2) > 0.0 && x_(3) > 0.0 && IsUsableBox(Box());
+bool KalmanBoxTracker::HasValidBox() const { return ValidBox().has_value(); }
+
+std::optional<core::BoxPx> KalmanBoxTracker::ValidBox() const {
+  if (!(x_.allFinite() && x_(2) > 0.0 && x_(3) > 0.0)) return std::nullopt;
+  const core::BoxPx box = Box();
+  if (!IsUsableBox(box)) return std::nullopt;
+  return box;
 }
 
 }  // namespace mvtrack::tracking2d

@@ -5,6 +5,7 @@
 /// single-threaded value type.
 
 #include <Eigen/Core>
+#include <optional>
 
 #include "core/detection.h"
 
@@ -46,6 +47,8 @@ class KalmanBoxTracker {
   /// True when the estimated area and aspect ratio are positive and the state is finite, i.e.
   /// Box() is a proper box.
   bool HasValidBox() const;
+  /// Box() when HasValidBox(), else nullopt (the box is computed once for both).
+  std::optional<core::BoxPx> ValidBox() const;
 
   /// Current state estimate.
   const State& state() const { return x_; }

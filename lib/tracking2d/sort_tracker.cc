@@ -3,6 +3,8 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <optional>
 #include <utility>
 
 #include "core/check.h"
@@ -48,8 +50,17 @@ std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
     for (FrameIndex s = 0; s < steps; ++s) t.filter.Predict();
   }
   // SORT removes trackers whose prediction is invalid (NaN); a non-positive area or aspect
-  // ratio cannot be compared by IoU either.
-  std::erase_if(tracks_, [](const Track& t) { return !t.filter.HasValidBox(); });
+  // ratio cannot be compared by IoU either. The survivors' predicted boxes are kept for step 3.
+  predicted_.clear();
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    const std::optional<core::BoxPx> box = tracks_[i].filter.ValidBox();
+    if (!box) continue;
+    predicted_.push_back(*box);
+    if (kept != i) tracks_[kept] = std::move(tracks_[i]);
+    ++kept;
+  }
+  tracks_.erase(tracks_.begin() + static_cast<std::ptrdiff_t>(kept), tracks_.end());
 
   // 3. Associate (SORT Sec. 3.3): cost 1 - IoU between predicted track boxes (rows) and usable
   //    detections (columns); pairs with IoU < iou_threshold are forbidden. Both sides are usable
@@ -64,7 +75,7 @@ std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
   Eigen::MatrixXd& cost = cost_;
   cost.resize(num_tracks_before, num_usable);
   for (Eigen::Index r = 0; r < num_tracks_before; ++r) {
-    const core::BoxPx predicted = tracks_[static_cast<std::size_t>(r)].filter.Box();
+    const core::BoxPx& predicted = predicted_[static_cast<std::size_t>(r)];
     for (Eigen::Index c = 0; c < num_usable; ++c) {
       const auto detection = static_cast<std::size_t>(usable[static_cast<std::size_t>(c)]);
       cost(r, c) = 1.0 - BoxIouOfUsable(predicted, boxes[detection]);

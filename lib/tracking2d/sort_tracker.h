@@ -107,6 +107,7 @@ class SortTracker {
   // Per-frame scratch kept between Update() calls so a warmed-up tracker does not reallocate
   // (the cost matrix only when its shape changes).
   std::vector<int> usable_;
+  std::vector<core::BoxPx> predicted_;  // Update scratch: predicted box of each track
   Eigen::MatrixXd cost_;
   core::AssignmentWorkspace assignment_workspace_;
   core::Assignment assignment_;

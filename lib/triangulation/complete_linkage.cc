@@ -51,15 +51,20 @@ struct ClusterScore {
   Vec3 centroid = Vec3::Zero();
 };
 
+/// Unweighted mean of candidates[members[0..n)], summed in member order.
+Vec3 Centroid(std::span<const Vec3> candidates, const int* members, std::size_t n) {
+  Vec3 centroid = Vec3::Zero();
+  for (std::size_t i = 0; i < n; ++i) centroid += candidates[static_cast<std::size_t>(members[i])];
+  centroid /= static_cast<double>(n);
+  return centroid;
+}
+
 ClusterScore Score(std::span<const Vec3> candidates, const int* members, std::size_t n) {
   ClusterScore s;
   s.size = static_cast<int>(n);
   s.min_index = members[0];
-  for (std::size_t i = 0; i < n; ++i) {
-    s.centroid += candidates[static_cast<std::size_t>(members[i])];
-    s.min_index = std::min(s.min_index, members[i]);
-  }
-  s.centroid /= static_cast<double>(n);
+  for (std::size_t i = 0; i < n; ++i) s.min_index = std::min(s.min_index, members[i]);
+  s.centroid = Centroid(candidates, members, n);
   double sum = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     sum += (candidates[static_cast<std::size_t>(members[i])] - s.centroid).norm();
@@ -81,6 +86,7 @@ bool Better(const ClusterScore& a, const ClusterScore& b) {
 
 void ClusterVoter::FindComponents(std::span<const Vec3> candidates, double kappa_m) {
   valid_.clear();
+  all_within_kappa_ = false;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (candidates[i].allFinite()) valid_.push_back(static_cast<int>(i));
   }
@@ -91,6 +97,7 @@ void ClusterVoter::FindComponents(std::span<const Vec3> candidates, double kappa
 
   // Shortcut: every pair is within kappa, so complete linkage merges everything.
   if (BoxDiagonal(candidates, valid_.data(), n) <= kappa_m) {
+    all_within_kappa_ = true;
     comp_members_ = valid_;
     comp_offsets_.push_back(static_cast<int>(n));
     return;
@@ -265,6 +272,16 @@ std::optional<ClusterVote> ClusterVoter::Vote(std::span<const Vec3> candidates, 
   FindComponents(candidates, kappa_m);
   const std::size_t num_comps = comp_offsets_.size() - 1;
   if (num_comps == 0) return std::nullopt;
+  if (all_within_kappa_) {
+    // One component whose bounding box is within kappa: ClusterComponent would emit it as the
+    // only cluster (the same bounding-box test), so it wins without scoring or tie-breaks.
+    winner_ = valid_;
+    ClusterVote vote;
+    vote.point = Centroid(candidates, valid_.data(), valid_.size());
+    vote.cluster_size = static_cast<int>(valid_.size());
+    vote.num_candidates = static_cast<int>(valid_.size());
+    return vote;
+  }
 
   auto comp_size = [&](int c) {
     const auto uc = static_cast<std::size_t>(c);

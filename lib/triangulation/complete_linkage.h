@@ -68,6 +68,7 @@ class ClusterVoter {
   void ClusterComponent(std::span<const Vec3> candidates, int comp, double kappa_m);
 
   std::vector<int> valid_;           // indices of finite candidates, ascending
+  bool all_within_kappa_ = false;    // last FindComponents: every finite pair within kappa
   std::vector<int> order_;           // positions into valid_ sorted by x
   std::vector<int> label_;           // per position into valid_: its component's representative
   std::vector<int> member_next_;     // per position: next position of its component, -1 at the end

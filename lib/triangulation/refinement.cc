@@ -209,10 +209,16 @@ std::optional<double> ReprojectionResidual(const geometry::CameraRig& rig,
   MVTRACK_CHECK_MSG(index.has_value(), "the tracklet's camera is not in the rig");
   const geometry::CameraModel& camera = rig.camera(*index);
   std::vector<double> per_frame;
+  per_frame.reserve(tracklet.frames.size());
+  // Both frame lists are strictly increasing: one forward walk over person.frames finds each
+  // tracklet frame's row (what person.IndexOf would find by bisection).
+  std::size_t r = 0;
   for (std::size_t f = 0; f < tracklet.frames.size(); ++f) {
-    const int r = person.IndexOf(tracklet.frames[f]);
-    if (r < 0) continue;
-    const Row& row = person.points[static_cast<std::size_t>(r)];
+    const FrameIndex frame = tracklet.frames[f];
+    while (r < person.frames.size() && person.frames[r] < frame) ++r;
+    if (r == person.frames.size()) break;
+    if (person.frames[r] != frame) continue;
+    const Row& row = person.points[r];
     const core::Observation2D& obs = tracklet.observations[f];
     if (!(obs.scale_px > 0.0)) continue;
     const std::size_t n = std::min({row.size(), obs.points_px.size(), obs.confidence.size()});

@@ -384,6 +384,10 @@ core::Tracklet3D PersonTriangulator::Triangulate(const geometry::CameraRig& rig,
 
   const bool cmmt = options_.method == TriangulationMethod::kCmmt;
   const bool interpolate = cmmt && options_.phi > 0;
+  if (t_begin < t_end) {
+    out.frames.reserve(static_cast<std::size_t>(t_end - t_begin));
+    out.points.reserve(static_cast<std::size_t>(t_end - t_begin));
+  }
   for (FrameIndex t = t_begin; t < t_end; ++t) {
     for (std::size_t e = 0; e < view_tracklets_.size(); ++e) {
       const auto& frames = tracklets[static_cast<std::size_t>(view_tracklets_[e])].frames;

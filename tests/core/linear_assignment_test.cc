@@ -151,6 +151,29 @@ TEST_CASE("SolveAssignment equals brute force on random small matrices", "[unit]
   REQUIRE(checked == 36 * 4 * 6);
 }
 
+TEST_CASE("SolveAssignment matches disjoint feasible pairs, as the full solver would", "[unit]") {
+  // Every row and column has at most one feasible pair: all of them are matched.
+  Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(4, 5, 0.9);
+  cost(0, 3) = 0.2;
+  cost(2, 0) = 0.4;
+  cost(3, 4) = 0.1;
+  const Assignment a = SolveAssignment(cost, 0.5);
+  REQUIRE(a.matches == std::vector<std::pair<int, int>>{{0, 3}, {2, 0}, {3, 4}});
+  REQUIRE(a.unmatched_rows == std::vector<int>{1});
+  REQUIRE(a.unmatched_cols == std::vector<int>{1, 2});
+  // A second feasible pair in column 3 makes the pairs compete (the general solver runs): the
+  // cheaper one wins and the rest is unchanged.
+  cost(1, 3) = 0.3;
+  const Assignment b = SolveAssignment(cost, 0.5);
+  REQUIRE(b.matches == a.matches);
+  REQUIRE(b.unmatched_rows == a.unmatched_rows);
+  REQUIRE(b.unmatched_cols == a.unmatched_cols);
+  cost(1, 3) = 0.1;
+  const Assignment c = SolveAssignment(cost, 0.5);
+  REQUIRE(c.matches == std::vector<std::pair<int, int>>{{1, 3}, {2, 0}, {3, 4}});
+  REQUIRE(c.unmatched_rows == std::vector<int>{0});
+}
+
 TEST_CASE("SolveAssignment with a reused workspace equals the one-shot form", "[unit]") {
   std::mt19937 rng(20240612);
   const Flavour flavours[] = {

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include <Eigen/Cholesky>
@@ -111,6 +112,21 @@ TEST_CASE("KalmanBoxTracker never predicts a non-positive area from a shrinking 
     REQUIRE(kf.state()(2) > 0.0);
   }
   REQUIRE(kf.HasValidBox());
+}
+
+TEST_CASE("KalmanBoxTracker::ValidBox is the predicted Box() of a valid state", "[unit]") {
+  KalmanBoxTracker kf(core::BoxPx{10.0, 20.0, 50.0, 120.0});
+  kf.Predict();
+  kf.Update(core::BoxPx{14.0, 22.0, 56.0, 126.0});
+  kf.Predict();
+  REQUIRE(kf.HasValidBox());
+  const std::optional<core::BoxPx> box = kf.ValidBox();
+  REQUIRE(box.has_value());
+  const core::BoxPx want = kf.Box();
+  CHECK(box->x_min == want.x_min);
+  CHECK(box->y_min == want.y_min);
+  CHECK(box->x_max == want.x_max);
+  CHECK(box->y_max == want.y_max);
 }
 
 // The textbook dense form of SORT's filter (filterpy): x = F x, P = F P F^T + Q; K = P H^T S^-1
