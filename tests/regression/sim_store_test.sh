@@ -37,41 +37,4 @@ expect_exit 0 "$OUT/eval.txt" \
   "$MVTRACK" eval --gt "$OUT/scene/gt.jsonl" "$OUT/tracks0.jsonl" --json "$OUT/eval.json"
 cat "$OUT/eval.txt"
 
-python3 - "$SCENE" "$SRC/tests/regression/sim_floors.txt" "$OUT/eval.json" <<'PY'
-import json, sys
-
-scene, floors_path, eval_path = sys.argv[1:]
-report = json.load(open(eval_path, encoding="utf-8"))
-clear = report["tracking"]["clear_mot"]
-metrics = {
-    "mota": clear["mota"],
-    "idf1": report["tracking"]["identity"]["idf1"],
-    "false_positives": clear["num_false_positives"],
-    "misses": clear["num_misses"],
-    "id_switches": clear["num_switches"],
-}
-checked, failures = 0, []
-for number, raw in enumerate(open(floors_path, encoding="utf-8"), 1):
-    line = raw.split("#", 1)[0].split()
-    if not line:
-        continue
-    where = f"{floors_path}:{number}"
-    if len(line) != 4 or line[2] not in (">=", "<="):
-        sys.exit(f"{where}: expected 'SCENE METRIC >=|<= BOUND', got {raw.strip()!r}")
-    name, op, bound = line[1], line[2], float(line[3])
-    if line[0] != scene:
-        continue
-    if name not in metrics:
-        sys.exit(f"{where}: unknown metric {name!r} (known: {', '.join(sorted(metrics))})")
-    value = metrics[name]
-    ok = value is not None and (value >= bound if op == ">=" else value <= bound)
-    print(f"{scene} {name} = {value} (bound {op} {bound}): {'ok' if ok else 'REGRESSION'}")
-    checked += 1
-    if not ok:
-        failures.append(f"{name} = {value}, bound {op} {bound} ({where})")
-if checked == 0:
-    sys.exit(f"{floors_path}: no bound for scene {scene}")
-if failures:
-    sys.exit("FAIL: " + scene + " regressed: " + "; ".join(failures))
-print(f"PASS: {scene}: {checked} bounds hold, replays byte-identical")
-PY
+python3 "$SRC/tests/regression/check_floors.py" "$SCENE" "$SRC/tests/regression/sim_floors.txt" "$OUT/eval.json"
