@@ -208,14 +208,9 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptio
   r.clusters = association::AssociateTracklets(rig, job.tracklets, options.association);
   // CMMT (Algorithm 2) per person seen by at least two cameras.
   const int num_points = NumPoints(options);
-  std::vector<CameraId> cams;
   std::vector<const std::vector<int>*> multi_view;
   for (const std::vector<int>& cluster : r.clusters) {
-    cams.clear();
-    for (int i : cluster) cams.push_back(job.tracklets[static_cast<std::size_t>(i)].camera_id);
-    std::sort(cams.begin(), cams.end());
-    if (std::unique(cams.begin(), cams.end()) - cams.begin() < 2) continue;
-    multi_view.push_back(&cluster);
+    if (NumCameras(job, cluster) >= 2) multi_view.push_back(&cluster);
   }
   // Persons are independent: `person_loop` may run them concurrently (each on its own
   // workspace); they are kept in cluster order, so the result does not depend on how.

@@ -33,6 +33,33 @@ core::CameraFrame Header(CameraId camera, FrameIndex frame, std::size_t detectio
   return cf;
 }
 
+// The tracker's stages by hand up to the window builder: every admitted camera-frame through
+// FrameGate, its CameraStage and the WindowBuilder, then both flushed; the builder's whole
+// output sequence (closed frames and window jobs, in order).
+std::vector<tracker::BuilderOutput> RunStagesToWindows(const sim::Scene& scene,
+                                                       const geometry::CameraRig& rig,
+                                                       const tracker::TrackerOptions& options) {
+  tracker::FrameGate gate(rig, options);
+  std::vector<tracker::CameraStage> stages;
+  for (int c = 0; c < rig.size(); ++c) stages.emplace_back(rig.camera(c), c, options);
+  tracker::WindowBuilder builder(rig, options);
+  std::vector<tracker::BuilderOutput> outputs;
+  for (const auto& cams : scene.detections) {
+    for (const core::CameraFrame& cf : cams) {
+      const tracker::FrameAdmission a = gate.Admit(cf);
+      REQUIRE(a.rejection == tracker::FrameRejection::kNone);
+      tracker::CameraStageCounters counters;
+      builder.Add(a.events,
+                  stages[static_cast<std::size_t>(a.camera_index)].Process(cf, a.stream_epoch,
+                                                                            &counters),
+                  &outputs);
+    }
+  }
+  gate.Flush();
+  builder.Flush(&outputs);
+  return outputs;
+}
+
 TEST_CASE("FrameGate decides admission and frame sequencing from headers", "[unit][tracker]") {
   const sim::Scene scene = SmallScene(10, false);
   const geometry::CameraRig rig(scene.cameras);
@@ -270,24 +297,7 @@ TEST_CASE("windows processed out of order on one reused workspace give the Track
   const std::vector<tracker::Frame3D> expected = testing::RunScene(reference.get(), scene);
 
   // The stages by hand: collect the whole output sequence first.
-  tracker::FrameGate gate(rig, options);
-  std::vector<tracker::CameraStage> stages;
-  for (int c = 0; c < rig.size(); ++c) stages.emplace_back(rig.camera(c), c, options);
-  tracker::WindowBuilder builder(rig, options);
-  std::vector<tracker::BuilderOutput> outputs;
-  for (const auto& cams : scene.detections) {
-    for (const core::CameraFrame& cf : cams) {
-      const tracker::FrameAdmission a = gate.Admit(cf);
-      REQUIRE(a.rejection == tracker::FrameRejection::kNone);
-      tracker::CameraStageCounters counters;
-      builder.Add(a.events,
-                  stages[static_cast<std::size_t>(a.camera_index)].Process(cf, a.stream_epoch,
-                                                                            &counters),
-                  &outputs);
-    }
-  }
-  gate.Flush();
-  builder.Flush(&outputs);
+  std::vector<tracker::BuilderOutput> outputs = RunStagesToWindows(scene, rig, options);
 
   // Process every window in reverse order on one workspace, then finalize in order.
   std::map<std::size_t, tracker::WindowResult> results;
@@ -326,24 +336,7 @@ TEST_CASE("a PersonLoop spreading persons over workspaces gives the same window 
     const geometry::CameraRig rig(scene.cameras);
     tracker::TrackerOptions options;
     options.mode = poses ? tracker::InputMode::kPoses : tracker::InputMode::kBoxes;
-    tracker::FrameGate gate(rig, options);
-    std::vector<tracker::CameraStage> stages;
-    for (int c = 0; c < rig.size(); ++c) stages.emplace_back(rig.camera(c), c, options);
-    tracker::WindowBuilder builder(rig, options);
-    std::vector<tracker::BuilderOutput> outputs;
-    for (const auto& cams : scene.detections) {
-      for (const core::CameraFrame& cf : cams) {
-        const tracker::FrameAdmission a = gate.Admit(cf);
-        REQUIRE(a.rejection == tracker::FrameRejection::kNone);
-        tracker::CameraStageCounters counters;
-        builder.Add(a.events,
-                    stages[static_cast<std::size_t>(a.camera_index)].Process(cf, a.stream_epoch,
-                                                                              &counters),
-                    &outputs);
-      }
-    }
-    gate.Flush();
-    builder.Flush(&outputs);
+    std::vector<tracker::BuilderOutput> outputs = RunStagesToWindows(scene, rig, options);
 
     tracker::WindowWorkspace sequential(options.triangulation);
     std::vector<tracker::WindowWorkspace> pool;
