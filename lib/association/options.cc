@@ -41,6 +41,7 @@ bool AssociationOptions::Validate(std::string* why) const {
   if (!std::isfinite(min_confidence) || min_confidence < 0.0 || min_confidence > 1.0) {
     return fail("min_confidence must be in [0, 1]");
   }
+  if (num_points < 0) return fail("num_points must be >= 0");
   if (!std::isfinite(empty_upper_bound) || empty_upper_bound < 0.0) {
     return fail("empty_upper_bound must be finite and >= 0");
   }

@@ -44,6 +44,10 @@ struct AssociationOptions {
   /// Points (box centre or joints) with a lower confidence are not used by Eq. 2; points with
   /// confidence 0 are never used. In [0, 1].
   double min_confidence = 0.1;
+  /// Eq. 2 averages over the first `num_points` points of each observation only (0: all of
+  /// them). Set by the tracker (box ends that do not take part in association); not a file
+  /// option. >= 0.
+  int num_points = 0;
   /// Clustering strategy; kPdnc is the paper's method, the others exist for the ablation.
   ClusteringMethod method = ClusteringMethod::kPdnc;
   /// Value substituted for ∅ by kCompleteLinkageEmptyAsUpper and kSingleLinkageEmptyAsUpper

@@ -25,9 +25,10 @@ bool Usable(const core::Observation2D& o, std::size_t k, double min_confidence) 
 std::optional<double> FrameDistance(const core::Observation2D& a,
                                     const core::Observation2D& b,
                                     const Mat3& f_a_to_b,
-                                    double min_confidence) {
+                                    double min_confidence, int max_points) {
   MVTRACK_DCHECK(a.scale_px > 0.0 && b.scale_px > 0.0);
-  const std::size_t num_points = std::min(a.points_px.size(), b.points_px.size());
+  std::size_t num_points = std::min(a.points_px.size(), b.points_px.size());
+  if (max_points > 0) num_points = std::min(num_points, static_cast<std::size_t>(max_points));
   double sum = 0.0;
   int used = 0;
   for (std::size_t k = 0; k < num_points; ++k) {
@@ -92,6 +93,9 @@ class AllPairs {
       for (const core::Observation2D& o : t.observations) {
         max_points = std::max(max_points, o.points_px.size());
       }
+      if (options.num_points > 0) {
+        max_points = std::min(max_points, static_cast<std::size_t>(options.num_points));
+      }
       num_points_[s] = max_points;
       frame_begin_[s + 1] = frame_begin_[s] + t.frames.size();
       point_begin_[s + 1] = point_begin_[s] + t.frames.size() * max_points;
@@ -107,7 +111,7 @@ class AllPairs {
         MVTRACK_DCHECK(o.scale_px > 0.0);
         frames_[frame_begin_[s] + f] = t.frames[f];
         inv_scale_[frame_begin_[s] + f] = 1.0 / std::abs(o.scale_px);
-        for (std::size_t k = 0; k < o.points_px.size(); ++k) {
+        for (std::size_t k = 0; k < std::min(o.points_px.size(), num_points_[s]); ++k) {
           if (!Usable(o, k, options.min_confidence)) continue;
           const std::size_t p = point_begin_[s] + f * num_points_[s] + k;
           px_[p] = o.points_px[k].x();
@@ -345,7 +349,7 @@ TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
     } else {
       if (same_camera) return TrackletDistance::Infinite();  // Eq. 4, c_a = c_b with overlap
       if (auto d = FrameDistance(a.observations[ia], b.observations[ib], f_a_to_b,
-                                 options.min_confidence)) {
+                                 options.min_confidence, options.num_points)) {
         sum += *d;
         ++used_frames;
       }

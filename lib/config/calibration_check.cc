@@ -132,16 +132,6 @@ FloorRegion DefaultFloorRegion(const std::vector<geometry::CameraModel>& cameras
   return FloorRegion{cx - hw, cy - hd, cx + hw, cy + hd};
 }
 
-bool SeesPoint(const geometry::CameraModel& camera, const Vec3& point_in_world) {
-  const std::optional<Vec2> pinhole = camera.ProjectUndistorted(point_in_world);
-  if (!pinhole) return false;
-  const double margin = 0.25 * std::max(camera.width_px, camera.height_px);
-  if (!camera.InImage(*pinhole, margin)) return false;
-  const std::optional<Vec2> raw = camera.Project(point_in_world);
-  return raw.has_value() && std::isfinite(raw->x()) && std::isfinite(raw->y()) &&
-         camera.InImage(*raw);
-}
-
 CalibrationReport CheckCalibration(const std::vector<geometry::CameraModel>& cameras,
                                    const CalibrationCheckOptions& options) {
   MVTRACK_CHECK(!cameras.empty());
@@ -182,7 +172,7 @@ CalibrationReport CheckCalibration(const std::vector<geometry::CameraModel>& cam
                                static_cast<std::size_t>(col);
       const Vec3 p = grid.CellCenter(col, row, options.sample_height_m);
       for (std::size_t i = 0; i < n; ++i) {
-        if (SeesPoint(cameras[i], p)) {
+        if (geometry::SeesPoint(cameras[i], p)) {
           sees[i][cell] = 1;
           ++grid.view_count[cell];
         }

@@ -134,9 +134,6 @@ FloorRegion DefaultFloorRegion(const std::vector<geometry::CameraModel>& cameras
                                double sample_height_m,
                                double margin_m);
 
-/// Whether `camera` sees `point_in_world` by the coverage rule of the file comment.
-bool SeesPoint(const geometry::CameraModel& camera, const Vec3& point_in_world);
-
 /// Runs all checks. `cameras` must be valid (CameraModel::Validate) and non-empty, `options`
 /// valid (both checked; aborts otherwise: call Validate on untrusted options).
 CalibrationReport CheckCalibration(const std::vector<geometry::CameraModel>& cameras,

@@ -33,9 +33,10 @@ constexpr std::array<std::pair<tracker::InputMode, std::string_view>, 2> kInputM
     {tracker::InputMode::kBoxes, "boxes"},
     {tracker::InputMode::kPoses, "poses"},
 }};
-constexpr std::array<std::pair<tracker::BoxPoint, std::string_view>, 2> kBoxPointNames = {{
+constexpr std::array<std::pair<tracker::BoxPoint, std::string_view>, 3> kBoxPointNames = {{
     {tracker::BoxPoint::kCenter, "center"},
     {tracker::BoxPoint::kBottomCenter, "bottom_center"},
+    {tracker::BoxPoint::kCenterEnds, "center_ends"},
 }};
 
 // The sub-maps of `tracker:`, in output order.
@@ -83,6 +84,24 @@ Field EnumField(std::string section, std::string key, Access access, FromName fr
                  access(*o) = GetEnum<Enum>(node, from_name, names);
                },
                [=](const TrackerOptions& o) { return std::string(to_name(access(o))); }};
+}
+
+// true / false only (YAML's yes, on, 1 ... are refused like every non-canonical scalar).
+template <typename Access>
+Field BoolField(std::string section, std::string key, Access access) {
+  static const std::vector<std::string> kNames = {"true", "false"};
+  return Field{std::move(section), std::move(key),
+               [=](const NodeRef& node, TrackerOptions* o) {
+                 access(*o) = GetEnum<bool>(
+                     node,
+                     [](std::string_view name) -> std::optional<bool> {
+                       if (name == "true") return true;
+                       if (name == "false") return false;
+                       return std::nullopt;
+                     },
+                     kNames);
+               },
+               [=](const TrackerOptions& o) { return std::string(access(o) ? "true" : "false"); }};
 }
 
 std::string LayoutName(core::KeypointLayoutId id) { return core::GetKeypointLayout(id).name; }
@@ -137,7 +156,12 @@ std::vector<Field> MakeFields() {
       IntField("", "window_step", [](auto& o) -> auto& { return o.window_step; }, 1, 10000));
   f.push_back(EnumField<tracker::BoxPoint>(
       "", "box_point", [](auto& o) -> auto& { return o.box_point; }, BoxPointFromName,
-      BoxPointName, {"center", "bottom_center"}));
+      BoxPointName, {"center", "bottom_center", "center_ends"}));
+  f.push_back(BoolField("", "box_ends_in_association",
+                        [](auto& o) -> auto& { return o.box_ends_in_association; }));
+  f.push_back(DoubleField("", "box_ends_max_elevation_deg",
+                          [](auto& o) -> auto& { return o.box_ends_max_elevation_deg; },
+                          DoubleRange::Closed(0.0, 90.0)));
   f.push_back(DoubleField("", "ground_height_m", [](auto& o) -> auto& { return o.ground_height_m; },
                           DoubleRange::Any()));
   f.push_back(DoubleField("", "min_detection_score",
@@ -210,16 +234,46 @@ std::vector<Field> MakeFields() {
                           DoubleRange::GreaterThan(0.0)));
   f.push_back(IntField(
       "linking", "min_hits", [](auto& o) -> auto& { return o.linking.min_hits; }, 1, kIntMax));
-  f.push_back(IntField("linking", "max_missed_windows",
-                       [](auto& o) -> auto& { return o.linking.max_missed_windows; }, 0,
-                       kIntMax - 1));
-  f.push_back(DoubleField("linking", "max_speed_m_per_frame",
-                          [](auto& o) -> auto& { return o.linking.max_speed_m_per_frame; },
+  f.push_back(IntField("linking", "strong_birth_cameras",
+                       [](auto& o) -> auto& { return o.linking.strong_birth_cameras; }, 2,
+                       kIntMax));
+  f.push_back(DoubleField("linking", "isolated_birth_distance_m",
+                          [](auto& o) -> auto& { return o.linking.isolated_birth_distance_m; },
+                          DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField("linking", "unshared_link_distance_m",
+                          [](auto& o) -> auto& { return o.linking.unshared_link_distance_m; },
+                          DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField("linking", "max_lost_s",
+                          [](auto& o) -> auto& { return o.linking.max_lost_s; },
+                          DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField("linking", "measurement_sigma_m",
+                          [](auto& o) -> auto& { return o.linking.motion.measurement_sigma_m; },
+                          DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField("linking", "acceleration_sigma_mps2",
+                          [](auto& o) -> auto& { return o.linking.motion.acceleration_sigma_mps2; },
+                          DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField("linking", "initial_speed_sigma_mps",
+                          [](auto& o) -> auto& { return o.linking.motion.initial_speed_sigma_mps; },
+                          DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField("linking", "gap_gate_chi2",
+                          [](auto& o) -> auto& { return o.linking.gap_gate_chi2; },
+                          DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField("linking", "reid_gate_chi2",
+                          [](auto& o) -> auto& { return o.linking.reid_gate_chi2; },
+                          DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField("linking", "reid_margin_chi2",
+                          [](auto& o) -> auto& { return o.linking.reid_margin_chi2; },
+                          DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField("linking", "max_reid_gap_s",
+                          [](auto& o) -> auto& { return o.linking.max_reid_gap_s; },
                           DoubleRange::AtLeast(0.0)));
   // refinement (triangulation::RefinementOptions::Validate; pose mode, after CMMT).
   f.push_back(DoubleField("refinement", "merge_distance_m",
                           [](auto& o) -> auto& { return o.refinement.merge_distance_m; },
                           DoubleRange::AtLeast(0.0)));
+  f.push_back(IntField("refinement", "box_min_duplicate_frames",
+                       [](auto& o) -> auto& { return o.refinement.box_min_duplicate_frames; }, 1,
+                       kIntMax));
   f.push_back(IntField("refinement", "min_duplicate_pairs",
                        [](auto& o) -> auto& { return o.refinement.min_duplicate_pairs; }, 1,
                        kIntMax));
@@ -232,6 +286,21 @@ std::vector<Field> MakeFields() {
   f.push_back(DoubleField("refinement", "box_max_height_m",
                           [](auto& o) -> auto& { return o.refinement.box_max_height_m; },
                           DoubleRange::Any()));
+  f.push_back(DoubleField("refinement", "box_bottom_min_height_m",
+                          [](auto& o) -> auto& { return o.refinement.box_bottom_min_height_m; },
+                          DoubleRange::Any()));
+  f.push_back(DoubleField("refinement", "box_bottom_max_height_m",
+                          [](auto& o) -> auto& { return o.refinement.box_bottom_max_height_m; },
+                          DoubleRange::Any()));
+  f.push_back(DoubleField("refinement", "box_top_min_height_m",
+                          [](auto& o) -> auto& { return o.refinement.box_top_min_height_m; },
+                          DoubleRange::Any()));
+  f.push_back(DoubleField("refinement", "box_top_max_height_m",
+                          [](auto& o) -> auto& { return o.refinement.box_top_max_height_m; },
+                          DoubleRange::Any()));
+  f.push_back(DoubleField("refinement", "jump_gate_chi2",
+                          [](auto& o) -> auto& { return o.refinement.jump_gate_chi2; },
+                          DoubleRange::AtLeast(0.0)));
   f.push_back(DoubleField("refinement", "box_split_residual",
                           [](auto& o) -> auto& { return o.refinement.box_split_residual; },
                           DoubleRange::AtLeast(0.0)));

@@ -37,7 +37,7 @@ std::string TrackerOptionsToYaml(const tracker::TrackerOptions& options);
 std::string_view InputModeName(tracker::InputMode mode);
 /// Inverse of InputModeName; nullopt for an unknown name.
 std::optional<tracker::InputMode> InputModeFromName(std::string_view name);
-/// "center" or "bottom_center" (the `tracker.box_point` names).
+/// "center", "bottom_center" or "center_ends" (the `tracker.box_point` names).
 std::string_view BoxPointName(tracker::BoxPoint point);
 /// Inverse of BoxPointName; nullopt for an unknown name.
 std::optional<tracker::BoxPoint> BoxPointFromName(std::string_view name);

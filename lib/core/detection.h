@@ -23,6 +23,7 @@ struct BoxPx {
   double height() const { return y_max - y_min; }
   Vec2 center() const { return {0.5 * (x_min + x_max), 0.5 * (y_min + y_max)}; }
   Vec2 bottom_center() const { return {0.5 * (x_min + x_max), y_max}; }
+  Vec2 top_center() const { return {0.5 * (x_min + x_max), y_min}; }
 };
 
 /// One 2D keypoint in raw image pixels; confidence in [0, 1], 0 meaning "not detected".

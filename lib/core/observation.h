@@ -37,6 +37,18 @@ struct Tracklet2D {
   }
 };
 
+/// One 2D tracklet that supports a short-term 3D tracklet: which camera's which 2D track, and
+/// the frames it was observed in inside the window. The same (camera_id, track_id) in the next
+/// window is the same 2D track continuing, the strongest evidence that two short-term 3D
+/// tracklets show one person (linking::WindowLinker).
+struct TrackletMember {
+  CameraId camera_id = 0;
+  TrackId2D track_id = 0;
+  FrameIndex first_frame = 0;  ///< first observed frame inside the window
+  FrameIndex last_frame = 0;   ///< last observed frame inside the window
+  int num_observations = 0;    ///< observations inside the window
+};
+
 /// A short-term 3D tracklet of one person in one window (U_{k,p}).
 struct Tracklet3D {
   std::vector<FrameIndex> frames;                        ///< strictly increasing
@@ -44,6 +56,9 @@ struct Tracklet3D {
   std::vector<std::vector<std::optional<Vec3>>> points;
   std::vector<CameraId> cameras;                         ///< cameras that supported it, sorted
   std::vector<int> source_tracklets;                     ///< indices of its 2D tracklets
+  /// The 2D tracklets of source_tracklets as (camera, 2D track) members, sorted by camera id
+  /// then track id (filled by tracker::ProcessWindowJob; empty where no window job made it).
+  std::vector<TrackletMember> members;
 
   int IndexOf(FrameIndex frame) const {
     auto it = std::lower_bound(frames.begin(), frames.end(), frame);

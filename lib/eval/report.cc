@@ -189,6 +189,43 @@ Json TrackingJson(const TrackingEvaluation& t) {
                                   {"idfn", Int(id.idfn)},
                                   {"matches", Arr(std::move(matches))}}));
 
+  const HotaMetrics& h = t.hota;
+  o.emplace_back("hota", Obj({{"hota", Num(h.mean_hota)},
+                              {"det_a", Num(h.mean_det_a)},
+                              {"ass_a", Num(h.mean_ass_a)},
+                              {"loc_a", Num(h.mean_loc_a)},
+                              {"alphas", NumArray(h.alphas)},
+                              {"hota_per_alpha", NumArray(h.hota)},
+                              {"det_a_per_alpha", NumArray(h.det_a)},
+                              {"ass_a_per_alpha", NumArray(h.ass_a)},
+                              {"det_re_per_alpha", NumArray(h.det_re)},
+                              {"det_pr_per_alpha", NumArray(h.det_pr)},
+                              {"ass_re_per_alpha", NumArray(h.ass_re)},
+                              {"ass_pr_per_alpha", NumArray(h.ass_pr)},
+                              {"loc_a_per_alpha", NumArray(h.loc_a)},
+                              {"tp_per_alpha", IntArray(h.tp)},
+                              {"fn_per_alpha", IntArray(h.fn)},
+                              {"fp_per_alpha", IntArray(h.fp)}}));
+
+  const IdentityCoverage& cov = t.coverage;
+  JsonArray transfers;
+  for (const IdentityCoverage::Transfer& x : cov.transfers) {
+    transfers.push_back(
+        Obj({{"prediction_id", Int(x.prediction_id)}, {"gt_ids", IntArray(x.gt_ids)}}));
+  }
+  JsonArray fragmentations;
+  for (const IdentityCoverage::Fragmentation& x : cov.fragmentations) {
+    fragmentations.push_back(
+        Obj({{"gt_id", Int(x.gt_id)}, {"prediction_ids", IntArray(x.prediction_ids)}}));
+  }
+  o.emplace_back("coverage", Obj({{"cover_min_frames", Int(cov.cover_min_frames)},
+                                  {"num_id_transfers", Int(static_cast<std::int64_t>(
+                                                           cov.transfers.size()))},
+                                  {"num_id_fragmentations",
+                                   Int(static_cast<std::int64_t>(cov.fragmentations.size()))},
+                                  {"transfers", Arr(std::move(transfers))},
+                                  {"fragmentations", Arr(std::move(fragmentations))}}));
+
   const PoseErrorMetrics& p = t.pose;
   o.emplace_back("pose", Obj({{"mpjpe_m", Num(p.mpjpe_m)},
                               {"num_pairs", Int(p.num_pairs)},
@@ -330,6 +367,26 @@ std::string TrackingTable(const TrackingEvaluation& t) {
                    std::to_string(c.num_objects), std::to_string(c.num_unique_objects),
                    std::to_string(c.num_predictions), std::to_string(c.num_unique_predictions),
                    std::to_string(c.num_frames)}});
+  const HotaMetrics& h = t.hota;
+  const IdentityCoverage& cov = t.coverage;
+  out += Columns({{"HOTA%", "DetA%", "AssA%", "LocA%", "IDTR", "IDFRAG"},
+                  {Percent(h.mean_hota), Percent(h.mean_det_a), Percent(h.mean_ass_a),
+                   Percent(h.mean_loc_a), std::to_string(cov.transfers.size()),
+                   std::to_string(cov.fragmentations.size())}});
+  // The transfers by name (they are the errors that break visit counts), at most 10.
+  if (!cov.transfers.empty()) {
+    std::string line = "  id transfers (predicted id: GT ids in order):";
+    for (std::size_t k = 0; k < cov.transfers.size() && k < 10; ++k) {
+      line += (k == 0 ? " " : "; ") + std::to_string(cov.transfers[k].prediction_id) + ":";
+      for (std::size_t g = 0; g < cov.transfers[k].gt_ids.size(); ++g) {
+        line += (g == 0 ? " " : " -> ") + std::to_string(cov.transfers[k].gt_ids[g]);
+      }
+    }
+    if (cov.transfers.size() > 10) {
+      line += "; ... (" + std::to_string(cov.transfers.size() - 10) + " more)";
+    }
+    out += line + "\n";
+  }
   out += "  MPJPE " + Metres(t.pose.mpjpe_m) + " m over " + std::to_string(t.pose.num_pairs) +
          " matched pairs (" + std::to_string(t.pose.num_joints) + " joints)\n";
   out += "  Protocol: " + t.protocol + "\n";

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <map>
 #include <set>
+#include <utility>
 
 namespace mvtrack::eval {
 namespace {
@@ -140,6 +142,38 @@ std::optional<double> MeanJointDistance(const EvalObject& a, const EvalObject& b
 std::optional<double> ObjectDistance(DistanceKind kind, const EvalObject& a, const EvalObject& b) {
   if (kind == DistanceKind::kFootprint) return FootprintDistance(a, b);
   return MeanJointDistance(a, b);
+}
+
+namespace {
+
+std::vector<const EvalObject*> SortedById(const EvalFrame* frame) {
+  std::vector<const EvalObject*> objects;
+  if (frame == nullptr) return objects;
+  objects.reserve(frame->objects.size());
+  for (const EvalObject& o : frame->objects) objects.push_back(&o);
+  std::sort(objects.begin(), objects.end(),
+            [](const EvalObject* a, const EvalObject* b) { return a->id < b->id; });
+  return objects;
+}
+
+}  // namespace
+
+std::vector<AlignedFrame> AlignFrames(const EvalSequence& ground_truth,
+                                      const EvalSequence& predictions,
+                                      const std::vector<FrameRange>& ranges) {
+  std::map<FrameIndex, std::pair<const EvalFrame*, const EvalFrame*>> by_frame;
+  for (const EvalFrame& f : ground_truth) {
+    if (InFrameRanges(f.frame, ranges)) by_frame[f.frame].first = &f;
+  }
+  for (const EvalFrame& f : predictions) {
+    if (InFrameRanges(f.frame, ranges)) by_frame[f.frame].second = &f;
+  }
+  std::vector<AlignedFrame> frames;
+  frames.reserve(by_frame.size());
+  for (const auto& [index, sides] : by_frame) {
+    frames.push_back({index, SortedById(sides.first), SortedById(sides.second)});
+  }
+  return frames;
 }
 
 }  // namespace mvtrack::eval

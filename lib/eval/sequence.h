@@ -83,4 +83,17 @@ std::optional<double> MeanJointDistance(const EvalObject& a, const EvalObject& b
 /// FootprintDistance or MeanJointDistance, as selected by `kind`.
 std::optional<double> ObjectDistance(DistanceKind kind, const EvalObject& a, const EvalObject& b);
 
+/// One evaluated frame of both sequences: each side's objects sorted by id (pointers into the
+/// sequences, which must outlive it).
+struct AlignedFrame {
+  FrameIndex frame = 0;
+  std::vector<const EvalObject*> gt;
+  std::vector<const EvalObject*> pred;
+};
+
+/// The union of both sequences' frames inside `ranges` (empty: all), in increasing frame order.
+std::vector<AlignedFrame> AlignFrames(const EvalSequence& ground_truth,
+                                      const EvalSequence& predictions,
+                                      const std::vector<FrameRange>& ranges);
+
 }  // namespace mvtrack::eval

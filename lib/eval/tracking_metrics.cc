@@ -22,42 +22,6 @@ double Ratio(std::int64_t num, std::int64_t den) {
   return static_cast<double>(num) / static_cast<double>(den);
 }
 
-// The objects of one evaluated frame, each side sorted by id.
-struct FramePair {
-  FrameIndex frame = 0;
-  std::vector<const EvalObject*> gt;
-  std::vector<const EvalObject*> pred;
-};
-
-std::vector<const EvalObject*> SortedById(const EvalFrame* frame) {
-  std::vector<const EvalObject*> objects;
-  if (frame == nullptr) return objects;
-  objects.reserve(frame->objects.size());
-  for (const EvalObject& o : frame->objects) objects.push_back(&o);
-  std::sort(objects.begin(), objects.end(),
-            [](const EvalObject* a, const EvalObject* b) { return a->id < b->id; });
-  return objects;
-}
-
-// Union of both sides' frames inside `ranges`, in increasing frame order.
-std::vector<FramePair> AlignFrames(const EvalSequence& ground_truth,
-                                   const EvalSequence& predictions,
-                                   const std::vector<FrameRange>& ranges) {
-  std::map<FrameIndex, std::pair<const EvalFrame*, const EvalFrame*>> by_frame;
-  for (const EvalFrame& f : ground_truth) {
-    if (InFrameRanges(f.frame, ranges)) by_frame[f.frame].first = &f;
-  }
-  for (const EvalFrame& f : predictions) {
-    if (InFrameRanges(f.frame, ranges)) by_frame[f.frame].second = &f;
-  }
-  std::vector<FramePair> frames;
-  frames.reserve(by_frame.size());
-  for (const auto& [index, sides] : by_frame) {
-    frames.push_back({index, SortedById(sides.first), SortedById(sides.second)});
-  }
-  return frames;
-}
-
 std::string Protocol(const TrackingOptions& options, std::int64_t num_frames) {
   std::string text;
   text += "CLEAR MOT (Bernardin & Stiefelhagen 2008) with py-motmetrics semantics: per frame, ";
@@ -69,6 +33,11 @@ std::string Protocol(const TrackingOptions& options, std::int64_t num_frames) {
   text += "IDF1/IDP/IDR (Ristani et al. 2016): global min-cost assignment of GT to predicted ";
   text += "trajectories on the padded (n_gt + n_pred) square problem, same gate. ";
   text += "MPJPE: mean joint error over the CLEAR MOT matched pairs, joints valid in both. ";
+  text += "IDTR (id transfers) = predicted ids covering >= 2 GT persons, IDFRAG = GT persons ";
+  text += "covered by >= 2 predicted ids, where an id covers a person when CLEAR MOT matched ";
+  text += "them in >= " + std::to_string(options.cover_min_frames) + " frames. ";
+  text += "HOTA (Luiten et al. 2021, TrackEval's definitions): mean over alpha = 0.05..0.95 of ";
+  text += "sqrt(DetA * AssA), similarity max(0, 1 - d / gate); DetA, AssA, LocA likewise. ";
   text += "Distance: ";
   text += DistanceKindName(options.distance);
   text += ", match iff d <= " + internal::FormatFixed(options.threshold_m(), 3) + " m. ";
@@ -118,6 +87,7 @@ bool TrackingOptions::Validate(std::string* why) const {
   if (!std::isfinite(mean_joint_threshold_m) || mean_joint_threshold_m <= 0.0) {
     return fail("mean_joint_threshold_m must be finite and > 0");
   }
+  if (cover_min_frames < 1) return fail("cover_min_frames must be >= 1");
   return ValidateFrameRanges(frame_ranges, why);
 }
 
@@ -148,7 +118,7 @@ TrackingEvaluation EvaluateTracking(const EvalSequence& ground_truth,
   if (!ValidateSequencePair(ground_truth, predictions, &result.error, &num_joints)) return result;
 
   const double gate = options.threshold_m();
-  const std::vector<FramePair> frames =
+  const std::vector<AlignedFrame> frames =
       AlignFrames(ground_truth, predictions, options.frame_ranges);
 
   ClearMotMetrics& clear = result.clear;
@@ -163,8 +133,10 @@ TrackingEvaluation EvaluateTracking(const EvalSequence& ground_truth,
   std::map<std::int64_t, std::int64_t> last_match;
   // c_ij of the identity measures: frames where GT i and prediction j are within the gate.
   std::map<std::pair<std::int64_t, std::int64_t>, std::int64_t> frames_within_gate;
+  // Coverage: frames CLEAR MOT matched GT i and prediction j, and the frame of their first match.
+  std::map<std::pair<std::int64_t, std::int64_t>, std::pair<std::int64_t, FrameIndex>> matched;
 
-  for (const FramePair& f : frames) {
+  for (const AlignedFrame& f : frames) {
     ++clear.num_frames;
     const std::size_t n_gt = f.gt.size();
     const std::size_t n_pred = f.pred.size();
@@ -238,6 +210,8 @@ TrackingEvaluation EvaluateTracking(const EvalSequence& ground_truth,
       ++matches;
       const EvalObject& p = *f.pred[static_cast<std::size_t>(j)];
       last_match[g.id] = p.id;
+      auto m = matched.try_emplace({g.id, p.id}, 0, f.frame).first;
+      ++m->second.first;
       clear.total_distance_m += dist(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
       bool any_joint = false;
       for (std::size_t k = 0; k < static_cast<std::size_t>(num_joints); ++k) {
@@ -357,6 +331,38 @@ TrackingEvaluation EvaluateTracking(const EvalSequence& ground_truth,
     identity.idr = Ratio(identity.idtp, identity.idtp + identity.idfn);
     identity.idf1 = Ratio(2 * identity.idtp, clear.num_objects + clear.num_predictions);
   }
+
+  // Coverage: transfers and fragmentations.
+  {
+    IdentityCoverage& cov = result.coverage;
+    cov.cover_min_frames = options.cover_min_frames;
+    // (first match frame, other id) per id, for the order of first match.
+    std::map<std::int64_t, std::vector<std::pair<FrameIndex, std::int64_t>>> gts_of_pred;
+    std::map<std::int64_t, std::vector<std::pair<FrameIndex, std::int64_t>>> preds_of_gt;
+    for (const auto& [ids, count_first] : matched) {
+      if (count_first.first < options.cover_min_frames) continue;
+      gts_of_pred[ids.second].emplace_back(count_first.second, ids.first);
+      preds_of_gt[ids.first].emplace_back(count_first.second, ids.second);
+    }
+    for (auto& [pred, list] : gts_of_pred) {
+      if (list.size() < 2) continue;
+      std::sort(list.begin(), list.end());
+      IdentityCoverage::Transfer t;
+      t.prediction_id = pred;
+      for (const auto& [frame, gt] : list) t.gt_ids.push_back(gt);
+      cov.transfers.push_back(std::move(t));
+    }
+    for (auto& [gt, list] : preds_of_gt) {
+      if (list.size() < 2) continue;
+      std::sort(list.begin(), list.end());
+      IdentityCoverage::Fragmentation fr;
+      fr.gt_id = gt;
+      for (const auto& [frame, pred] : list) fr.prediction_ids.push_back(pred);
+      cov.fragmentations.push_back(std::move(fr));
+    }
+  }
+  result.hota = EvaluateHota(ground_truth, predictions, options.distance, gate,
+                             options.frame_ranges);
 
   result.protocol = Protocol(options, clear.num_frames);
   result.valid = true;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/hota.h"
 #include "eval/sequence.h"
 
 namespace mvtrack::eval {
@@ -29,6 +30,10 @@ struct TrackingOptions {
   double mean_joint_threshold_m = 0.5;
   /// Frames evaluated; empty = every frame of either sequence.
   std::vector<FrameRange> frame_ranges;
+  /// A predicted id "covers" a ground-truth person when CLEAR MOT matches the two in at least
+  /// this many frames (IdentityCoverage): a few frames of a crossing do not count, half a
+  /// second of a customer's visit (15 frames at 30 fps) does. >= 1.
+  std::int64_t cover_min_frames = 15;
 
   /// The gate of the selected distance.
   double threshold_m() const {
@@ -107,6 +112,25 @@ struct IdentityMetrics {
   std::vector<IdentityMatch> matches;
 };
 
+/// Which ids cover which, from the CLEAR MOT matches (TrackingOptions::cover_min_frames): the
+/// two ways identity fails that IDF1 blends into one number.
+struct IdentityCoverage {
+  /// A predicted id that covers more than one ground-truth person: the id passed from one
+  /// person to another (the worst error for visit counts and dwell times).
+  struct Transfer {
+    std::int64_t prediction_id = 0;
+    std::vector<std::int64_t> gt_ids;  ///< the persons it covers, in order of first match
+  };
+  /// A ground-truth person covered by more than one predicted id (the person was split).
+  struct Fragmentation {
+    std::int64_t gt_id = 0;
+    std::vector<std::int64_t> prediction_ids;  ///< in order of first match
+  };
+  std::vector<Transfer> transfers;            ///< sorted by prediction id
+  std::vector<Fragmentation> fragmentations;  ///< sorted by GT id
+  std::int64_t cover_min_frames = 0;          ///< the option used
+};
+
 /// Joint position error over the CLEAR MOT matched pairs.
 struct PoseErrorMetrics {
   std::int64_t num_pairs = 0;   ///< matched pairs with at least one joint valid in both
@@ -129,6 +153,10 @@ struct TrackingEvaluation {
   std::vector<FrameRange> frame_ranges;
   ClearMotMetrics clear;
   IdentityMetrics identity;
+  /// Id transfers and fragmentations (TrackingOptions::cover_min_frames).
+  IdentityCoverage coverage;
+  /// HOTA (eval/hota.h) with the same distance, gate (similarity 1 - d / gate) and frames.
+  HotaMetrics hota;
   PoseErrorMetrics pose;
   std::vector<ObjectCoverage> objects;  ///< one per GT id, sorted by id
   std::vector<IdSwitch> switches;       ///< in frame order, then GT id order
@@ -152,6 +180,9 @@ struct TrackingEvaluation {
 /// left unmatched its frames, dummy vs dummy 0. Solved exactly by core::SolveAssignment on a
 /// fully finite matrix (see the .cc for why the off-diagonal dummy cells may carry the same
 /// cost as the diagonal ones without changing the optimum).
+///
+/// Coverage: per (GT, prediction) pair the frames CLEAR MOT matched them (switches included);
+/// a pair with at least cover_min_frames such frames counts.
 ///
 /// O(frames * n^3) for the per-frame assignments plus O((n_ids)^3) for IDF1.
 TrackingEvaluation EvaluateTracking(const EvalSequence& ground_truth,

@@ -1,6 +1,7 @@
 #include "geometry/camera_model.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 namespace mvtrack::geometry {
@@ -96,7 +97,8 @@ Vec2 CameraModel::UndistortPixel(const Vec2& raw_px) const {
   for (int it = 0; it < 5; ++it) {
     const double r2 = x * x + y * y;
     const double radial = 1.0 + r2 * (d.k1 + r2 * (d.k2 + r2 * d.k3));
-    const double dradial = 2.0 * (d.k1 + r2 * (2.0 * d.k2 + 3.0 * r2 * d.k3));  // d radial / d r2 * 2
+    const double dradial =
+        2.0 * (d.k1 + r2 * (2.0 * d.k2 + 3.0 * r2 * d.k3));  // d radial / d r2 * 2
     const double fxv = x * radial + 2.0 * d.p1 * x * y + d.p2 * (r2 + 2.0 * x * x) - xd;
     const double fyv = y * radial + d.p1 * (r2 + 2.0 * y * y) + 2.0 * d.p2 * x * y - yd;
     Eigen::Matrix2d j;
@@ -117,6 +119,16 @@ Vec2 CameraModel::UndistortPixel(const Vec2& raw_px) const {
 bool CameraModel::InImage(const Vec2& raw_px, double margin_px) const {
   return raw_px.x() >= -margin_px && raw_px.y() >= -margin_px &&
          raw_px.x() <= width_px + margin_px && raw_px.y() <= height_px + margin_px;
+}
+
+bool SeesPoint(const CameraModel& camera, const Vec3& point_in_world) {
+  const std::optional<Vec2> pinhole = camera.ProjectUndistorted(point_in_world);
+  if (!pinhole) return false;
+  const double margin = 0.25 * std::max(camera.width_px, camera.height_px);
+  if (!camera.InImage(*pinhole, margin)) return false;
+  const std::optional<Vec2> raw = camera.Project(point_in_world);
+  return raw.has_value() && std::isfinite(raw->x()) && std::isfinite(raw->y()) &&
+         camera.InImage(*raw);
 }
 
 }  // namespace mvtrack::geometry

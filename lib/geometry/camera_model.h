@@ -62,4 +62,10 @@ struct CameraModel {
   bool InImage(const Vec2& raw_px, double margin_px = 0.0) const;
 };
 
+/// Whether `camera` sees `point_in_world`: in front of it, and its distorted projection inside
+/// the image, with a pinhole check (the undistorted projection within a quarter of the image
+/// size of it) so that a distortion polynomial folding far points back into the image does
+/// not count.
+bool SeesPoint(const CameraModel& camera, const Vec3& point_in_world);
+
 }  // namespace mvtrack::geometry

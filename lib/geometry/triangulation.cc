@@ -24,12 +24,26 @@ std::optional<Vec3> SolveNormalMatrix(const Eigen::Matrix4d& ata) {
   return point;
 }
 
-void FillRows(const Mat34& p, const Vec2& x, double w, Eigen::Ref<Eigen::Matrix<double, 2, 4>> rows) {
+void FillRows(const Mat34& p,
+              const Vec2& x,
+              double w,
+              Eigen::Ref<Eigen::Matrix<double, 2, 4>> rows) {
   Eigen::RowVector4d r0 = x.x() * p.row(2) - p.row(0);
   Eigen::RowVector4d r1 = x.y() * p.row(2) - p.row(1);
   const double n0 = r0.norm(), n1 = r1.norm();
   rows.row(0) = n0 > 0.0 ? Eigen::RowVector4d(w * r0 / n0) : r0;
   rows.row(1) = n1 > 0.0 ? Eigen::RowVector4d(w * r1 / n1) : r1;
+}
+
+// Solves the 3x3 normal equations m X = rhs of the inhomogeneous triangulation; nullopt where
+// degenerate geometry (parallel rays, the same ray twice, no baseline) makes m singular.
+std::optional<Vec3> SolveNormalEquations(const Mat3& m, const Vec3& rhs) {
+  const double trace = m.trace();
+  const double det = m.determinant();
+  if (!(trace > 0.0) || !(det > 1e-14 * trace * trace * trace)) return std::nullopt;
+  const Vec3 point = m.inverse() * rhs;
+  if (!point.allFinite()) return std::nullopt;
+  return point;
 }
 
 }  // namespace
@@ -56,15 +70,24 @@ std::optional<Vec3> TriangulateTwoView(const TwoViewRows& rows_a, const TwoViewR
   a.topRows<2>() = rows_a.rows;
   a.bottomRows<2>() = rows_b.rows;
   const Eigen::Matrix<double, 4, 3> a3 = a.leftCols<3>();
-  const Mat3 m = a3.transpose() * a3;
-  const Vec3 rhs = -(a3.transpose() * a.col(3));
-  // Degenerate geometry (parallel rays, the same ray twice, no baseline) makes m singular.
-  const double trace = m.trace();
-  const double det = m.determinant();
-  if (!(trace > 0.0) || !(det > 1e-14 * trace * trace * trace)) return std::nullopt;
-  const Vec3 point = m.inverse() * rhs;
-  if (!point.allFinite()) return std::nullopt;
-  return point;
+  return SolveNormalEquations(a3.transpose() * a3, -(a3.transpose() * a.col(3)));
+}
+
+std::optional<Vec3> TriangulateLinear(std::span<const Mat34* const> projections,
+                                      std::span<const Vec2> points_px) {
+  const std::size_t n = projections.size();
+  if (n < 2 || points_px.size() != n) return std::nullopt;
+  Mat3 m = Mat3::Zero();
+  Vec3 rhs = Vec3::Zero();
+  Eigen::Matrix<double, 2, 4> rows;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!points_px[i].allFinite()) return std::nullopt;
+    FillRows(*projections[i], points_px[i], 1.0, rows);
+    const Eigen::Matrix<double, 2, 3> a3 = rows.leftCols<3>();
+    m.noalias() += a3.transpose() * a3;
+    rhs.noalias() -= a3.transpose() * rows.col(3);
+  }
+  return SolveNormalEquations(m, rhs);
 }
 
 std::optional<Vec3> TriangulateDlt(std::span<const Mat34> projections,

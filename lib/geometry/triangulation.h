@@ -29,6 +29,14 @@ TwoViewRows MakeTwoViewRows(const Mat34& p, const Vec2& x);
 /// x_b) when a = MakeTwoViewRows(p_a, x_a) and b = MakeTwoViewRows(p_b, x_b).
 std::optional<Vec3> TriangulateTwoView(const TwoViewRows& a, const TwoViewRows& b);
 
+/// N-view linear triangulation (N >= 2) in the inhomogeneous form of Eq. 5, X = (x, y, z, 1),
+/// solved by 3x3 normal equations on unit-normalised rows: TriangulateTwoView for any number of
+/// views (equal to the homogeneous DLT for exact data, within round-off for finite points, a
+/// fraction of the cost of its 4x4 eigen-decomposition). `projections[i]` observes
+/// `points_px[i]`. nullopt if degenerate or non-finite.
+std::optional<Vec3> TriangulateLinear(std::span<const Mat34* const> projections,
+                                      std::span<const Vec2> points_px);
+
 /// N-view DLT (N >= 2) with optional per-view weights (empty = all 1). nullopt if degenerate.
 std::optional<Vec3> TriangulateDlt(std::span<const Mat34> projections,
                                    std::span<const Vec2> points_px,

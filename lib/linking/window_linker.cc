@@ -18,13 +18,12 @@ using PointsAtFrame = std::vector<std::optional<Vec3>>;
 constexpr double kForbidden = std::numeric_limits<double>::infinity();
 // Every finite cost is feasible; the gates are applied per pair by writing kForbidden.
 constexpr double kAnyFiniteCost = std::numeric_limits<double>::max();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// last_seen_frame of a track that has no footprint yet.
+constexpr FrameIndex kNoFrame = std::numeric_limits<FrameIndex>::min();
 
 bool IsValidPoint(const std::optional<Vec3>& point) {
   return point.has_value() && point->allFinite();
-}
-
-bool HasValidPoint(const PointsAtFrame& points) {
-  return std::any_of(points.begin(), points.end(), IsValidPoint);
 }
 
 void CheckWellFormed(const core::Tracklet3D& tracklet) {
@@ -52,52 +51,8 @@ std::optional<double> FrameDistance(const PointsAtFrame& a, const PointsAtFrame&
   return sum / static_cast<double>(count);
 }
 
-// Centroid of the valid points of `points` whose index is selected by `use`.
-Vec3 Centroid(const PointsAtFrame& points, const std::vector<char>& use) {
-  Vec3 sum = Vec3::Zero();
-  int count = 0;
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    if (use[k] != 0) {
-      sum += *points[k];
-      ++count;
-    }
-  }
-  MVTRACK_DCHECK(count > 0);
-  return sum / static_cast<double>(count);
-}
-
-// Adds `windows` missed windows to `track`, saturating at max_missed_windows + 1 (enough to die).
-void AddMisses(LinkedTrack* track, std::uint64_t windows, int max_missed_windows) {
-  const auto room = static_cast<std::uint64_t>(max_missed_windows + 1 - track->missed_windows);
-  track->missed_windows += static_cast<int>(std::min(windows, room));
-}
-
-}  // namespace
-
-bool LinkerOptions::Validate(std::string* why) const {
-  const auto fail = [why](const char* reason) {
-    if (why != nullptr) *why = reason;
-    return false;
-  };
-  if (!std::isfinite(max_link_distance_m) || max_link_distance_m <= 0.0) {
-    return fail("max_link_distance_m must be finite and > 0");
-  }
-  if (min_hits < 1) return fail("min_hits must be >= 1");
-  if (max_missed_windows < 0) return fail("max_missed_windows must be >= 0");
-  // Keeps max_missed_windows + 1 representable (AddMisses saturates there).
-  if (max_missed_windows == std::numeric_limits<int>::max()) {
-    return fail("max_missed_windows must be < INT_MAX");
-  }
-  if (!std::isfinite(max_speed_m_per_frame) || max_speed_m_per_frame < 0.0) {
-    return fail("max_speed_m_per_frame must be finite and >= 0");
-  }
-  return true;
-}
-
-namespace {
-
-// MeanOverlapDistance of two tracklets already checked by CheckWellFormed (WindowLinker::Link
-// checks every tracklet once when it arrives, so its pairwise loop skips the re-checks).
+// MeanOverlapDistance of two tracklets already checked by CheckWellFormed (Link checks every
+// tracklet once when it arrives, so its pairwise loop skips the re-checks).
 std::optional<double> MeanOverlapDistanceOfChecked(const core::Tracklet3D& a,
                                                    const core::Tracklet3D& b) {
   // Eq. 8: D_ij = 1/|Psi_i ∩ Psi_j| * sum over the common frames; the frames are sorted, so a
@@ -107,6 +62,11 @@ std::optional<double> MeanOverlapDistanceOfChecked(const core::Tracklet3D& a,
   int frames = 0;
   std::size_t i = 0;
   std::size_t j = 0;
+  // Disjoint frame ranges have no overlap at all (the common case for lost tracks).
+  if (a.frames.empty() || b.frames.empty() || a.frames.back() < b.frames.front() ||
+      b.frames.back() < a.frames.front()) {
+    return std::nullopt;
+  }
   while (i < a.frames.size() && j < b.frames.size()) {
     if (a.frames[i] < b.frames[j]) {
       ++i;
@@ -125,7 +85,106 @@ std::optional<double> MeanOverlapDistanceOfChecked(const core::Tracklet3D& a,
   return sum / static_cast<double>(frames);
 }
 
+// Adds `windows` missed windows to `track`, saturating at INT_MAX.
+void AddMisses(LinkedTrack* track, std::uint64_t windows) {
+  const auto room =
+      static_cast<std::uint64_t>(std::numeric_limits<int>::max() - track->missed_windows);
+  track->missed_windows += static_cast<int>(std::min(windows, room));
+}
+
+// Seconds from frame `from` to frame `to` (negative backwards). In double: the difference of
+// two arbitrary int64 frame indices may not fit in an int64.
+double FrameSeconds(FrameIndex from, FrameIndex to, double seconds_per_frame) {
+  return (static_cast<double>(to) - static_cast<double>(from)) * seconds_per_frame;
+}
+
+bool MemberLess(CameraId ca, TrackId2D ta, CameraId cb, TrackId2D tb) {
+  return ca != cb ? ca < cb : ta < tb;
+}
+
+// First and last frame of `tracklet` with a footprint, or nullopt.
+struct FootprintSpan {
+  FrameIndex first = 0;
+  FrameIndex last = 0;
+};
+
+std::optional<FootprintSpan> SpanOf(const core::Tracklet3D& tracklet,
+                                    const std::vector<int>& footprint_points) {
+  std::optional<FootprintSpan> span;
+  for (std::size_t f = 0; f < tracklet.frames.size(); ++f) {
+    if (!FrameFootprint(tracklet.points[f], footprint_points)) continue;
+    if (!span) span = FootprintSpan{tracklet.frames[f], tracklet.frames[f]};
+    span->last = tracklet.frames[f];
+  }
+  return span;
+}
+
+// The smallest footprint distance between `a` and `b` over their common frames, nullopt
+// without a common frame with footprints on both sides.
+std::optional<double> ClosestApproach(const core::Tracklet3D& a, const core::Tracklet3D& b,
+                                      const std::vector<int>& footprint_points) {
+  std::optional<double> closest;
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < a.frames.size(); ++i) {
+    while (j < b.frames.size() && b.frames[j] < a.frames[i]) ++j;
+    if (j == b.frames.size()) break;
+    if (b.frames[j] != a.frames[i]) continue;
+    const std::optional<Vec2> pa = FrameFootprint(a.points[i], footprint_points);
+    const std::optional<Vec2> pb = FrameFootprint(b.points[j], footprint_points);
+    if (!pa || !pb) continue;
+    const double d = (*pa - *pb).norm();
+    if (!closest || d < *closest) closest = d;
+  }
+  return closest;
+}
+
 }  // namespace
+
+bool LinkerOptions::Validate(std::string* why) const {
+  const auto fail = [why](const char* reason) {
+    if (why != nullptr) *why = reason;
+    return false;
+  };
+  if (!std::isfinite(max_link_distance_m) || max_link_distance_m <= 0.0) {
+    return fail("max_link_distance_m must be finite and > 0");
+  }
+  if (!std::isfinite(unshared_link_distance_m) || unshared_link_distance_m < 0.0 ||
+      unshared_link_distance_m > max_link_distance_m) {
+    return fail("unshared_link_distance_m must be finite and in [0, max_link_distance_m]");
+  }
+  if (min_hits < 1) return fail("min_hits must be >= 1");
+  if (strong_birth_cameras < 2) return fail("strong_birth_cameras must be >= 2");
+  if (!std::isfinite(isolated_birth_distance_m) || isolated_birth_distance_m < 0.0) {
+    return fail("isolated_birth_distance_m must be finite and >= 0");
+  }
+  if (!std::isfinite(max_lost_s) || max_lost_s < 0.0) {
+    return fail("max_lost_s must be finite and >= 0");
+  }
+  if (!motion.Validate(why)) return false;
+  if (!std::isfinite(gap_gate_chi2) || gap_gate_chi2 <= 0.0) {
+    return fail("gap_gate_chi2 must be finite and > 0");
+  }
+  if (!std::isfinite(reid_gate_chi2) || reid_gate_chi2 < 0.0) {
+    return fail("reid_gate_chi2 must be finite and >= 0");
+  }
+  if (!std::isfinite(reid_margin_chi2) || reid_margin_chi2 < 0.0) {
+    return fail("reid_margin_chi2 must be finite and >= 0");
+  }
+  if (!std::isfinite(max_reid_gap_s) || max_reid_gap_s < 0.0) {
+    return fail("max_reid_gap_s must be finite and >= 0");
+  }
+  return true;
+}
+
+bool LinkerContext::Validate(std::string* why) const {
+  for (int k : footprint_points) {
+    if (k < 0) {
+      if (why != nullptr) *why = "footprint_points must be >= 0";
+      return false;
+    }
+  }
+  return true;
+}
 
 std::optional<double> MeanOverlapDistance(const core::Tracklet3D& a, const core::Tracklet3D& b) {
   CheckWellFormed(a);
@@ -133,170 +192,435 @@ std::optional<double> MeanOverlapDistance(const core::Tracklet3D& a, const core:
   return MeanOverlapDistanceOfChecked(a, b);
 }
 
-std::optional<GapMeasurement> MeasureGap(const core::Tracklet3D& from, const core::Tracklet3D& to) {
-  CheckWellFormed(from);
-  CheckWellFormed(to);
-  const auto last = std::find_if(from.points.rbegin(), from.points.rend(), HasValidPoint);
-  const auto first = std::find_if(to.points.begin(), to.points.end(), HasValidPoint);
-  if (last == from.points.rend() || first == to.points.end()) return std::nullopt;
-  const auto from_index = static_cast<std::size_t>(from.points.rend() - last) - 1;
-  const auto to_index = static_cast<std::size_t>(first - to.points.begin());
-  const PointsAtFrame& p = *last;
-  const PointsAtFrame& q = *first;
-
-  // Prefer the point indices valid in both frames (the same joints); otherwise each frame's own.
-  std::vector<char> use_p(p.size(), 0);
-  std::vector<char> use_q(q.size(), 0);
-  bool any_common = false;
-  for (std::size_t k = 0; k < std::min(p.size(), q.size()); ++k) {
-    if (IsValidPoint(p[k]) && IsValidPoint(q[k])) {
-      use_p[k] = 1;
-      use_q[k] = 1;
-      any_common = true;
+std::optional<Vec2> FrameFootprint(const std::vector<std::optional<Vec3>>& points,
+                                   const std::vector<int>& footprint_points) {
+  if (!footprint_points.empty()) {
+    Vec2 sum = Vec2::Zero();
+    bool all = true;
+    for (int k : footprint_points) {
+      const auto uk = static_cast<std::size_t>(k);
+      if (uk >= points.size() || !IsValidPoint(points[uk])) {
+        all = false;
+        break;
+      }
+      sum += points[uk]->head<2>();
     }
+    if (all) return Vec2(sum / static_cast<double>(footprint_points.size()));
   }
-  if (!any_common) {
-    for (std::size_t k = 0; k < p.size(); ++k) use_p[k] = IsValidPoint(p[k]) ? 1 : 0;
-    for (std::size_t k = 0; k < q.size(); ++k) use_q[k] = IsValidPoint(q[k]) ? 1 : 0;
+  Vec2 sum = Vec2::Zero();
+  int n = 0;
+  for (const std::optional<Vec3>& p : points) {
+    if (!IsValidPoint(p)) continue;
+    sum += p->head<2>();
+    ++n;
   }
-  GapMeasurement gap;
-  gap.distance_m = (Centroid(p, use_p) - Centroid(q, use_q)).norm();
-  const FrameIndex from_frame = from.frames[from_index];
-  const FrameIndex to_frame = to.frames[to_index];
-  gap.gap_frames = to_frame >= from_frame ? to_frame - from_frame : from_frame - to_frame;
-  return gap;
+  if (n == 0) return std::nullopt;
+  return Vec2(sum / static_cast<double>(n));
 }
 
-WindowLinker::WindowLinker(LinkerOptions options) : options_(options) {
+int SharedMembers(const std::vector<TrackMember>& members, const core::Tracklet3D& tracklet) {
+  // Both sorted by (camera, track): a merge walk.
+  int shared = 0;
+  std::size_t i = 0;
+  std::size_t j = 0;
+  while (i < members.size() && j < tracklet.members.size()) {
+    const TrackMember& a = members[i];
+    const core::TrackletMember& b = tracklet.members[j];
+    if (MemberLess(a.camera_id, a.track_id, b.camera_id, b.track_id)) {
+      ++i;
+    } else if (MemberLess(b.camera_id, b.track_id, a.camera_id, a.track_id)) {
+      ++j;
+    } else {
+      ++shared;
+      ++i;
+      ++j;
+    }
+  }
+  return shared;
+}
+
+std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
+                                         const LinkerContext& context,
+                                         const MotionOptions& options, double seconds_per_frame) {
+  std::optional<FloorMotion> motion;
+  FrameIndex at = 0;
+  for (std::size_t f = tracklet.frames.size(); f-- > 0;) {
+    const std::optional<Vec2> xy = FrameFootprint(tracklet.points[f], context.footprint_points);
+    if (!xy) continue;
+    const FrameIndex frame = tracklet.frames[f];
+    if (!motion) {
+      motion = FloorMotion::Start(*xy, options);
+    } else {
+      motion->Predict(FrameSeconds(at, frame, seconds_per_frame), options);
+      motion->Update(*xy, options);
+    }
+    at = frame;
+  }
+  return motion;
+}
+
+WindowLinker::WindowLinker(LinkerOptions options, LinkerContext context)
+    : options_(options), context_(std::move(context)) {
   std::string why;
   MVTRACK_CHECK_MSG(options_.Validate(&why), why.c_str());
+  MVTRACK_CHECK_MSG(context_.Validate(&why), why.c_str());
 }
 
 TrackState WindowLinker::StateOf(const LinkedTrack& track) const {
   if (track.missed_windows > 0) return TrackState::kLost;
-  return track.hits >= options_.min_hits ? TrackState::kConfirmed : TrackState::kTentative;
+  return track.confirmed ? TrackState::kConfirmed : TrackState::kTentative;
 }
 
-LinkResult WindowLinker::Link(std::int64_t window_id,
-                              const std::vector<core::Tracklet3D>& tracklets) {
+double WindowLinker::Seconds(FrameIndex from, FrameIndex to) const {
+  return FrameSeconds(from, to, seconds_per_frame_);
+}
+
+FloorMotion WindowLinker::PredictedMotion(const LinkedTrack& track, FrameIndex frame) const {
+  FloorMotion m = track.motion;
+  m.Predict(Seconds(track.last_seen_frame, frame), options_.motion);
+  return m;
+}
+
+void WindowLinker::Absorb(LinkedTrack* track, const core::Tracklet3D& tracklet,
+                          std::int64_t window_id) {
+  ++track->hits;
+  if (track->hits >= options_.min_hits) track->confirmed = true;
+  track->missed_windows = 0;
+  track->last_window = window_id;
+  // Motion: every footprint after the last one already used, in frame order.
+  for (std::size_t f = 0; f < tracklet.frames.size(); ++f) {
+    const FrameIndex frame = tracklet.frames[f];
+    const bool started = track->last_seen_frame != kNoFrame;
+    if (started && frame <= track->last_seen_frame) continue;
+    const std::optional<Vec2> xy = FrameFootprint(tracklet.points[f], context_.footprint_points);
+    if (!xy) continue;
+    if (!started) {
+      track->motion = FloorMotion::Start(*xy, options_.motion);
+    } else {
+      track->motion.Predict(Seconds(track->last_seen_frame, frame), options_.motion);
+      track->motion.Update(*xy, options_.motion);
+    }
+    track->last_seen_frame = frame;
+  }
+  // Members: merge (both sorted), then forget those not seen for longer than a lost track lives.
+  std::vector<TrackMember> merged;
+  merged.reserve(track->members.size() + tracklet.members.size());
+  std::size_t i = 0;
+  std::size_t j = 0;
+  while (i < track->members.size() || j < tracklet.members.size()) {
+    if (j == tracklet.members.size() ||
+        (i < track->members.size() &&
+         MemberLess(track->members[i].camera_id, track->members[i].track_id,
+                    tracklet.members[j].camera_id, tracklet.members[j].track_id))) {
+      merged.push_back(track->members[i++]);
+    } else if (i == track->members.size() ||
+               MemberLess(tracklet.members[j].camera_id, tracklet.members[j].track_id,
+                          track->members[i].camera_id, track->members[i].track_id)) {
+      const core::TrackletMember& m = tracklet.members[j++];
+      merged.push_back({m.camera_id, m.track_id, m.last_frame});
+    } else {
+      TrackMember m = track->members[i++];
+      m.last_frame = std::max(m.last_frame, tracklet.members[j++].last_frame);
+      merged.push_back(m);
+    }
+  }
+  const FrameIndex newest = tracklet.frames.empty() ? track->last_seen_frame
+                                                    : tracklet.frames.back();
+  const double horizon_s = options_.max_lost_s + options_.max_reid_gap_s + 1.0;
+  merged.erase(std::remove_if(merged.begin(), merged.end(),
+                              [&](const TrackMember& m) {
+                                return Seconds(m.last_frame, newest) > horizon_s;
+                              }),
+               merged.end());
+  track->members = std::move(merged);
+  track->last_tracklet = tracklet;
+}
+
+std::vector<EndedTrack> WindowLinker::EndStream() {
+  std::vector<EndedTrack> ended;
+  ended.reserve(tracks_.size());
+  for (const LinkedTrack& t : tracks_) ended.push_back({t.id, EndReason::kStreamEnd});
+  tracks_.clear();
+  return ended;
+}
+
+LinkResult WindowLinker::Link(std::int64_t window_id, FrameIndex window_begin,
+                              double seconds_per_frame,
+                              const std::vector<core::Tracklet3D>& tracklets,
+                              const std::vector<core::TrackletMember>& live_tracks) {
   MVTRACK_CHECK_MSG(!last_window_.has_value() || window_id > *last_window_,
                     "WindowLinker::Link: window ids must be strictly increasing");
+  MVTRACK_CHECK_MSG(std::isfinite(seconds_per_frame) && seconds_per_frame > 0.0,
+                    "WindowLinker::Link: seconds_per_frame must be finite and > 0");
+  seconds_per_frame_ = seconds_per_frame;
   for (const core::Tracklet3D& tracklet : tracklets) CheckWellFormed(tracklet);
 
   LinkResult result;
   result.window_id = window_id;
   const std::size_t num_tracklets = tracklets.size();
   result.track_of_tracklet.assign(num_tracklets, 0);
-  result.link_distance_m.assign(num_tracklets, std::numeric_limits<double>::quiet_NaN());
+  result.link_distance_m.assign(num_tracklets, kNaN);
   result.link_kind.assign(num_tracklets, LinkKind::kBirth);
+  result.shared_members.assign(num_tracklets, 0);
 
   // Skipped window ids are windows without tracklets: every track misses them.
-  const auto remove_dead = [this, &result]() {
-    const auto dead = [this](const LinkedTrack& t) {
-      return t.missed_windows > options_.max_missed_windows;
-    };
-    for (const LinkedTrack& t : tracks_) {
-      if (dead(t)) result.died.push_back(t.id);
-    }
-    tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(), dead), tracks_.end());
-  };
   if (last_window_.has_value()) {
     // Unsigned arithmetic: the difference of two int64 values always fits in a uint64.
     const std::uint64_t skipped = static_cast<std::uint64_t>(window_id) -
                                   static_cast<std::uint64_t>(*last_window_) - 1U;
     if (skipped > 0) {
-      for (LinkedTrack& t : tracks_) AddMisses(&t, skipped, options_.max_missed_windows);
-      remove_dead();
+      for (LinkedTrack& t : tracks_) AddMisses(&t, skipped);
     }
   }
   last_window_ = window_id;
 
-  const auto num_tracks = static_cast<Eigen::Index>(tracks_.size());
-  const auto num_cols = static_cast<Eigen::Index>(num_tracklets);
-  std::vector<int> tracklet_of_track(tracks_.size(), -1);
-
-  // Stage 1 (Eq. 8 + Eq. 9): overlapping pairs, gated by max_link_distance_m.
-  Eigen::MatrixXd overlap_cost = Eigen::MatrixXd::Constant(num_tracks, num_cols, kForbidden);
-  std::vector<char> has_overlap(tracks_.size() * num_tracklets, 0);
-  for (Eigen::Index r = 0; r < num_tracks; ++r) {
-    const auto sr = static_cast<std::size_t>(r);
-    for (Eigen::Index c = 0; c < num_cols; ++c) {
-      const auto sc = static_cast<std::size_t>(c);
-      const auto d = MeanOverlapDistanceOfChecked(tracks_[sr].last_tracklet, tracklets[sc]);
-      if (!d.has_value()) continue;
-      has_overlap[sr * num_tracklets + sc] = 1;
-      if (*d <= options_.max_link_distance_m) overlap_cost(r, c) = *d;
+  // Lost tracks end before linking when they waited too long or no camera tracks them any more.
+  std::vector<EndedTrack> ended;
+  const auto continues = [&](const LinkedTrack& t) {
+    // Any member among the live 2D tracks (both sorted by camera, then track).
+    std::size_t i = 0;
+    std::size_t j = 0;
+    while (i < t.members.size() && j < live_tracks.size()) {
+      const TrackMember& a = t.members[i];
+      const core::TrackletMember& b = live_tracks[j];
+      if (MemberLess(a.camera_id, a.track_id, b.camera_id, b.track_id)) {
+        ++i;
+      } else if (MemberLess(b.camera_id, b.track_id, a.camera_id, a.track_id)) {
+        ++j;
+      } else {
+        return true;
+      }
     }
+    return false;
+  };
+  const auto end_reason = [&](const LinkedTrack& t) -> std::optional<EndReason> {
+    if (t.missed_windows == 0) return std::nullopt;
+    const double lost_s = Seconds(t.last_seen_frame, window_begin);
+    if (lost_s > options_.max_lost_s) return EndReason::kLostTooLong;
+    const bool reid_possible = options_.reid_gate_chi2 > 0.0 && lost_s <= options_.max_reid_gap_s;
+    if (!reid_possible && !continues(t)) return EndReason::kLeftView;
+    return std::nullopt;
+  };
+  for (const LinkedTrack& t : tracks_) {
+    if (const auto reason = end_reason(t)) ended.push_back({t.id, *reason});
   }
-  const core::Assignment overlap = core::SolveAssignment(overlap_cost, kAnyFiniteCost);
-  for (const auto& [r, c] : overlap.matches) {
-    tracklet_of_track[static_cast<std::size_t>(r)] = c;
-    result.link_distance_m[static_cast<std::size_t>(c)] = overlap_cost(r, c);
-    result.link_kind[static_cast<std::size_t>(c)] = LinkKind::kOverlap;
+  if (!ended.empty()) {
+    std::size_t e = 0;
+    tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
+                                 [&](const LinkedTrack& t) {
+                                   if (e < ended.size() && ended[e].id == t.id) {
+                                     ++e;
+                                     return true;
+                                   }
+                                   return false;
+                                 }),
+                  tracks_.end());
   }
 
-  // Stage 2 (gap rule): leftover pairs that share no measurable frame.
-  const std::vector<int>& rows = overlap.unmatched_rows;
-  const std::vector<int>& cols = overlap.unmatched_cols;
-  Eigen::MatrixXd gap_cost = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rows.size()),
-                                                       static_cast<Eigen::Index>(cols.size()),
-                                                       kForbidden);
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto sr = static_cast<std::size_t>(rows[i]);
-    for (std::size_t j = 0; j < cols.size(); ++j) {
-      const auto sc = static_cast<std::size_t>(cols[j]);
-      if (has_overlap[sr * num_tracklets + sc] != 0) continue;
-      const auto gap = MeasureGap(tracks_[sr].last_tracklet, tracklets[sc]);
-      if (!gap.has_value()) continue;
-      const double gate = options_.max_link_distance_m +
-                          options_.max_speed_m_per_frame * static_cast<double>(gap->gap_frames);
-      if (gap->distance_m <= gate) {
-        gap_cost(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = gap->distance_m;
+  const std::size_t num_tracks = tracks_.size();
+  const auto rows_n = static_cast<Eigen::Index>(num_tracks);
+  const auto cols_n = static_cast<Eigen::Index>(num_tracklets);
+  std::vector<int> tracklet_of_track(num_tracks, -1);
+  std::vector<int> track_of_col(num_tracklets, -1);
+
+  // Evidence of every pair: Eq. 8 over the overlap (NaN without), shared 2D tracks.
+  Eigen::MatrixXd overlap = Eigen::MatrixXd::Constant(rows_n, cols_n, kNaN);
+  Eigen::MatrixXi shared = Eigen::MatrixXi::Zero(rows_n, cols_n);
+  std::vector<char> row_shares(num_tracks, 0);
+  std::vector<char> col_shares(num_tracklets, 0);
+  for (std::size_t r = 0; r < num_tracks; ++r) {
+    for (std::size_t c = 0; c < num_tracklets; ++c) {
+      const auto er = static_cast<Eigen::Index>(r);
+      const auto ec = static_cast<Eigen::Index>(c);
+      if (const auto d = MeanOverlapDistanceOfChecked(tracks_[r].last_tracklet, tracklets[c])) {
+        overlap(er, ec) = *d;
+      }
+      shared(er, ec) = SharedMembers(tracks_[r].members, tracklets[c]);
+      if (shared(er, ec) > 0) {
+        row_shares[r] = 1;
+        col_shares[c] = 1;
       }
     }
   }
-  const core::Assignment gap = core::SolveAssignment(gap_cost, kAnyFiniteCost);
-  for (const auto& [i, j] : gap.matches) {
-    const int r = rows[static_cast<std::size_t>(i)];
-    const int c = cols[static_cast<std::size_t>(j)];
-    tracklet_of_track[static_cast<std::size_t>(r)] = c;
-    result.link_distance_m[static_cast<std::size_t>(c)] = gap_cost(i, j);
-    result.link_kind[static_cast<std::size_t>(c)] = LinkKind::kGap;
+
+  // The still unmatched tracks (rows) and tracklets (columns), in index order.
+  const auto unmatched = [&](std::vector<int>* rows, std::vector<int>* cols) {
+    for (std::size_t r = 0; r < num_tracks; ++r) {
+      if (tracklet_of_track[r] < 0) rows->push_back(static_cast<int>(r));
+    }
+    for (std::size_t c = 0; c < num_tracklets; ++c) {
+      if (track_of_col[c] < 0) cols->push_back(static_cast<int>(c));
+    }
+  };
+
+  // Solves one stage over the still unmatched rows and columns; `cost(r, c)` is the cost of a
+  // pair or nullopt when the stage forbids it.
+  const auto solve_stage = [&](LinkKind kind, const auto& cost) {
+    std::vector<int> rows;
+    std::vector<int> cols;
+    unmatched(&rows, &cols);
+    if (rows.empty() || cols.empty()) return;
+    Eigen::MatrixXd m = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rows.size()),
+                                                  static_cast<Eigen::Index>(cols.size()),
+                                                  kForbidden);
+    bool any = false;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      for (std::size_t j = 0; j < cols.size(); ++j) {
+        if (const std::optional<double> v = cost(rows[i], cols[j])) {
+          m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = *v;
+          any = true;
+        }
+      }
+    }
+    if (!any) return;
+    const core::Assignment a = core::SolveAssignment(m, kAnyFiniteCost);
+    for (const auto& [i, j] : a.matches) {
+      const int r = rows[static_cast<std::size_t>(i)];
+      const int c = cols[static_cast<std::size_t>(j)];
+      tracklet_of_track[static_cast<std::size_t>(r)] = c;
+      track_of_col[static_cast<std::size_t>(c)] = r;
+      result.link_kind[static_cast<std::size_t>(c)] = kind;
+      result.link_distance_m[static_cast<std::size_t>(c)] = m(i, j);
+      result.shared_members[static_cast<std::size_t>(c)] = shared(r, c);
+    }
+  };
+
+  // Stage 1: overlap with a shared 2D track (Eq. 8 + Eq. 9). Each shared 2D track outweighs
+  // any difference in Eq. 8 within the gate: when one person appears twice in a window (split
+  // into two clusters), the track keeps the tracklet that continues more of its 2D tracks.
+  solve_stage(LinkKind::kOverlap, [&](int r, int c) -> std::optional<double> {
+    const double d = overlap(r, c);
+    if (std::isnan(d) || d > options_.max_link_distance_m || shared(r, c) == 0) return std::nullopt;
+    return d - options_.max_link_distance_m * static_cast<double>(shared(r, c));
+  });
+  // Stage 2: overlap without a shared 2D track, where neither side shares one with anybody.
+  if (options_.unshared_link_distance_m > 0.0) {
+    solve_stage(LinkKind::kOverlap, [&](int r, int c) -> std::optional<double> {
+      const double d = overlap(r, c);
+      if (std::isnan(d) || d > options_.unshared_link_distance_m) return std::nullopt;
+      if (row_shares[static_cast<std::size_t>(r)] || col_shares[static_cast<std::size_t>(c)]) {
+        return std::nullopt;
+      }
+      return d;
+    });
   }
 
-  // Track management: update the matched, age the unmatched, then bury and give birth.
-  std::vector<char> tracklet_linked(num_tracklets, 0);
-  for (std::size_t r = 0; r < tracks_.size(); ++r) {
+  // Overlap links report their Eq. 8 distance.
+  for (std::size_t c = 0; c < num_tracklets; ++c) {
+    if (track_of_col[c] >= 0) result.link_distance_m[c] = overlap(track_of_col[c], c);
+  }
+
+  // The gap stages compare a track's prediction with a tracklet's initial state.
+  std::vector<std::optional<FootprintSpan>> spans(num_tracklets);
+  std::vector<std::optional<FloorMotion>> initial(num_tracklets);
+  for (std::size_t c = 0; c < num_tracklets; ++c) {
+    spans[c] = SpanOf(tracklets[c], context_.footprint_points);
+  }
+  const auto motion_distance = [&](int r, int c, double max_gap_s) -> std::optional<double> {
+    const auto uc = static_cast<std::size_t>(c);
+    const LinkedTrack& t = tracks_[static_cast<std::size_t>(r)];
+    if (!spans[uc] || !std::isnan(overlap(r, c)) || spans[uc]->first <= t.last_seen_frame) {
+      return std::nullopt;
+    }
+    if (Seconds(t.last_seen_frame, spans[uc]->first) > max_gap_s) return std::nullopt;
+    if (!initial[uc]) {
+      initial[uc] = InitialMotion(tracklets[uc], context_, options_.motion, seconds_per_frame_);
+    }
+    const FloorMotion predicted = PredictedMotion(t, spans[uc]->first);
+    return StateDistanceSquared(predicted, *initial[uc]);
+  };
+
+  // Stage 3: gap with a shared 2D track and the motion gate.
+  solve_stage(LinkKind::kGap, [&](int r, int c) -> std::optional<double> {
+    if (shared(r, c) == 0) return std::nullopt;
+    const std::optional<double> d2 = motion_distance(r, c, options_.max_lost_s);
+    if (!d2 || !(*d2 <= options_.gap_gate_chi2)) return std::nullopt;
+    return d2;
+  });
+
+  // Stage 4: re-identification by motion alone, only when unambiguous on both sides.
+  if (options_.reid_gate_chi2 > 0.0) {
+    std::vector<int> rows;
+    std::vector<int> cols;
+    unmatched(&rows, &cols);
+    Eigen::MatrixXd d2 = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rows.size()),
+                                                   static_cast<Eigen::Index>(cols.size()),
+                                                   kForbidden);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      for (std::size_t j = 0; j < cols.size(); ++j) {
+        if (shared(rows[i], cols[j]) > 0) continue;
+        if (const auto v = motion_distance(rows[i], cols[j], options_.max_reid_gap_s)) {
+          d2(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = *v;
+        }
+      }
+    }
+    for (Eigen::Index i = 0; i < d2.rows(); ++i) {
+      for (Eigen::Index j = 0; j < d2.cols(); ++j) {
+        const double v = d2(i, j);
+        if (!(v <= options_.reid_gate_chi2)) continue;
+        const int r = rows[static_cast<std::size_t>(i)];
+        const int c = cols[static_cast<std::size_t>(j)];
+        // (With a zero margin, equal candidates would both qualify: the first one wins.)
+        if (tracklet_of_track[static_cast<std::size_t>(r)] >= 0 ||
+            track_of_col[static_cast<std::size_t>(c)] >= 0) {
+          continue;
+        }
+        bool unambiguous = true;
+        for (Eigen::Index k = 0; k < d2.cols() && unambiguous; ++k) {
+          if (k != j && d2(i, k) < v + options_.reid_margin_chi2) unambiguous = false;
+        }
+        for (Eigen::Index k = 0; k < d2.rows() && unambiguous; ++k) {
+          if (k != i && d2(k, j) < v + options_.reid_margin_chi2) unambiguous = false;
+        }
+        if (!unambiguous) continue;
+        tracklet_of_track[static_cast<std::size_t>(r)] = c;
+        track_of_col[static_cast<std::size_t>(c)] = r;
+        result.link_kind[static_cast<std::size_t>(c)] = LinkKind::kReidentified;
+        result.link_distance_m[static_cast<std::size_t>(c)] = v;
+      }
+    }
+  }
+
+  // Track management: update the matched, age the unmatched, then give birth.
+  for (std::size_t r = 0; r < num_tracks; ++r) {
     LinkedTrack& track = tracks_[r];
     const int c = tracklet_of_track[r];
     if (c < 0) {
-      AddMisses(&track, 1U, options_.max_missed_windows);
+      AddMisses(&track, 1U);
       continue;
     }
     const auto sc = static_cast<std::size_t>(c);
-    tracklet_linked[sc] = 1;
     result.track_of_tracklet[sc] = track.id;
-    ++track.hits;
-    track.missed_windows = 0;
-    track.last_window = window_id;
-    track.last_tracklet = tracklets[sc];
+    Absorb(&track, tracklets[sc], window_id);
   }
-  remove_dead();
   for (std::size_t c = 0; c < num_tracklets; ++c) {
-    if (tracklet_linked[c] != 0) continue;
+    if (track_of_col[c] >= 0) continue;
     LinkedTrack track;
     track.id = next_id_++;
-    track.hits = 1;
-    track.missed_windows = 0;
     track.first_window = window_id;
-    track.last_window = window_id;
-    track.last_tracklet = tracklets[c];
+    track.last_seen_frame = kNoFrame;
+    Absorb(&track, tracklets[c], window_id);
+    bool strong = static_cast<int>(tracklets[c].cameras.size()) >= options_.strong_birth_cameras;
+    if (!strong && options_.isolated_birth_distance_m > 0.0) {
+      // Nobody else of the window comes near: not a split-off duplicate of a person.
+      strong = true;
+      for (std::size_t o = 0; o < num_tracklets && strong; ++o) {
+        if (o == c) continue;
+        const std::optional<double> d =
+            ClosestApproach(tracklets[c], tracklets[o], context_.footprint_points);
+        if (d && *d <= options_.isolated_birth_distance_m) strong = false;
+      }
+    }
+    track.confirmed = track.confirmed || strong;
     result.track_of_tracklet[c] = track.id;
     result.born.push_back(track.id);
     tracks_.push_back(std::move(track));  // fresh ids are the largest: tracks_ stays sorted
   }
   for (LinkedTrack& track : tracks_) track.state = StateOf(track);
-  std::sort(result.died.begin(), result.died.end());
+  for (const EndedTrack& e : ended) {
+    result.died.push_back(e.id);
+    result.died_reason.push_back(e.reason);
+  }
   return result;
 }
 

@@ -2,9 +2,12 @@
 /// @file
 /// Link Sliding Windows (paper Sec. "Link Sliding Windows", Eq. 8-9): the short-term 3D
 /// tracklets U_{k,p} that each sliding window produces are linked into long-term 3D tracks by
-/// an online track-to-track data association: Hungarian assignment (core::SolveAssignment,
-/// Eq. 9) on the mean 3D distance over the frames two tracklets share (Eq. 8), with SORT-style
-/// track management (birth, confirmation, death). Pure: no threads, no I/O, no clock.
+/// an online track-to-track data association with explicit track management. Beyond the
+/// paper's Eq. 8 distance over the windows' overlap it uses the evidence the earlier stages
+/// already have: the (camera, 2D track) members a tracklet was built from, which continue
+/// from window to window while a camera keeps seeing the person, and a constant-velocity
+/// motion model whose uncertainty grows with the length of a gap (floor_motion.h). Pure: no
+/// threads, no I/O, no clock. docs/DECISIONS.md "Window linking" has the measurements.
 
 #include <cstdint>
 #include <optional>
@@ -13,48 +16,95 @@
 
 #include "core/observation.h"
 #include "core/types.h"
+#include "linking/floor_motion.h"
 
 namespace mvtrack::linking {
 
-/// WindowLinker settings. Frame-based quantities assume the window's frame indices (any rate).
+/// WindowLinker settings (tunable; the stream's facts are in LinkerContext).
 struct LinkerOptions {
   /// Gate on the Eq. 8 distance, metres. A tracklet and a track whose overlapping parts are
-  /// farther apart than this are never linked. In the overlap both tracklets are triangulated
-  /// from (largely) the same 2D observations, so for the same person Eq. 8 only measures the
-  /// disagreement of two triangulations (centimetres to ~0.2 m for box centres with CMMT
-  /// infill), whereas two different people are at least a body width apart (shoulder width
-  /// ~0.4-0.5 m, centre-to-centre distance rarely below 0.4 m even when passing). Swaps between
-  /// close people are prevented by the optimal assignment, not by this gate; the gate only
-  /// stops a tracklet from taking over a track it is clearly not. Finite, > 0.
+  /// farther apart than this are never linked on the overlap. In the overlap both tracklets
+  /// are triangulated from (largely) the same 2D observations, so for the same person Eq. 8
+  /// only measures the disagreement of two triangulations (centimetres), whereas two people
+  /// are at least a body width apart. Finite, > 0.
   double max_link_distance_m = 0.5;
-  /// Matched windows (the birth window counts as the first) before a track is confirmed; once
-  /// confirmed it stays confirmed. 1 confirms at birth: a short-term 3D tracklet already is
-  /// multi-frame, multi-view evidence (>= 2 cameras whose 2D tracklets agree epipolarly over a
-  /// whole window, then robust triangulation), which is what SORT's min_hits buys for
-  /// single-frame detections; every extra window would withhold delta frames of a new person.
-  /// Must be >= 1.
-  int min_hits = 1;
-  /// A track unmatched for more than this many consecutive windows (skipped window ids
-  /// included) dies. 2 windows (2 * delta = 40 frames, ~1.3 s at 30 fps) bridge a person that
-  /// is seen by fewer than two cameras, or that PDNC fails to cluster, for one or two windows,
-  /// while the gap gate after two missed windows (0.5 + 0.15 * 31 = 5.15 m for nu = 30,
-  /// delta = 20) is still bounded. Must be >= 0.
-  int max_missed_windows = 2;
-  /// Maximum speed used to gate links across a gap (no overlapping frames with a common
-  /// point): the centroid distance must satisfy d <= max_link_distance_m +
-  /// max_speed_m_per_frame * gap_frames. 0.15 m/frame is 4.5 m/s at 30 fps (a running person),
-  /// an upper bound rather than a typical speed. Finite, >= 0.
-  double max_speed_m_per_frame = 0.15;
+  /// An overlap link between a track and a tracklet that share no 2D track (every camera's 2D
+  /// track changed) needs Eq. 8 <= this, and neither of them may share a 2D track with any
+  /// other tracklet / track of the window: a person whose members all changed is a new
+  /// candidate unless nothing else explains it. 0 disables such links. Finite, in
+  /// [0, max_link_distance_m].
+  double unshared_link_distance_m = 0.25;
+  /// Matched windows (the birth window counts as the first) before a track is confirmed (and
+  /// output); once confirmed it stays confirmed. A birth from strong evidence (see
+  /// strong_birth_cameras) is confirmed at once. Must be >= 1.
+  int min_hits = 2;
+  /// A birth whose tracklet is supported by at least this many cameras is confirmed at birth.
+  /// Two-camera births wait for a second window: they are mostly a person split off its own
+  /// cluster or the crossing rays of two people (docs/DECISIONS.md "Window linking"). Must
+  /// be >= 2.
+  int strong_birth_cameras = 3;
+  /// A birth whose footprint stays farther than this (metres) from every other tracklet of the
+  /// window is confirmed at birth too: a duplicate split off a person lies next to that person
+  /// (of the ghost births on a simulated 6 x 16 enter/leave floor, 56 of 62 were within 2 m
+  /// of a real person). 0 disables. Finite, >= 0.
+  double isolated_birth_distance_m = 2.0;
+  /// A lost track (no tracklet linked in the latest window) waits this long, in seconds of
+  /// stream time since its last triangulated frame, for a continuation; then it is removed and
+  /// its id is never given out again. Finite, >= 0.
+  double max_lost_s = 3.0;
+  /// The motion model's noise (the gates below are chi-square values of its 4-D state test).
+  MotionOptions motion;
+  /// Gap links supported by a shared 2D track (one camera kept tracking the person while the
+  /// 3D track was lost): the tracklet's initial state (position, velocity) must lie within
+  /// this squared Mahalanobis distance of the track's prediction. 18.47 = chi-square, 4 degrees
+  /// of freedom, 99.9 %. Finite, > 0.
+  double gap_gate_chi2 = 18.47;
+  /// Re-identification of a lost track by motion alone (no shared 2D track): the squared
+  /// Mahalanobis distance of the state test must be <= this (9.49 = chi-square, 4 degrees of
+  /// freedom, 95 %). 0 disables re-identification by motion. Finite, >= 0.
+  double reid_gate_chi2 = 0.0;
+  /// Re-identification by motion alone also needs the match to be at least this much smaller
+  /// (squared Mahalanobis distance) than the second-best candidate on both sides: the track's
+  /// other tracklets and the tracklet's other lost tracks. An ambiguous match starts a new id.
+  /// Finite, >= 0.
+  double reid_margin_chi2 = 6.0;
+  /// Re-identification by motion alone only across gaps up to this long, seconds. Finite, >= 0.
+  double max_reid_gap_s = 1.5;
 
   /// Checks the ranges above; on failure writes a reason to `why` (if not null).
   bool Validate(std::string* why) const;
 };
 
-/// Life-cycle state of a long-term track (SORT-style track management).
+/// Facts of the scene the linker needs beyond its options.
+struct LinkerContext {
+  /// Point indices whose mean is the footprint of a frame when all are valid (pose mode: the
+  /// hips); otherwise, or when empty, the mean of the frame's valid points. Only x and y count.
+  std::vector<int> footprint_points;
+
+  /// Checks that footprint_points are >= 0; on failure writes a reason to `why` (if not null).
+  bool Validate(std::string* why) const;
+};
+
+/// Life-cycle state of a long-term track.
 enum class TrackState {
   kTentative,  ///< matched in its latest window, fewer than min_hits matched windows so far
   kConfirmed,  ///< matched in its latest window, at least min_hits matched windows
-  kLost,       ///< missed >= 1 window, still alive (confirmed or not: compare hits to min_hits)
+  kLost,       ///< missed >= 1 window, still waiting (confirmed or not: compare hits to min_hits)
+};
+
+/// Why a track ended.
+enum class EndReason {
+  kLostTooLong,  ///< no continuation within max_lost_s
+  kLeftView,     ///< none of its 2D tracks continues (every camera lost the person) and
+                 ///< re-identification cannot take it any more
+  kStreamEnd,    ///< WindowLinker::EndStream
+};
+
+/// A (camera, 2D track) a long-term track was built from, and the last frame it was seen in.
+struct TrackMember {
+  CameraId camera_id = 0;
+  TrackId2D track_id = 0;
+  FrameIndex last_frame = 0;
 };
 
 /// One alive long-term 3D track.
@@ -62,25 +112,41 @@ struct LinkedTrack {
   /// Unique per WindowLinker, starts at 1, never reused.
   TrackId3D id = 0;
   /// Derived after every Link: kLost when missed_windows > 0, else kConfirmed when
-  /// hits >= min_hits, else kTentative.
+  /// `confirmed`, else kTentative.
   TrackState state = TrackState::kTentative;
   /// Windows in which a tracklet was linked to it (including the birth window).
   int hits = 0;
-  /// Consecutive windows (skipped window ids included) without a linked tracklet.
+  /// Confirmed: output (min_hits windows linked, or a strong birth); stays confirmed.
+  bool confirmed = false;
+  /// Consecutive windows (skipped window ids included, saturating) without a linked tracklet.
   int missed_windows = 0;
   /// Window of birth.
   std::int64_t first_window = 0;
   /// Last window in which a tracklet was linked to it (or its birth window).
   std::int64_t last_window = 0;
+  /// Last frame with a footprint (valid point) among its linked tracklets.
+  FrameIndex last_seen_frame = 0;
   /// The most recent short-term tracklet linked to it.
   core::Tracklet3D last_tracklet;
+  /// Its 2D tracks, sorted by (camera, track); those not seen for longer than max_lost_s plus
+  /// a window are forgotten.
+  std::vector<TrackMember> members;
+  /// Footprint motion, updated with every frame of its tracklets (at last_seen_frame).
+  FloorMotion motion;
 };
 
 /// How an input tracklet was linked.
 enum class LinkKind {
-  kBirth,    ///< unmatched: started a new track
-  kOverlap,  ///< linked on the Eq. 8 distance over overlapping frames
-  kGap,      ///< linked across a gap with the centroid distance (gap rule)
+  kBirth,         ///< unmatched: started a new track
+  kOverlap,       ///< linked on the Eq. 8 distance over overlapping frames
+  kGap,           ///< linked across a gap: a shared 2D track and the motion gate
+  kReidentified,  ///< linked across a gap by motion alone, unambiguously
+};
+
+/// A track that ended in a Link or EndStream call.
+struct EndedTrack {
+  TrackId3D id = 0;
+  EndReason reason = EndReason::kLostTooLong;
 };
 
 /// The outcome of WindowLinker::Link for one window.
@@ -91,13 +157,17 @@ struct LinkResult {
   std::vector<TrackId3D> track_of_tracklet;
   /// Tracks started in this window (sorted ascending).
   std::vector<TrackId3D> born;
-  /// Tracks that died in this window, including through skipped window ids (sorted ascending).
+  /// Tracks that ended in this window (sorted ascending).
   std::vector<TrackId3D> died;
-  /// Parallel to the input: for kOverlap the Eq. 8 distance to the linked track, for kGap the
-  /// centroid distance of the gap rule (metres), NaN for births.
+  /// Parallel to `died`: why.
+  std::vector<EndReason> died_reason;
+  /// Parallel to the input: for kOverlap the Eq. 8 distance to the linked track (metres), for
+  /// kGap and kReidentified the squared Mahalanobis distance of the motion test, NaN for births.
   std::vector<double> link_distance_m;
   /// Parallel to the input: how each tracklet was linked.
   std::vector<LinkKind> link_kind;
+  /// Parallel to the input: 2D tracks shared with the linked track (0 for births).
+  std::vector<int> shared_members;
 };
 
 /// Eq. 8 distance between two 3D tracklets: per overlapping frame the mean over points valid
@@ -107,67 +177,88 @@ struct LinkResult {
 /// increasing, points parallel to frames; checked).
 std::optional<double> MeanOverlapDistance(const core::Tracklet3D& a, const core::Tracklet3D& b);
 
-/// The gap rule's measurement between an earlier tracklet `from` and a later tracklet `to` that
-/// share no frame with a common valid point.
-struct GapMeasurement {
-  /// Distance between the centroids of the points of `from`'s last frame with a valid point and
-  /// of `to`'s first frame with a valid point, metres. Both centroids are taken over the point
-  /// indices valid in both frames when there is at least one, otherwise over each frame's own
-  /// valid points (pose mode: comparing different joint subsets would bias the distance).
-  double distance_m = 0.0;
-  /// |to's first valid frame - from's last valid frame|, frames.
-  std::int64_t gap_frames = 0;
-};
+/// The footprint (x, y) of one frame's points under `footprint_points` (see LinkerContext);
+/// nullopt without a valid point.
+std::optional<Vec2> FrameFootprint(const std::vector<std::optional<Vec3>>& points,
+                                   const std::vector<int>& footprint_points);
 
-/// The gap-rule measurement from `from` to `to`; nullopt when either has no valid point.
-/// Stateless. Both tracklets must be well formed (checked).
-std::optional<GapMeasurement> MeasureGap(const core::Tracklet3D& from, const core::Tracklet3D& to);
+/// Number of `tracklet` members whose (camera, 2D track) is among `members` (both sorted by
+/// camera then track, as WindowLinker keeps and ProcessWindowJob makes them).
+int SharedMembers(const std::vector<TrackMember>& members, const core::Tracklet3D& tracklet);
+
+/// The motion of `tracklet` estimated backwards over all its footprints, at its first frame
+/// with a footprint (frames are `seconds_per_frame` apart): a new tracklet's initial state
+/// with its uncertainty. nullopt without a footprint.
+std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
+                                         const LinkerContext& context,
+                                         const MotionOptions& options, double seconds_per_frame);
 
 /// Online track-to-track data association across sliding windows (paper Sec. "Link Sliding
-/// Windows", Eq. 8-9, track management after SORT, Bewley et al. 2016).
-///
-/// Per window, with the alive tracks as rows and the window's tracklets as columns:
-///  1. Overlap stage: cost = Eq. 8 distance between the track's last tracklet and the tracklet
-///     (MeanOverlapDistance), pairs without it or above max_link_distance_m forbidden; solved
-///     with core::SolveAssignment (Eq. 9).
-///  2. Gap stage, among the tracks and tracklets left unmatched by stage 1: pairs WITHOUT an
-///     Eq. 8 distance (no common frame with a common valid point, e.g. a track that missed
-///     windows) cost the MeasureGap centroid distance, forbidden above
-///     max_link_distance_m + max_speed_m_per_frame * gap_frames; solved again.
-///  Overlap matches come first because Eq. 8 averages many frames and points over the same
-///  time span, while the gap rule compares two single frames across a gap with a loose,
-///  speed-based gate; and because SolveAssignment maximises the number of matches before the
-///  cost, one joint matrix could drop a good overlap match to make room for a gap match.
-///  3. Matched tracks take the tracklet (hits + 1, missed = 0); each unmatched tracklet starts a
-///     track with a fresh id (in input order); each unmatched track misses the window and dies
-///     when missed_windows > max_missed_windows.
+/// Windows", Eq. 8-9) with the track management of the mature online trackers (tentative,
+/// confirmed, lost with a time to live, removed). Per window, alive tracks as rows and the
+/// window's tracklets as columns, each stage solved optimally (core::SolveAssignment, Eq. 9)
+/// among what the earlier stages left:
+///  1. Overlap: Eq. 8 <= max_link_distance_m and at least one shared (camera, 2D track).
+///  2. Overlap without a shared 2D track: Eq. 8 <= unshared_link_distance_m, only between a
+///     track and a tracklet that share a 2D track with nobody in this window.
+///  3. Gap: no overlap, a shared 2D track, the gap <= max_lost_s, and the tracklet's initial
+///     state within gap_gate_chi2 of the track's prediction (cost: that distance).
+///  4. Re-identification: no overlap, no shared 2D track, a lost track, the gap <=
+///     max_reid_gap_s, the motion distance <= reid_gate_chi2 and smaller by reid_margin_chi2
+///     than every other candidate of the track and of the tracklet.
+/// Then matched tracks take their tracklet, unmatched tracklets are born (fresh ids, in input
+/// order), unmatched tracks are lost. A lost track ends (before a window is linked) when its
+/// last footprint is older than max_lost_s; when none of its 2D tracks is alive any more (the
+/// person left every camera's view or every camera lost them: 2D track ids are never reused,
+/// so only re-identification could link it) and re-identification is off or its gap exceeds
+/// max_reid_gap_s.
 ///
 /// Single-owner, single-threaded; deterministic (ties go to the lowest track id, then the lowest
 /// tracklet index).
 class WindowLinker {
  public:
-  /// `options` must be valid (checked; validate configuration beforehand).
-  explicit WindowLinker(LinkerOptions options = {});
+  /// `options` and `context` must be valid (checked; validate configuration beforehand).
+  explicit WindowLinker(LinkerOptions options = {}, LinkerContext context = {});
 
-  /// Links the next window's tracklets. Window ids must be strictly increasing (checked); a
-  /// skipped id counts as a window with no tracklets (its misses are applied, and tracks that
-  /// die of them are reported in this result, before linking). Tracklets must be well formed
-  /// (checked); a tracklet without any valid point cannot be linked and is born.
-  LinkResult Link(std::int64_t window_id, const std::vector<core::Tracklet3D>& tracklets);
+  /// Links the next window, which starts at frame `window_begin`; frames are
+  /// `seconds_per_frame` apart (the stream's measured period; finite, > 0, checked): it
+  /// converts frame gaps to the seconds of the options and the motion model. `live_tracks` are the
+  /// 2D tracks observed in the window (sorted by camera then track, as WindowJob::live_tracks): a
+  /// lost track none of whose 2D tracks is among them can only come back by re-identification.
+  /// Window ids must be strictly increasing (checked); a skipped id counts as a window with no
+  /// tracklets. Tracklets must be well formed (checked); a tracklet without any valid point cannot
+  /// be linked and is born.
+  LinkResult Link(std::int64_t window_id, FrameIndex window_begin, double seconds_per_frame,
+                  const std::vector<core::Tracklet3D>& tracklets,
+                  const std::vector<core::TrackletMember>& live_tracks);
+
+  /// The stream ended: every track ends (kStreamEnd), returned sorted by id.
+  std::vector<EndedTrack> EndStream();
 
   /// Alive tracks sorted by id.
   const std::vector<LinkedTrack>& tracks() const { return tracks_; }
 
   /// The options in use.
   const LinkerOptions& options() const { return options_; }
+  const LinkerContext& context() const { return context_; }
+
+  /// The track's motion predicted to `frame`, with the frame period of the latest Link
+  /// (diagnostics and tests).
+  FloorMotion PredictedMotion(const LinkedTrack& track, FrameIndex frame) const;
+  /// The frame period of the latest Link (1/30 s before the first).
+  double seconds_per_frame() const { return seconds_per_frame_; }
 
  private:
   TrackState StateOf(const LinkedTrack& track) const;
+  double Seconds(FrameIndex from, FrameIndex to) const;
+  void Absorb(LinkedTrack* track, const core::Tracklet3D& tracklet, std::int64_t window_id);
 
   LinkerOptions options_;
+  LinkerContext context_;
   std::vector<LinkedTrack> tracks_;  // increasing id order
   std::optional<std::int64_t> last_window_;
   TrackId3D next_id_ = 1;
+  double seconds_per_frame_ = 1.0 / 30.0;
 };
 
 }  // namespace mvtrack::linking

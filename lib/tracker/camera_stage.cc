@@ -1,12 +1,34 @@
 #include "tracker/camera_stage.h"
 
+#include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <numbers>
 #include <utility>
 
 #include "core/check.h"
 
 namespace mvtrack::tracker {
+namespace {
+
+// A box edge at `edge_px` touches the image border at `border_px` (0 for the top and left
+// edges, the image size for the bottom and right ones) when it lies within kClipMarginPx of it:
+// detectors clip boxes there (at 0 / size - 1 or at 0 / size, by convention). An edge beyond
+// the border is an extrapolated (amodal) box and is kept.
+// Box ends are used while the person's vertical axis leans at most this much in the image
+// (|dx / dy|, tan 30 deg): further out, an axis-aligned box says little about where the axis
+// meets its edges.
+constexpr double kMaxEndsTilt = 0.577;
+
+bool TouchesBorder(double edge_px, int border_px) {
+  constexpr double kClipMarginPx = 1.5;
+  const double b = static_cast<double>(border_px);
+  return border_px == 0 ? edge_px <= kClipMarginPx && edge_px >= -kClipMarginPx
+                        : edge_px >= b - 1.0 - kClipMarginPx && edge_px <= b + kClipMarginPx;
+}
+
+}  // namespace
 
 CameraStage::CameraStage(geometry::CameraModel camera, int camera_index,
                          const TrackerOptions& options)
@@ -14,7 +36,11 @@ CameraStage::CameraStage(geometry::CameraModel camera, int camera_index,
       camera_index_(camera_index),
       options_(options),
       num_points_(NumPoints(options)),
-      sort_(options.sort) {
+      sort_(options.sort),
+      k_inverse_(camera_.K.inverse()),
+      world_from_cam_(camera_.cam_from_world.rotation.transpose()),
+      up_vanishing_(camera_.K * camera_.cam_from_world.rotation.col(2)),
+      sin_ends_limit_(std::sin(options.box_ends_max_elevation_deg * std::numbers::pi / 180.0)) {
   if (options_.mode == InputMode::kPoses) {
     for (core::KeypointLayoutId from : core::AllKeypointLayouts()) {
       mappings_[from] = core::MakeKeypointMapping(from, options_.layout);
@@ -22,15 +48,67 @@ CameraStage::CameraStage(geometry::CameraModel camera, int camera_index,
   }
 }
 
+Vec2 CameraStage::VerticalDirectionAt(const Vec2& undistorted_px) const {
+  // Vanishing point of the world's z axis: K R e_z (homogeneous). Image direction from the
+  // pixel towards it, pointing down the image (the feet are below the head).
+  const Vec3& v = up_vanishing_;
+  Vec2 d;
+  if (std::abs(v.z()) < 1e-12) {
+    d = Vec2(v.x(), v.y());  // verticals are parallel in the image
+  } else {
+    d = Vec2(v.x() / v.z(), v.y() / v.z()) - undistorted_px;
+    if (v.z() > 0.0) d = -d;  // the up vanishing point lies in front: down is away from it
+  }
+  if (d.y() < 0.0) d = -d;
+  return d;
+}
+
+bool CameraStage::SteeperThanEndsLimit(const Vec2& undistorted_px) const {
+  // The ray through the pixel in the world frame (z up) is steeper than the limit when the
+  // sine of its angle below the horizontal, -z / |ray|, exceeds the limit's sine.
+  const Vec3 in_camera = k_inverse_ * Vec3(undistorted_px.x(), undistorted_px.y(), 1.0);
+  const Vec3 in_world = world_from_cam_ * in_camera;
+  return -in_world.z() > sin_ends_limit_ * in_world.norm();
+}
+
 std::optional<core::Observation2D> CameraStage::MakeObservation(
     const core::Detection2D& detection, core::BoxPx* sort_box) const {
   if (detection.score < options_.min_detection_score) return std::nullopt;
   core::Observation2D obs;
   if (options_.mode == InputMode::kBoxes) {
-    const Vec2 raw = options_.box_point == BoxPoint::kCenter ? detection.box.center()
-                                                             : detection.box.bottom_center();
-    obs.points_px.push_back(camera_.UndistortPixel(raw));
-    obs.confidence.push_back(1.0);
+    if (options_.box_point == BoxPoint::kCenterEnds) {
+      // Centre, bottom (feet), top (head); an edge that touches the image border cuts the
+      // person off, so that end is unknown.
+      const core::BoxPx& b = detection.box;
+      const Vec2 center = camera_.UndistortPixel(b.center());
+      const double bottom_y = camera_.UndistortPixel(b.bottom_center()).y();
+      const double top_y = camera_.UndistortPixel(b.top_center()).y();
+      // The person's vertical axis through the box centre, in the image: towards the vanishing
+      // point of the world's vertical. Where it crosses the box's bottom and top edges are the
+      // feet and the head (the bottom and top centres only for an upright image of the person).
+      const Vec2 axis = VerticalDirectionAt(center);
+      const bool usable = std::abs(axis.y()) > 1e-9 &&
+                          std::abs(axis.x() / axis.y()) <= kMaxEndsTilt &&
+                          !SteeperThanEndsLimit(center);
+      const auto on_axis = [&](double y) {
+        return Vec2(center.x() + (y - center.y()) * axis.x() / axis.y(), y);
+      };
+      const bool bottom_cut = !usable || TouchesBorder(b.y_max, camera_.height_px);
+      const bool top_cut = !usable || TouchesBorder(b.y_min, 0);
+      obs.points_px.reserve(3);
+      obs.confidence.reserve(3);
+      obs.points_px.push_back(center);
+      obs.confidence.push_back(1.0);
+      obs.points_px.push_back(usable ? on_axis(bottom_y) : Vec2(center.x(), bottom_y));
+      obs.confidence.push_back(bottom_cut ? 0.0 : 1.0);
+      obs.points_px.push_back(usable ? on_axis(top_y) : Vec2(center.x(), top_y));
+      obs.confidence.push_back(top_cut ? 0.0 : 1.0);
+    } else {
+      const Vec2 raw = options_.box_point == BoxPoint::kCenter ? detection.box.center()
+                                                               : detection.box.bottom_center();
+      obs.points_px.push_back(camera_.UndistortPixel(raw));
+      obs.confidence.push_back(1.0);
+    }
     obs.scale_px = detection.box.width() + detection.box.height();
     *sort_box = detection.box;
     return obs;
@@ -61,8 +139,10 @@ std::optional<core::Observation2D> CameraStage::MakeObservation(
   }
   if (usable < options_.min_pose_keypoints) return std::nullopt;
   // The pose's box encloses its usable (raw) keypoints.
-  core::BoxPx box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                  -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  core::BoxPx box{std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity(),
+                  -std::numeric_limits<double>::infinity(),
+                  -std::numeric_limits<double>::infinity()};
   for (const core::Keypoint2D& kp : detection.keypoints) {
     if (kp.confidence < min_conf) continue;
     box.x_min = std::min(box.x_min, kp.position_px.x());

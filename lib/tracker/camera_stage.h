@@ -69,6 +69,10 @@ class CameraStage {
   // Converts a validated detection to an observation; nullopt if filtered. Sets `sort_box` to
   // the box SORT tracks (box mode: the detection's box; pose mode: the box of its usable
   // keypoints).
+  // Image direction (pointing down the image) of the world's vertical at an undistorted pixel.
+  Vec2 VerticalDirectionAt(const Vec2& undistorted_px) const;
+  // Whether the ray through an undistorted pixel is steeper than box_ends_max_elevation_deg.
+  bool SteeperThanEndsLimit(const Vec2& undistorted_px) const;
   std::optional<core::Observation2D> MakeObservation(const core::Detection2D& detection,
                                                      core::BoxPx* sort_box) const;
 
@@ -78,6 +82,11 @@ class CameraStage {
   int num_points_ = 1;
   std::map<core::KeypointLayoutId, core::KeypointMapping> mappings_;
   tracking2d::SortTracker sort_;
+  // Box ends: K^-1, the camera-to-world rotation and the vanishing point of the world's up.
+  Mat3 k_inverse_;
+  Mat3 world_from_cam_;
+  Vec3 up_vanishing_;
+  double sin_ends_limit_ = 1.0;  // sin(box_ends_max_elevation_deg)
   std::int64_t stream_epoch_ = 0;
   // Scratch of Process, kept between calls for its capacity: the boxes SORT tracks and the
   // observations of the usable detections (parallel).

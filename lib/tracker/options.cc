@@ -13,11 +13,14 @@ bool TrackerOptions::Validate(std::string* why) const {
   if (window_step < 1 || window_step > window_size) {
     return fail("window_step (δ) must be in [1, window_size]");
   }
-  if (mode == InputMode::kPoses &&
-      (layout == core::KeypointLayoutId::kNone || core::GetKeypointLayout(layout).num_joints() == 0)) {
+  if (mode == InputMode::kPoses && (layout == core::KeypointLayoutId::kNone ||
+                                    core::GetKeypointLayout(layout).num_joints() == 0)) {
     return fail("pose mode needs a keypoint layout");
   }
   if (!std::isfinite(ground_height_m)) return fail("ground_height_m must be finite");
+  if (!(box_ends_max_elevation_deg >= 0.0 && box_ends_max_elevation_deg <= 90.0)) {
+    return fail("box_ends_max_elevation_deg must be in [0, 90]");
+  }
   if (!(min_detection_score >= 0.0 && min_detection_score <= 1.0)) {
     return fail("min_detection_score must be in [0, 1]");
   }
@@ -41,8 +44,28 @@ bool TrackerOptions::Validate(std::string* why) const {
 }
 
 int NumPoints(const TrackerOptions& options) {
-  return options.mode == InputMode::kPoses ? core::GetKeypointLayout(options.layout).num_joints()
-                                           : 1;
+  if (options.mode == InputMode::kPoses)
+    return core::GetKeypointLayout(options.layout).num_joints();
+  return options.box_point == BoxPoint::kCenterEnds ? 3 : 1;
+}
+
+std::vector<int> FootprintPoints(const TrackerOptions& options) {
+  if (options.mode == InputMode::kBoxes) return {0};
+  const core::KeypointLayout& layout = core::GetKeypointLayout(options.layout);
+  int left = -1;
+  int right = -1;
+  for (int i = 0; i < layout.num_joints(); ++i) {
+    if (layout.joints[static_cast<std::size_t>(i)] == "l_hip") left = i;
+    if (layout.joints[static_cast<std::size_t>(i)] == "r_hip") right = i;
+  }
+  if (left >= 0 && right >= 0) return {left, right};
+  return {};
+}
+
+int NumTriangulatedPoints(const TrackerOptions& options) {
+  return options.mode == InputMode::kBoxes && options.box_point == BoxPoint::kCenterEnds
+             ? 1
+             : NumPoints(options);
 }
 
 }  // namespace mvtrack::tracker

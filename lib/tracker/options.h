@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "association/options.h"
 #include "core/keypoint_layout.h"
@@ -24,6 +25,15 @@ enum class InputMode {
 enum class BoxPoint {
   kCenter,        ///< the box centre (the paper's choice for association)
   kBottomCenter,  ///< the middle of the bottom edge (the feet)
+  /// The box centre (point 0, associated and triangulated by CMMT as kCenter) plus the middle
+  /// of the bottom edge (point 1, the feet) and of the top edge (point 2, the head), each
+  /// marked missing when its box edge touches the image border (the person is cut off
+  /// there). The ends take part in cross-view association (Eq. 2 averaged over the usable
+  /// points) and are triangulated per frame from the person's views (N-view DLT, not CMMT,
+  /// which stays on the centre); feet off the floor or a head at an impossible height mean
+  /// that rays of different people crossed, and such frames are removed
+  /// (RefinementOptions::box_bottom_*, box_top_*). docs/DECISIONS.md "Box points".
+  kCenterEnds,
 };
 
 /// All options of the method; defaults are the paper's (ν=30, δ=20, λ=0.3, φ=7, κ=0.2 m).
@@ -35,7 +45,16 @@ struct TrackerOptions {
   int window_size = 30;  ///< ν, frames
   int window_step = 20;  ///< δ, frames (1 <= δ <= ν)
   /// Box mode: which point of the box is associated and triangulated.
-  BoxPoint box_point = BoxPoint::kCenter;
+  BoxPoint box_point = BoxPoint::kCenterEnds;
+  /// Box mode with box_point center_ends: the box ends also take part in cross-view
+  /// association (else only the centre does, as the paper's box centre).
+  bool box_ends_in_association = true;
+  /// Box mode with box_point center_ends: the ends of a box are used only when the camera
+  /// looks at it at most this steeply (the angle of the ray through the box centre below the
+  /// horizontal, degrees). A camera looking down on a person sees the top of the head inside
+  /// the box and the nearer foot at its bottom, so its box ends are not the same 3D points as
+  /// a side view's. In [0, 90].
+  double box_ends_max_elevation_deg = 40.0;
   /// Height of the floor plane z = ground_height_m in the world frame (z up): footprints lie on it.
   double ground_height_m = 0.0;
   /// Detections with a lower score are ignored (counted as filtered, not as errors).
@@ -71,5 +90,21 @@ struct TrackerOptions {
 /// Number of points per observation under `options`: 1 in box mode, the layout's joints in
 /// pose mode. `options` must be valid.
 int NumPoints(const TrackerOptions& options);
+
+/// The point indices whose mean is a person's footprint when all are triangulated (pose mode:
+/// the hips of the layout, box mode: the box point); otherwise the mean of the triangulated
+/// points (linking::FrameFootprint). Shared by the window refinement, the linker and the
+/// output.
+std::vector<int> FootprintPoints(const TrackerOptions& options);
+
+/// Points CMMT triangulates (the first NumTriangulatedPoints of every observation): all of
+/// them, except for BoxPoint::kCenterEnds, whose box ends are triangulated by DLT.
+int NumTriangulatedPoints(const TrackerOptions& options);
+
+/// Box mode with BoxPoint::kCenterEnds: the indices of the centre, bottom (feet) and top
+/// (head) points.
+inline constexpr int kBoxCenterPoint = 0;
+inline constexpr int kBoxBottomPoint = 1;
+inline constexpr int kBoxTopPoint = 2;
 
 }  // namespace mvtrack::tracker

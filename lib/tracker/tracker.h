@@ -102,6 +102,8 @@ class Tracker {
   const geometry::CameraRig& rig() const { return rig_; }
   /// Number of points per observation (1 in box mode, the layout's joints in pose mode).
   int num_points() const { return num_points_; }
+  /// The window linker with its alive long-term tracks (for tests and diagnostics).
+  const linking::WindowLinker& linker() const { return finalizer_.linker(); }
   /// The most recent processed window (for tests and diagnostics).
   const std::optional<WindowOutput>& last_window() const { return last_window_; }
 

@@ -11,10 +11,32 @@ namespace mvtrack::tracker {
 WindowBuilder::WindowBuilder(const geometry::CameraRig& rig, const TrackerOptions& options)
     : window_size_(options.window_size),
       window_step_(options.window_step),
-      min_tracklet_length_(options.min_tracklet_length),
-      max_missed_windows_(options.linking.max_missed_windows) {
+      min_tracklet_length_(options.min_tracklet_length) {
   for (int i = 0; i < rig.size(); ++i) camera_ids_.push_back(rig.camera(i).id);
   tracks_.resize(camera_ids_.size());
+}
+
+void WindowBuilder::RememberClosed(FrameIndex frame, Utime utime) {
+  recent_frames_.emplace_back(frame, utime);
+  if (recent_frames_.size() > kPeriodFrames) recent_frames_.pop_front();
+}
+
+double WindowBuilder::SecondsPerFrame() const {
+  constexpr double kDefault = 1.0 / 30.0;
+  std::vector<double> periods;
+  periods.reserve(recent_frames_.size());
+  for (std::size_t i = 1; i < recent_frames_.size(); ++i) {
+    const auto& [f0, u0] = recent_frames_[i - 1];
+    const auto& [f1, u1] = recent_frames_[i];
+    // In double: differences of arbitrary int64 values may not fit in an int64.
+    const double df = static_cast<double>(f1) - static_cast<double>(f0);
+    const double du = static_cast<double>(u1) - static_cast<double>(u0);
+    if (df >= 1.0 && du > 0.0) periods.push_back(du * 1e-6 / df);
+  }
+  if (periods.empty()) return kDefault;
+  const auto mid = periods.begin() + static_cast<std::ptrdiff_t>(periods.size() / 2);
+  std::nth_element(periods.begin(), mid, periods.end());
+  return std::clamp(*mid, 1e-4, 60.0);
 }
 
 std::size_t WindowBuilder::num_stored_observations() const {
@@ -62,6 +84,7 @@ void WindowBuilder::Flush(std::vector<BuilderOutput>* out) {
   if (open_frame_) {
     // Closed without the non-flushing pass: at a flush every window is emitted by EndStream.
     out->push_back(ClosedFrame{*open_frame_, open_utime_});
+    RememberClosed(*open_frame_, open_utime_);
     last_closed_frame_ = *open_frame_;
     open_frame_.reset();
   }
@@ -71,6 +94,7 @@ void WindowBuilder::Flush(std::vector<BuilderOutput>* out) {
 void WindowBuilder::CloseOpenFrame(std::vector<BuilderOutput>* out) {
   const FrameIndex f = *open_frame_;
   out->push_back(ClosedFrame{f, open_utime_});
+  RememberClosed(f, open_utime_);
   last_closed_frame_ = f;
   open_frame_.reset();
   EmitWindowsUpTo(f, /*flushing=*/false, out);
@@ -110,6 +134,7 @@ void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIn
   job.end = end;
   job.finalize_from = finalize_from;
   job.finalize_to = finalize_to;
+  job.seconds_per_frame = SecondsPerFrame();
   // Observations before keep_from are dropped right after this window (no later window needs
   // them), so the window takes them by move; only the overlap with the next window is copied.
   const FrameIndex keep_from = begin + window_step_;
@@ -128,6 +153,9 @@ void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIn
           first, observations.end(), end,
           [](const TimedObservation& o, FrameIndex f) { return o.frame < f; });
       const auto count = static_cast<std::size_t>(last - first);
+      if (count == 0) continue;
+      job.live_tracks.push_back({camera_ids_[c], track_id, first->frame, (last - 1)->frame,
+                                 static_cast<int>(count)});
       if (static_cast<int>(count) < min_tracklet_length_) continue;
       core::Tracklet2D& t = job.tracklets.emplace_back();
       t.camera_id = camera_ids_[c];
@@ -144,6 +172,11 @@ void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIn
       }
     }
   }
+  std::sort(job.live_tracks.begin(), job.live_tracks.end(),
+            [](const core::TrackletMember& a, const core::TrackletMember& b) {
+              return a.camera_id != b.camera_id ? a.camera_id < b.camera_id
+                                                : a.track_id < b.track_id;
+            });
   out->push_back(std::move(job));
 
   // Trim observations no later window needs (the next window begins at begin + δ); those in
@@ -162,11 +195,12 @@ void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIn
 void WindowBuilder::EndStream(std::vector<BuilderOutput>* out) {
   EmitWindowsUpTo(last_closed_frame_ ? *last_closed_frame_ : 0, /*flushing=*/true, out);
   out->push_back(StreamEnd{});
-  // A gap of more than max_missed_windows windows ends every live track in the linker.
-  window_id_offset_ += next_window_ + max_missed_windows_ + 2;
+  // Window ids continue (the StreamEnd makes the finalizer end every track).
+  window_id_offset_ += next_window_;
   next_window_ = 0;
   grid_origin_.reset();
   last_closed_frame_.reset();
+  recent_frames_.clear();  // the next stream may run at another rate
   for (auto& camera_tracks : tracks_) camera_tracks.clear();
 }
 

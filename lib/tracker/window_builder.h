@@ -7,7 +7,9 @@
 /// ordered output sequence. Pure, single-owner, single-threaded object.
 
 #include <cstdint>
+#include <deque>
 #include <map>
+#include <utility>
 #include <optional>
 #include <variant>
 #include <vector>
@@ -42,7 +44,7 @@ using BuilderOutput = std::variant<ClosedFrame, WindowJob, StreamEnd>;
 /// [F0 + kδ + ⌊(ν−δ)/2⌋, F0 + kδ + ⌊(ν−δ)/2⌋ + δ) (window 0 from F0). At the end of a stream
 /// (re-anchor or Flush) every window that begins at or before the last closed frame is emitted,
 /// shortened to end after it, and the last one finalizes the tail. Window ids continue across
-/// streams with a gap of max_missed_windows + 2, so the linker ends every track. Observations
+/// streams (the StreamEnd before them makes the finalizer end every track). Observations
 /// that no later window needs are dropped after each window.
 ///
 /// Single-owner, single-threaded; deterministic: the output depends only on the sequence of
@@ -68,6 +70,12 @@ class WindowBuilder {
   const std::optional<FrameIndex>& open_frame() const { return open_frame_; }
   /// Number of stored 2D observations (all cameras, all live tracks).
   std::size_t num_stored_observations() const;
+  /// The stream's frame period, measured from the capture times (utime) of the latest closed
+  /// frames: the median over up to 32 consecutive ones of utime difference / frame difference,
+  /// so a few bad capture times (a skewed camera, a clock step) do not move it; 1/30 s before
+  /// two frames of the stream are closed; clamped to [0.1 ms, 60 s]. Every WindowJob carries
+  /// it.
+  double SecondsPerFrame() const;
 
  private:
   struct TimedObservation {
@@ -77,15 +85,19 @@ class WindowBuilder {
 
   void CloseOpenFrame(std::vector<BuilderOutput>* out);
   void EmitWindowsUpTo(FrameIndex complete_through, bool flushing, std::vector<BuilderOutput>* out);
-  void EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIndex end,
-                  FrameIndex finalize_from, FrameIndex finalize_to, std::vector<BuilderOutput>* out);
+  void EmitWindow(std::int64_t window_id,
+                  FrameIndex begin,
+                  FrameIndex end,
+                  FrameIndex finalize_from,
+                  FrameIndex finalize_to,
+                  std::vector<BuilderOutput>* out);
   void EndStream(std::vector<BuilderOutput>* out);
+  void RememberClosed(FrameIndex frame, Utime utime);
 
   std::vector<CameraId> camera_ids_;  // by rig index
   std::int64_t window_size_ = 0;      // ν
   std::int64_t window_step_ = 0;      // δ
   int min_tracklet_length_ = 0;
-  std::int64_t max_missed_windows_ = 0;
 
   // Frame being collected.
   std::optional<FrameIndex> open_frame_;
@@ -96,6 +108,9 @@ class WindowBuilder {
   std::int64_t window_id_offset_ = 0;      // added to grid window indices (re-anchoring)
   std::int64_t next_window_ = 0;           // grid index of the next window to emit
   std::optional<FrameIndex> last_closed_frame_;
+  // The latest closed frames of the stream (frame, utime), for SecondsPerFrame.
+  static constexpr std::size_t kPeriodFrames = 32;
+  std::deque<std::pair<FrameIndex, Utime>> recent_frames_;
 
   /// By rig index: the observations of each 2D track, oldest first.
   std::vector<std::map<TrackId2D, std::vector<TimedObservation>>> tracks_;

@@ -5,16 +5,15 @@
 #include <utility>
 
 #include "core/check.h"
-#include "core/keypoint_layout.h"
 
 namespace mvtrack::tracker {
 namespace {
 
-int JointIndex(const core::KeypointLayout& layout, const char* name) {
-  for (int i = 0; i < layout.num_joints(); ++i) {
-    if (layout.joints[static_cast<std::size_t>(i)] == name) return i;
-  }
-  return -1;
+// The linker's view of the scene: the footprint joints (FootprintPoints).
+linking::LinkerContext MakeLinkerContext(const TrackerOptions& options) {
+  linking::LinkerContext context;
+  context.footprint_points = FootprintPoints(options);
+  return context;
 }
 
 }  // namespace
@@ -23,39 +22,19 @@ WindowFinalizer::WindowFinalizer(const TrackerOptions& options)
     : mode_(options.mode),
       ground_height_m_(options.ground_height_m),
       num_points_(NumPoints(options)),
-      linker_(options.linking) {
-  if (mode_ == InputMode::kPoses) {
-    const core::KeypointLayout& layout = core::GetKeypointLayout(options.layout);
-    left_hip_ = JointIndex(layout, "l_hip");
-    right_hip_ = JointIndex(layout, "r_hip");
-  }
-}
+      linker_(options.linking, MakeLinkerContext(options)) {}
 
 void WindowFinalizer::AddClosedFrame(const ClosedFrame& frame) {
   pending_[frame.frame] = PendingFrame{frame.frame, frame.utime, {}, false};
 }
 
 Vec3 WindowFinalizer::FootprintOf(const std::vector<std::optional<Vec3>>& points) const {
+  // The linker's footprint rule (pose mode: the hip midpoint, else the centroid of the
+  // triangulated joints; box mode: the box point, else the box ends), on the floor.
+  const std::optional<Vec2> xy =
+      linking::FrameFootprint(points, linker_.context().footprint_points);
   Vec3 p = Vec3::Zero();
-  if (mode_ == InputMode::kPoses) {
-    const int lh = left_hip_;
-    const int rh = right_hip_;
-    if (lh >= 0 && rh >= 0 && points[static_cast<std::size_t>(lh)] &&
-        points[static_cast<std::size_t>(rh)]) {
-      p = 0.5 * (*points[static_cast<std::size_t>(lh)] + *points[static_cast<std::size_t>(rh)]);
-    } else {
-      int n = 0;
-      for (const auto& q : points) {
-        if (q) {
-          p += *q;
-          ++n;
-        }
-      }
-      if (n > 0) p /= n;
-    }
-  } else if (!points.empty() && points.front()) {
-    p = *points.front();
-  }
+  if (xy) p.head<2>() = *xy;
   p.z() = ground_height_m_;
   return p;
 }
@@ -64,7 +43,8 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
                                               std::vector<Frame3D>* out) {
   MVTRACK_CHECK(out != nullptr);
   // Link to long-term tracks (Eq. 8-9).
-  linking::LinkResult link = linker_.Link(result.window_id, result.persons);
+  linking::LinkResult link = linker_.Link(result.window_id, result.begin, result.seconds_per_frame,
+                                                 result.persons, result.live_tracks);
   counters_.windows_processed += 1;
   counters_.tracks_born += static_cast<std::int64_t>(link.born.size());
   // The linker's alive tracks, sorted by id (WindowLinker::tracks()): looked up by bisection.
@@ -111,6 +91,10 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
 
 void WindowFinalizer::EndStream(std::vector<Frame3D>* out) {
   MVTRACK_CHECK(out != nullptr);
+  // Every track ends with the stream (a re-anchor or a flush): ids are never reused.
+  for (const linking::EndedTrack& ended : linker_.EndStream()) {
+    first_frame_of_track_.erase(ended.id);
+  }
   if (pending_.empty()) return;
   EmitFinal(pending_.rbegin()->first + 1, out);
 }

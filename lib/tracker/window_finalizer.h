@@ -31,8 +31,9 @@ struct FinalizerCounters {
 /// WindowJob) and stream ends (EndStream), and emits finalized frames in increasing frame order.
 /// A frame is output when the window that finalizes it has been linked (docs/DECISIONS.md
 /// "Tracker facade"): it holds the confirmed tracks of that window's persons at that frame.
-/// Footprint: box mode the triangulated point dropped onto z = ground_height_m; pose mode the
-/// hip midpoint (else the centroid of the triangulated joints) dropped onto the floor.
+/// Footprint (linking::FrameFootprint over tracker::FootprintPoints): box mode the
+/// triangulated box point (center_ends: the centre) dropped onto z = ground_height_m; pose mode
+/// the hip midpoint (else the centroid of the triangulated joints) dropped onto the floor.
 ///
 /// Single-owner, single-threaded; deterministic.
 class WindowFinalizer {
@@ -73,8 +74,6 @@ class WindowFinalizer {
   InputMode mode_ = InputMode::kBoxes;
   double ground_height_m_ = 0.0;
   int num_points_ = 1;
-  int left_hip_ = -1;   // pose mode: joint index of l_hip, -1 if the layout has none
-  int right_hip_ = -1;  // pose mode: joint index of r_hip, -1 if the layout has none
   linking::WindowLinker linker_;
   std::map<TrackId3D, FrameIndex> first_frame_of_track_;
   std::map<FrameIndex, PendingFrame> pending_;  // closed frames not yet emitted

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "association/association.h"
+#include "linking/window_linker.h"
 #include "core/check.h"
 #include "triangulation/refinement.h"
 
@@ -23,11 +24,35 @@ bool SameTriangulationOptions(const triangulation::TriangulationOptions& a,
 }
 
 // Box mode: removes a person's points outside the plausible heights of a box point
-// (RefinementOptions::box_min_height_m, box_max_height_m above the floor).
+// (RefinementOptions::box_min_height_m, box_max_height_m above the floor; center_ends: the
+// centre's range, the ends were gated by TriangulateBoxEnds).
 void GateBoxHeights(const TrackerOptions& options, core::Tracklet3D* person) {
-  triangulation::RemovePointsOutsideHeights(
-      person, options.ground_height_m + options.refinement.box_min_height_m,
-      options.ground_height_m + options.refinement.box_max_height_m);
+  const triangulation::RefinementOptions& r = options.refinement;
+  const double g = options.ground_height_m;
+  triangulation::RemovePointsOutsideHeights(person, g + r.box_min_height_m,
+                                            g + r.box_max_height_m);
+}
+
+// One person of `cluster`: CMMT (Algorithm 2) of the points it triangulates; in box mode the
+// ends by DLT (center_ends) and the height gates.
+core::Tracklet3D TriangulateCluster(const geometry::CameraRig& rig, const TrackerOptions& options,
+                                    const WindowJob& job, const std::vector<int>& cluster,
+                                    WindowWorkspace* workspace) {
+  core::Tracklet3D person = workspace->triangulator().Triangulate(
+      rig, job.tracklets, cluster, job.begin, job.end, NumTriangulatedPoints(options), nullptr,
+      NumPoints(options));
+  if (options.mode != InputMode::kBoxes) return person;
+  if (options.box_point == BoxPoint::kCenterEnds) {
+    const triangulation::RefinementOptions& r = options.refinement;
+    const double g = options.ground_height_m;
+    std::vector<triangulation::HeightRange> ranges(2);
+    ranges[0] = {g + r.box_bottom_min_height_m, g + r.box_bottom_max_height_m};
+    ranges[1] = {g + r.box_top_min_height_m, g + r.box_top_max_height_m};
+    triangulation::TriangulateBoxEnds(rig, job.tracklets, cluster, kBoxBottomPoint, ranges,
+                                      options.association.min_confidence, &person);
+  }
+  GateBoxHeights(options, &person);
+  return person;
 }
 
 // Number of distinct cameras among the tracklets `members` of the job.
@@ -49,41 +74,154 @@ void SplitInconsistent(const geometry::CameraRig& rig, const TrackerOptions& opt
                        std::vector<core::Tracklet3D>* persons) {
   const double max_residual = options.refinement.box_split_residual;
   if (max_residual <= 0.0) return;
-  const int num_points = NumPoints(options);
   const std::size_t n = persons->size();
   for (std::size_t p = 0; p < n; ++p) {
+    // The box point only (box_split_residual is a fraction of the box scale at the centre).
     const std::vector<int> out = triangulation::InconsistentTracklets(
         rig, job.tracklets, (*clusters)[p], (*persons)[p], max_residual,
-        options.association.min_confidence);
+        options.association.min_confidence, NumTriangulatedPoints(options));
     if (out.empty()) continue;
     std::vector<int> keep;
     for (int i : (*clusters)[p]) {
       if (!std::binary_search(out.begin(), out.end(), i)) keep.push_back(i);
     }
     if (NumCameras(job, keep) < 2) continue;
-    core::Tracklet3D kept = workspace->triangulator().Triangulate(rig, job.tracklets, keep,
-                                                                  job.begin, job.end, num_points);
-    GateBoxHeights(options, &kept);
+    core::Tracklet3D kept = TriangulateCluster(rig, options, job, keep, workspace);
     if (kept.frames.empty()) continue;
     (*clusters)[p] = std::move(keep);
     (*persons)[p] = std::move(kept);
     if (NumCameras(job, out) < 2) continue;
-    core::Tracklet3D other = workspace->triangulator().Triangulate(rig, job.tracklets, out,
-                                                                   job.begin, job.end, num_points);
-    GateBoxHeights(options, &other);
+    core::Tracklet3D other = TriangulateCluster(rig, options, job, out, workspace);
     if (other.frames.empty()) continue;
     clusters->push_back(out);
     persons->push_back(std::move(other));
   }
 }
 
+// The first frame where `person`'s footprint breaks the motion model: at a boundary between
+// two consecutive triangulated frames where the footprint moves more than 0.25 m, the state
+// (position, velocity) filtered forward over the frames before it and the one filtered
+// backward over the frames from it on (linking::FloorMotion with the linker's noise) disagree
+// by more than
+// RefinementOptions::jump_gate_chi2 (squared Mahalanobis distance). A person who walks,
+// turns or stops stays within it; two people whose tracklets association joined (one
+// leaving while another arrives) do not. nullopt without a jump.
+std::optional<FrameIndex> FirstJump(const TrackerOptions& options,
+                                    const std::vector<int>& footprint_points,
+                                    double seconds_per_frame, const core::Tracklet3D& person) {
+  const double gate = options.refinement.jump_gate_chi2;
+  if (gate <= 0.0) return std::nullopt;
+  const linking::MotionOptions& mo = options.linking.motion;
+  std::vector<FrameIndex> frames;
+  std::vector<Vec2> xy;
+  for (std::size_t f = 0; f < person.frames.size(); ++f) {
+    if (const std::optional<Vec2> p = linking::FrameFootprint(person.points[f], footprint_points)) {
+      frames.push_back(person.frames[f]);
+      xy.push_back(*p);
+    }
+  }
+  const std::size_t n = xy.size();
+  if (n < 2) return std::nullopt;
+  // Only a boundary where the footprint moves by more than this between two triangulated
+  // frames can be where two people were joined; elsewhere the motion test is not run (a
+  // smooth but sharply accelerating footprint is one person walking).
+  constexpr double kMinJumpStepM = 0.25;
+  bool any_step = false;
+  for (std::size_t k = 1; k < n && !any_step; ++k) {
+    any_step = (xy[k] - xy[k - 1]).squaredNorm() > kMinJumpStepM * kMinJumpStepM;
+  }
+  if (!any_step) return std::nullopt;
+  const auto dt = [&](std::size_t from, std::size_t to) {
+    return (static_cast<double>(frames[to]) - static_cast<double>(frames[from])) *
+           seconds_per_frame;
+  };
+  // forward[i]: filtered over frames [0, i]; backward[i]: over frames [i, n).
+  std::vector<linking::FloorMotion> forward(n);
+  std::vector<linking::FloorMotion> backward(n);
+  forward[0] = linking::FloorMotion::Start(xy[0], mo);
+  for (std::size_t i = 1; i < n; ++i) {
+    forward[i] = forward[i - 1];
+    forward[i].Predict(dt(i - 1, i), mo);
+    forward[i].Update(xy[i], mo);
+  }
+  backward[n - 1] = linking::FloorMotion::Start(xy[n - 1], mo);
+  for (std::size_t i = n - 1; i-- > 0;) {
+    backward[i] = backward[i + 1];
+    backward[i].Predict(dt(i + 1, i), mo);
+    backward[i].Update(xy[i], mo);
+  }
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((xy[k] - xy[k - 1]).squaredNorm() <= kMinJumpStepM * kMinJumpStepM) continue;
+    linking::FloorMotion predicted = forward[k - 1];
+    predicted.Predict(dt(k - 1, k), mo);
+    const double d2 = linking::StateDistanceSquared(predicted, backward[k]);
+    if (d2 > gate) return frames[k];
+  }
+  return std::nullopt;
+}
+
+// Splits persons whose footprint jumps (FirstJump): the cluster's tracklets observed mostly
+// before the jump and those observed mostly from it on become two clusters, each triangulated
+// again when it still spans two cameras (the first in the person's place, the second
+// appended; a part that does not is dropped, a person left with neither is removed). A person
+// whose every 2D tracklet crosses the jump is kept whole (cutting it in time would leave the
+// same 2D tracks in both halves, measured to cost identity on store floors). Parts are
+// examined again, so a cluster of three people is cut twice.
+void SplitAtJumps(const geometry::CameraRig& rig, const TrackerOptions& options,
+                  const WindowJob& job, WindowWorkspace* workspace,
+                  std::vector<std::vector<int>>* clusters,
+                  std::vector<core::Tracklet3D>* persons) {
+  if (options.refinement.jump_gate_chi2 <= 0.0) return;
+  const std::vector<int> footprint_points = FootprintPoints(options);
+  for (std::size_t p = 0; p < persons->size(); ++p) {
+    // Bounded: every cut leaves each part with fewer tracklets than the cluster had.
+    const std::optional<FrameIndex> jump =
+        FirstJump(options, footprint_points, job.seconds_per_frame, (*persons)[p]);
+    if (!jump) continue;
+    std::vector<int> before;
+    std::vector<int> after;
+    for (int i : (*clusters)[p]) {
+      const core::Tracklet2D& t = job.tracklets[static_cast<std::size_t>(i)];
+      const auto split = std::lower_bound(t.frames.begin(), t.frames.end(), *jump);
+      const auto n_before = split - t.frames.begin();
+      const auto n_after = t.frames.end() - split;
+      (n_before > n_after ? before : after).push_back(i);
+    }
+    if (before.empty() || after.empty()) continue;  // no 2D track ends there: keep it whole
+    const bool keep_before = NumCameras(job, before) >= 2;
+    const bool keep_after = NumCameras(job, after) >= 2;
+    core::Tracklet3D first;
+    core::Tracklet3D second;
+    if (keep_before) first = TriangulateCluster(rig, options, job, before, workspace);
+    if (keep_after) second = TriangulateCluster(rig, options, job, after, workspace);
+    const bool has_first = keep_before && !first.frames.empty();
+    const bool has_second = keep_after && !second.frames.empty();
+    if (has_first) {
+      (*clusters)[p] = std::move(before);
+      (*persons)[p] = std::move(first);
+      if (has_second) {
+        clusters->push_back(std::move(after));
+        persons->push_back(std::move(second));
+      }
+    } else if (has_second) {
+      (*clusters)[p] = std::move(after);
+      (*persons)[p] = std::move(second);
+    } else {
+      clusters->erase(clusters->begin() + static_cast<std::ptrdiff_t>(p));
+      persons->erase(persons->begin() + static_cast<std::ptrdiff_t>(p));
+    }
+    --p;  // examine the (new) person at p again
+  }
+}
+
 // Merges persons of one window that are one person split by association: in pose mode when their
 // common joints lie within refinement.merge_distance_m on average (PointDistance), in box mode
 // when their footprints lie within refinement.box_merge_distance_m (median, FootprintDistance),
-// each over at least min_duplicate_pairs common points / frames. The closest such pair first,
-// its clusters united and triangulated again, until no pair qualifies. Keeps the order of first
-// members. Pair distances are computed once (pairs whose ground-plane rectangles are farther
-// apart than the limit cannot qualify and are skipped) and afterwards only the merged person's.
+// each over at least min_duplicate_pairs common points / box_min_duplicate_frames frames. The
+// closest such pair first, its clusters united and triangulated again, until no pair qualifies.
+// Keeps the order of first members. Pair distances are computed once (pairs whose ground-plane
+// rectangles are farther apart than the limit cannot qualify and are skipped) and afterwards only
+// the merged person's.
 void MergeDuplicates(const geometry::CameraRig& rig, const TrackerOptions& options,
                      const WindowJob& job, WindowWorkspace* workspace,
                      std::vector<std::vector<int>>* clusters,
@@ -92,7 +230,6 @@ void MergeDuplicates(const geometry::CameraRig& rig, const TrackerOptions& optio
   const bool boxes = options.mode == InputMode::kBoxes;
   const double limit = boxes ? ro.box_merge_distance_m : ro.merge_distance_m;
   if (limit <= 0.0 || persons->size() < 2) return;
-  const int num_points = NumPoints(options);
   const std::size_t n = persons->size();
   constexpr double kInf = std::numeric_limits<double>::infinity();
   // Ground-plane bounding rectangle of a person's points {x_min, y_min, x_max, y_max}: every
@@ -123,7 +260,8 @@ void MergeDuplicates(const geometry::CameraRig& rig, const TrackerOptions& optio
     std::int64_t pairs = 0;
     const double d = boxes ? triangulation::FootprintDistance((*persons)[i], (*persons)[j], &pairs)
                            : triangulation::PointDistance((*persons)[i], (*persons)[j], &pairs);
-    return pairs >= ro.min_duplicate_pairs && d <= limit ? d : kInf;
+    const int min_pairs = boxes ? ro.box_min_duplicate_frames : ro.min_duplicate_pairs;
+    return pairs >= min_pairs && d <= limit ? d : kInf;
   };
   std::vector<double> dist(n * n, kInf);
   for (std::size_t i = 0; i < n; ++i) {
@@ -148,9 +286,7 @@ void MergeDuplicates(const geometry::CameraRig& rig, const TrackerOptions& optio
     std::vector<int> merged = (*clusters)[bi];
     merged.insert(merged.end(), (*clusters)[bj].begin(), (*clusters)[bj].end());
     std::sort(merged.begin(), merged.end());
-    core::Tracklet3D person = workspace->triangulator().Triangulate(
-        rig, job.tracklets, merged, job.begin, job.end, num_points);
-    if (boxes) GateBoxHeights(options, &person);
+    core::Tracklet3D person = TriangulateCluster(rig, options, job, merged, workspace);
     alive[bj] = 0;
     // The union can lose every point (more candidates that disagree): the first stays as is.
     if (person.frames.empty()) continue;
@@ -176,6 +312,29 @@ void MergeDuplicates(const geometry::CameraRig& rig, const TrackerOptions& optio
   persons->resize(kept);
 }
 
+// Fills person->members from its source tracklets (sorted by camera, then 2D track), each
+// with its observations inside the person's frame span.
+void SetMembers(const WindowJob& job, core::Tracklet3D* person) {
+  person->members.clear();
+  if (person->frames.empty()) return;
+  person->members.reserve(person->source_tracklets.size());
+  const FrameIndex from = person->frames.front();
+  const FrameIndex to = person->frames.back();
+  for (int i : person->source_tracklets) {
+    const core::Tracklet2D& t = job.tracklets[static_cast<std::size_t>(i)];
+    const auto first = std::lower_bound(t.frames.begin(), t.frames.end(), from);
+    const auto last = std::upper_bound(first, t.frames.end(), to);
+    if (first == last) continue;
+    person->members.push_back(
+        {t.camera_id, t.track_id, *first, *(last - 1), static_cast<int>(last - first)});
+  }
+  std::sort(person->members.begin(), person->members.end(),
+            [](const core::TrackletMember& a, const core::TrackletMember& b) {
+              return a.camera_id != b.camera_id ? a.camera_id < b.camera_id
+                                                : a.track_id < b.track_id;
+            });
+}
+
 }  // namespace
 
 WindowResult EmptyWindowResult(const WindowJob& job) {
@@ -185,6 +344,8 @@ WindowResult EmptyWindowResult(const WindowJob& job) {
   r.end = job.end;
   r.finalize_from = job.finalize_from;
   r.finalize_to = job.finalize_to;
+  r.live_tracks = job.live_tracks;
+  r.seconds_per_frame = job.seconds_per_frame;
   return r;
 }
 
@@ -205,7 +366,9 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptio
                     "the workspace was made for other triangulation options");
   WindowResult r = EmptyWindowResult(job);
   // Cross-view association (Eq. 2-4, PDNC / Algorithm 1).
-  r.clusters = association::AssociateTracklets(rig, job.tracklets, options.association);
+  association::AssociationOptions ao = options.association;
+  if (options.mode == InputMode::kBoxes && !options.box_ends_in_association) ao.num_points = 1;
+  r.clusters = association::AssociateTracklets(rig, job.tracklets, ao);
   // CMMT (Algorithm 2) per person seen by at least two cameras.
   const int num_points = NumPoints(options);
   std::vector<const std::vector<int>*> multi_view;
@@ -217,9 +380,7 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptio
   std::vector<core::Tracklet3D> triangulated(multi_view.size());
   const PersonTask task = [&](int i, WindowWorkspace* ws) {
     const auto ui = static_cast<std::size_t>(i);
-    triangulated[ui] = ws->triangulator().Triangulate(rig, job.tracklets, *multi_view[ui],
-                                                      job.begin, job.end, num_points);
-    if (options.mode == InputMode::kBoxes) GateBoxHeights(options, &triangulated[ui]);
+    triangulated[ui] = TriangulateCluster(rig, options, job, *multi_view[ui], ws);
   };
   if (person_loop) {
     person_loop(static_cast<int>(multi_view.size()), task);
@@ -232,6 +393,7 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptio
     r.persons.push_back(std::move(triangulated[i]));
     person_clusters.push_back(*multi_view[i]);
   }
+  SplitAtJumps(rig, options, job, workspace, &person_clusters, &r.persons);
   if (options.mode == InputMode::kBoxes) {
     SplitInconsistent(rig, options, job, workspace, &person_clusters, &r.persons);
   }
@@ -249,6 +411,7 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptio
       triangulation::CompleteMissingPoints(&person, options.refinement);
     }
   }
+  for (core::Tracklet3D& person : r.persons) SetMembers(job, &person);
   return r;
 }
 

@@ -26,9 +26,16 @@ struct WindowJob {
   FrameIndex end = 0;            ///< one past the last frame ([begin, end); shorter at a flush)
   FrameIndex finalize_from = 0;  ///< this window finalizes the frames [finalize_from,
   FrameIndex finalize_to = 0;    ///<   finalize_to) (see docs/DECISIONS.md "Tracker facade")
+  /// The stream's frame period in seconds, measured from the capture times of the latest
+  /// closed frames (WindowBuilder): what converts frames to the seconds of the options.
+  double seconds_per_frame = 1.0 / 30.0;
   /// Every camera's confirmed 2D tracks cropped to [begin, end), cameras in rig order, tracks
   /// by id; only tracklets with at least min_tracklet_length observations.
   std::vector<core::Tracklet2D> tracklets;
+  /// Every 2D track with at least one observation in [begin, end), also those too short to be
+  /// a tracklet, sorted by camera id then track id: which 2D tracks are still alive (the
+  /// linker ends a lost 3D track none of whose 2D tracks continues).
+  std::vector<core::TrackletMember> live_tracks;
 };
 
 /// The output of ProcessWindowJob: the window's persons, not yet linked.
@@ -38,6 +45,7 @@ struct WindowResult {
   FrameIndex end = 0;            ///< copied from the job
   FrameIndex finalize_from = 0;  ///< copied from the job
   FrameIndex finalize_to = 0;    ///< copied from the job
+  double seconds_per_frame = 1.0 / 30.0;  ///< copied from the job
   /// PDNC clusters of indices into the job's tracklets (association::AssociateTracklets).
   std::vector<std::vector<int>> clusters;
   /// One short-term 3D tracklet per cluster seen by >= 2 cameras with at least one
@@ -48,6 +56,8 @@ struct WindowResult {
   /// points at implausible heights (box_min_height_m, box_max_height_m; a person left without
   /// points is dropped) and merges duplicates by footprint distance (box_merge_distance_m).
   std::vector<core::Tracklet3D> persons;
+  /// Copied from the job.
+  std::vector<core::TrackletMember> live_tracks;
 };
 
 /// A result with the job's window and frame ranges and no persons: what a window that could

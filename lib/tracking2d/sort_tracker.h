@@ -35,7 +35,7 @@ struct SortOptions {
   int min_hits = 1;
   /// Minimum IoU between a track's predicted box and a detection for them to be matched
   /// (SORT's value). In (0, 1].
-  double iou_threshold = 0.3;
+  double iou_threshold = 0.5;
 
   /// Checks the ranges above; on failure writes a reason to `why` (if not null).
   bool Validate(std::string* why) const;

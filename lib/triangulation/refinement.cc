@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/check.h"
+#include "geometry/triangulation.h"
 
 namespace mvtrack::triangulation {
 namespace {
@@ -78,12 +79,24 @@ bool RefinementOptions::Validate(std::string* why) const {
     return fail("merge_distance_m must be finite and >= 0");
   }
   if (min_duplicate_pairs < 1) return fail("min_duplicate_pairs must be >= 1");
+  if (box_min_duplicate_frames < 1) return fail("box_min_duplicate_frames must be >= 1");
   if (!(std::isfinite(box_merge_distance_m) && box_merge_distance_m >= 0.0)) {
     return fail("box_merge_distance_m must be finite and >= 0");
   }
   if (!(std::isfinite(box_min_height_m) && std::isfinite(box_max_height_m) &&
         box_min_height_m < box_max_height_m)) {
     return fail("box_min_height_m and box_max_height_m must be finite, min < max");
+  }
+  if (!(std::isfinite(box_bottom_min_height_m) && std::isfinite(box_bottom_max_height_m) &&
+        box_bottom_min_height_m < box_bottom_max_height_m)) {
+    return fail("box_bottom_min_height_m and box_bottom_max_height_m must be finite, min < max");
+  }
+  if (!(std::isfinite(box_top_min_height_m) && std::isfinite(box_top_max_height_m) &&
+        box_top_min_height_m < box_top_max_height_m)) {
+    return fail("box_top_min_height_m and box_top_max_height_m must be finite, min < max");
+  }
+  if (!(std::isfinite(jump_gate_chi2) && jump_gate_chi2 >= 0.0)) {
+    return fail("jump_gate_chi2 must be finite and >= 0");
   }
   if (!(std::isfinite(box_split_residual) && box_split_residual >= 0.0)) {
     return fail("box_split_residual must be finite and >= 0");
@@ -173,16 +186,26 @@ double FootprintDistance(const core::Tracklet3D& a, const core::Tracklet3D& b,
 
 std::int64_t RemovePointsOutsideHeights(core::Tracklet3D* tracklet, double min_z, double max_z) {
   MVTRACK_CHECK(tracklet != nullptr);
+  std::size_t points = 0;
+  for (const Row& row : tracklet->points) points = std::max(points, row.size());
+  return RemovePointsOutsideHeights(tracklet, std::vector<HeightRange>(points, {min_z, max_z}));
+}
+
+std::int64_t RemovePointsOutsideHeights(core::Tracklet3D* tracklet,
+                                        const std::vector<HeightRange>& ranges) {
+  MVTRACK_CHECK(tracklet != nullptr);
   MVTRACK_CHECK_MSG(tracklet->frames.size() == tracklet->points.size(),
                     "tracklet frames and points differ in length");
   std::int64_t removed = 0;
   std::size_t kept = 0;
   for (std::size_t f = 0; f < tracklet->frames.size(); ++f) {
     Row& row = tracklet->points[f];
+    MVTRACK_CHECK_MSG(row.size() <= ranges.size(), "a height range is needed for every point");
     bool any = false;
-    for (std::optional<Vec3>& p : row) {
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      std::optional<Vec3>& p = row[k];
       if (!p) continue;
-      if (p->z() >= min_z && p->z() <= max_z) {
+      if (p->z() >= ranges[k].min_z && p->z() <= ranges[k].max_z) {
         any = true;
       } else {
         p.reset();
@@ -201,10 +224,156 @@ std::int64_t RemovePointsOutsideHeights(core::Tracklet3D* tracklet, double min_z
   return removed;
 }
 
+BoxEndsStats TriangulateBoxEnds(const geometry::CameraRig& rig,
+                                const std::vector<core::Tracklet2D>& tracklets,
+                                const std::vector<int>& cluster, int first_point,
+                                const std::vector<HeightRange>& ranges, double min_confidence,
+                                core::Tracklet3D* person) {
+  MVTRACK_CHECK(person != nullptr);
+  MVTRACK_CHECK_MSG(first_point >= 0, "first_point must be >= 0");
+  BoxEndsStats stats;
+  const std::size_t num_points = static_cast<std::size_t>(first_point) + ranges.size();
+  // The cluster's tracklets with their projection matrix and a cursor into their frames (the
+  // person's frames increase, so each tracklet is walked once).
+  struct View {
+    const core::Tracklet2D* tracklet;
+    const Mat34* projection;
+    std::size_t cursor;
+  };
+  std::vector<View> views;
+  views.reserve(cluster.size());
+  for (int i : cluster) {
+    MVTRACK_CHECK_MSG(i >= 0 && static_cast<std::size_t>(i) < tracklets.size(),
+                      "cluster index out of range");
+    const core::Tracklet2D& t = tracklets[static_cast<std::size_t>(i)];
+    if (const std::optional<int> index = rig.IndexOf(t.camera_id)) {
+      views.push_back({&t, &rig.projection(*index), 0});
+    }
+  }
+  // Per frame and end: the usable views' (projection, pixel).
+  std::vector<const Mat34*> projections;
+  std::vector<Vec2> pixels;
+  std::vector<const Mat34*> subset_p;
+  std::vector<Vec2> subset_x;
+  std::vector<const core::Observation2D*> observed;
+  std::size_t kept = 0;
+  for (std::size_t r = 0; r < person->frames.size(); ++r) {
+    const FrameIndex frame = person->frames[r];
+    Row& row = person->points[r];
+    row.resize(num_points);
+    observed.clear();
+    for (View& v : views) {
+      const std::vector<FrameIndex>& f = v.tracklet->frames;
+      while (v.cursor < f.size() && f[v.cursor] < frame) ++v.cursor;
+      observed.push_back(v.cursor < f.size() && f[v.cursor] == frame
+                             ? &v.tracklet->observations[v.cursor]
+                             : nullptr);
+    }
+    bool implausible = false;
+    for (std::size_t e = 0; e < ranges.size(); ++e) {
+      const std::size_t k = static_cast<std::size_t>(first_point) + e;
+      row[k].reset();
+      projections.clear();
+      pixels.clear();
+      if (views.size() == 2) {
+        // The common two-camera person: one two-view solve, no candidate lists.
+        const core::Observation2D* a = observed[0];
+        const core::Observation2D* b = observed[1];
+        const auto usable = [&](const core::Observation2D* o) {
+          if (o == nullptr || k >= o->points_px.size() || k >= o->confidence.size()) return false;
+          const double c = o->confidence[k];
+          return c > 0.0 && c >= min_confidence;
+        };
+        if (!usable(a) || !usable(b)) continue;
+        const std::optional<Vec3> x = geometry::TriangulateTwoView(
+            *views[0].projection, a->points_px[k], *views[1].projection, b->points_px[k]);
+        if (x && x->allFinite() && x->z() >= ranges[e].min_z && x->z() <= ranges[e].max_z &&
+            geometry::InFront(*views[0].projection, *x) &&
+            geometry::InFront(*views[1].projection, *x)) {
+          row[k] = x;
+          ++stats.points;
+        } else {
+          implausible = true;
+        }
+        continue;
+      }
+      for (std::size_t v = 0; v < views.size(); ++v) {
+        const core::Observation2D* o = observed[v];
+        if (o == nullptr || k >= o->points_px.size() || k >= o->confidence.size()) continue;
+        const double c = o->confidence[k];
+        if (!(c > 0.0) || c < min_confidence) continue;
+        projections.push_back(views[v].projection);
+        pixels.push_back(o->points_px[k]);
+      }
+      const std::size_t n = projections.size();
+      if (n < 2) continue;
+      // Candidates: all views, then (with >= 3, if all views give no plausible point) every
+      // leave-one-out subset; the plausible one with the smallest mean reprojection error.
+      std::optional<Vec3> best;
+      double best_error = std::numeric_limits<double>::infinity();
+      for (std::size_t leave = 0; leave <= (n >= 3 ? n : 0); ++leave) {
+        subset_p.clear();
+        subset_x.clear();
+        for (std::size_t v = 0; v < n; ++v) {
+          if (leave > 0 && v == leave - 1) continue;
+          subset_p.push_back(projections[v]);
+          subset_x.push_back(pixels[v]);
+        }
+        const std::optional<Vec3> x = geometry::TriangulateLinear(subset_p, subset_x);
+        const std::size_t used = subset_p.size();
+        if (!x || !x->allFinite() || x->z() < ranges[e].min_z || x->z() > ranges[e].max_z) {
+          continue;
+        }
+        bool in_front = true;
+        for (std::size_t v = 0; v < n && in_front; ++v) {
+          if (leave > 0 && v == leave - 1) continue;
+          in_front = geometry::InFront(*projections[v], *x);
+        }
+        if (!in_front) continue;
+        if (leave == 0) {  // all views agree on a plausible point: no subset needed
+          best = x;
+          break;
+        }
+        double error = 0.0;
+        for (std::size_t v = 0; v < n; ++v) {
+          if (v != leave - 1)
+            error += geometry::ReprojectionErrorPx(*projections[v], *x, pixels[v]);
+        }
+        error /= static_cast<double>(used);
+        if (error < best_error) {
+          best_error = error;
+          best = x;
+        }
+      }
+      if (best) {
+        row[k] = best;
+        ++stats.points;
+      } else {
+        implausible = true;
+      }
+    }
+    if (implausible) {
+      ++stats.implausible_frames;
+      continue;  // the frame is dropped
+    }
+    bool any = false;
+    for (const std::optional<Vec3>& p : row) any = any || p.has_value();
+    if (!any) continue;
+    if (kept != r) {
+      person->frames[kept] = frame;
+      person->points[kept] = std::move(row);
+    }
+    ++kept;
+  }
+  person->frames.resize(kept);
+  person->points.resize(kept);
+  return stats;
+}
+
 std::optional<double> ReprojectionResidual(const geometry::CameraRig& rig,
                                            const core::Tracklet2D& tracklet,
                                            const core::Tracklet3D& person,
-                                           double min_confidence) {
+                                           double min_confidence, int max_points) {
   const std::optional<int> index = rig.IndexOf(tracklet.camera_id);
   MVTRACK_CHECK_MSG(index.has_value(), "the tracklet's camera is not in the rig");
   const geometry::CameraModel& camera = rig.camera(*index);
@@ -221,7 +390,8 @@ std::optional<double> ReprojectionResidual(const geometry::CameraRig& rig,
     const Row& row = person.points[r];
     const core::Observation2D& obs = tracklet.observations[f];
     if (!(obs.scale_px > 0.0)) continue;
-    const std::size_t n = std::min({row.size(), obs.points_px.size(), obs.confidence.size()});
+    std::size_t n = std::min({row.size(), obs.points_px.size(), obs.confidence.size()});
+    if (max_points > 0) n = std::min(n, static_cast<std::size_t>(max_points));
     double sum = 0.0;
     int count = 0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -250,13 +420,14 @@ std::vector<int> InconsistentTracklets(const geometry::CameraRig& rig,
                                        const std::vector<core::Tracklet2D>& tracklets,
                                        const std::vector<int>& cluster,
                                        const core::Tracklet3D& person,
-                                       double max_residual, double min_confidence) {
+                                       double max_residual, double min_confidence,
+                                       int max_points) {
   std::vector<int> out;
   if (max_residual <= 0.0) return out;
   for (const int i : cluster) {
     MVTRACK_CHECK(i >= 0 && static_cast<std::size_t>(i) < tracklets.size());
-    const std::optional<double> r =
-        ReprojectionResidual(rig, tracklets[static_cast<std::size_t>(i)], person, min_confidence);
+    const std::optional<double> r = ReprojectionResidual(
+        rig, tracklets[static_cast<std::size_t>(i)], person, min_confidence, max_points);
     if (r && *r > max_residual) out.push_back(i);
   }
   return out;
@@ -311,7 +482,8 @@ std::int64_t RejectTemporalOutliers(core::Tracklet3D* tracklet, const Refinement
         std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
         double m = v[mid];
         if (v.size() % 2 == 0) {
-          m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
+          m = 0.5 *
+              (m + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
         }
         median(a) = m;
       }

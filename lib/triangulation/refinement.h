@@ -29,9 +29,13 @@ struct RefinementOptions {
   /// triangulated together. Same-person duplicates on Shelf lie 0.03-0.10 m apart, different
   /// people >= 0.27 m (docs/ACCURACY.md). 0 disables merging.
   double merge_distance_m = 0.2;
-  /// Common (frame, point) pairs needed before PointDistance is trusted for a merge; >= 1.
-  /// Box mode uses it too: common frames needed before FootprintDistance is trusted.
+  /// Pose mode: common (frame, point) pairs needed before PointDistance is trusted for a
+  /// merge; >= 1.
   int min_duplicate_pairs = 10;
+  /// Box mode: common frames needed before FootprintDistance is trusted for a merge; >= 1. A
+  /// person split off its cluster for a few frames (a 2D track that broke and restarted) is
+  /// still the same person.
+  int box_min_duplicate_frames = 3;
   /// Box mode: two persons of one window whose FootprintDistance (median ground-plane distance
   /// over common frames) is at most this (metres) over at least min_duplicate_pairs common
   /// frames are one person that association split (a box clipped at the image border moves its
@@ -49,6 +53,20 @@ struct RefinementOptions {
   double box_min_height_m = -0.3;
   /// Box mode: see box_min_height_m; the upper bound, metres above the floor, finite.
   double box_max_height_m = 2.0;
+  /// Box mode with the top_bottom box points: the plausible heights of the bottom (feet)
+  /// point above the floor, metres (finite, min < max). The feet of a detected person touch
+  /// the floor (a few centimetres of triangulation error); where two cameras' rays of
+  /// different people cross, their "feet" float or sink by a large fraction of the depth
+  /// error. Points outside are removed like box_min_height_m's.
+  double box_bottom_min_height_m = -0.4;
+  /// See box_bottom_min_height_m.
+  double box_bottom_max_height_m = 0.4;
+  /// Box mode with the top_bottom box points: the plausible heights of the top (head) point
+  /// above the floor, metres (finite, min < max): a child to a tall adult, with the detector's
+  /// box padding.
+  double box_top_min_height_m = 0.8;
+  /// See box_top_min_height_m.
+  double box_top_max_height_m = 2.4;
   /// Box mode: a tracklet of a person's cluster whose ReprojectionResidual against the person
   /// is above this (a fraction of its box scale |w + h|, the units of the association's lambda)
   /// shows somebody else: association's complete linkage put it there because in crowded top-
@@ -58,6 +76,13 @@ struct RefinementOptions {
   /// duplicates are merged). Same-person tracklets reproject within about 0.1 (a box clipped at
   /// the image border moves its centre by more). 0 disables.
   double box_split_residual = 0.2;
+  /// A person of one window whose footprint breaks the motion model (the state filtered up to
+  /// a frame and the one filtered back from the next disagree by more than this squared
+  /// Mahalanobis distance, with the linker's motion noise) is two people that association put
+  /// into one cluster, one leaving while another arrives; the cluster is split there
+  /// (tracker::ProcessWindowJob). Default: the 99.9 % quantile of chi-square with 4 degrees
+  /// of freedom, the linker's gap gate. 0 disables. Finite, >= 0.
+  double jump_gate_chi2 = 18.47;
   /// A person (a window's 3D tracklet) whose best frame has fewer than this fraction of the
   /// layout's points triangulated is dropped: fragments of one or two joints from partial 2D
   /// detections are not people, and as tracks they steal identities (docs/ACCURACY.md). In
@@ -88,9 +113,9 @@ struct RefinementOptions {
   /// Checks ranges: merge_distance_m and box_merge_distance_m finite and >= 0,
   /// box_min_height_m < box_max_height_m, both finite, box_split_residual finite and >= 0,
   /// min_duplicate_pairs >= 1,
-  /// min_person_point_fraction in [0, 1], outlier_half_window >= 0, outlier_distance_m finite and > 0,
-  /// max_fill_gap >= 0, fill_neighbors >= 1, min_points_to_fill >= 1. On failure sets `why`
-  /// (if non-null) and returns false.
+  /// min_person_point_fraction in [0, 1], outlier_half_window >= 0, outlier_distance_m finite and >
+  /// 0, max_fill_gap >= 0, fill_neighbors >= 1, min_points_to_fill >= 1. On failure sets `why` (if
+  /// non-null) and returns false.
   bool Validate(std::string* why) const;
 };
 
@@ -114,25 +139,62 @@ double FootprintDistance(const core::Tracklet3D& a, const core::Tracklet3D& b,
 /// number of points removed. Deterministic.
 std::int64_t RemovePointsOutsideHeights(core::Tracklet3D* tracklet, double min_z, double max_z);
 
+/// A closed interval of heights (world z, metres).
+struct HeightRange {
+  double min_z = 0.0;
+  double max_z = 0.0;
+};
+
+/// As above with a range per point index (ranges[k] for point k; one for every point index of
+/// the tracklet, checked).
+std::int64_t RemovePointsOutsideHeights(core::Tracklet3D* tracklet,
+                                        const std::vector<HeightRange>& ranges);
+
+/// What TriangulateBoxEnds did.
+struct BoxEndsStats {
+  std::int64_t points = 0;              ///< end points triangulated (plausible)
+  std::int64_t implausible_frames = 0;  ///< frames removed: an end had no plausible solution
+};
+
+/// Box mode (TrackerOptions::box_point center_ends): adds the box ends to a person whose
+/// point 0 (the box centre) CMMT triangulated. Every row of `person` becomes
+/// `first_point + ranges.size()` points long; at each frame, point first_point + e is
+/// triangulated linearly (geometry::TriangulateTwoView, TriangulateLinear) from the observations of
+/// `cluster` (indices into `tracklets`, one view per camera and frame) whose point first_point + e
+/// is usable (confidence > 0 and >= min_confidence), when there are at least two. A solution behind
+/// a camera or outside ranges[e] is not plausible; with three or more views each leave-one-out
+/// subset is tried too, and the plausible solution with the smallest mean reprojection error is
+/// kept. A frame where an end could be triangulated but had no plausible solution loses all its
+/// points (the views disagree on where the person stands: rays of different people crossed), and
+/// frames left without points are removed. Deterministic.
+BoxEndsStats TriangulateBoxEnds(const geometry::CameraRig& rig,
+                                const std::vector<core::Tracklet2D>& tracklets,
+                                const std::vector<int>& cluster, int first_point,
+                                const std::vector<HeightRange>& ranges, double min_confidence,
+                                core::Tracklet3D* person);
+
 /// How far `tracklet`'s observations are from where `person` projects in its camera: per frame
 /// where both have points, the mean over points usable in the observation (confidence >=
 /// min_confidence and > 0) and present in the person of |projection - observed| / scale_px
 /// (undistorted pixels; a point behind the camera counts as +infinity); the median over those
 /// frames (of an even count: the mean of the two middle values). nullopt when no frame
-/// compares. The tracklet's camera must be in `rig` (checked). Deterministic.
+/// compares. Only the first `max_points` points count (0: all). The tracklet's camera must be in
+/// `rig` (checked). Deterministic.
 std::optional<double> ReprojectionResidual(const geometry::CameraRig& rig,
                                            const core::Tracklet2D& tracklet,
                                            const core::Tracklet3D& person,
-                                           double min_confidence);
+                                           double min_confidence, int max_points = 0);
 
 /// The members of `cluster` (indices into `tracklets`, in cluster order) whose
 /// ReprojectionResidual against `person` is above `max_residual`; members without a comparable
-/// frame are kept (no evidence). Empty when max_residual is 0 (disabled).
+/// frame are kept (no evidence). Empty when max_residual is 0 (disabled). `max_points` as in
+/// ReprojectionResidual.
 std::vector<int> InconsistentTracklets(const geometry::CameraRig& rig,
                                        const std::vector<core::Tracklet2D>& tracklets,
                                        const std::vector<int>& cluster,
                                        const core::Tracklet3D& person,
-                                       double max_residual, double min_confidence);
+                                       double max_residual, double min_confidence,
+                                       int max_points = 0);
 
 /// The largest number of points present in one frame of `tracklet` (0 when it has no frame).
 int MaxPointsPerFrame(const core::Tracklet3D& tracklet);

@@ -317,7 +317,8 @@ core::Tracklet3D PersonTriangulator::Triangulate(const geometry::CameraRig& rig,
                                                  FrameIndex begin,
                                                  FrameIndex end,
                                                  int num_points,
-                                                 TriangulationStats* stats) {
+                                                 TriangulationStats* stats,
+                                                 int row_size) {
   MVTRACK_CHECK_MSG(num_points >= 1, "num_points must be >= 1");
   MVTRACK_CHECK_MSG(begin <= end, "window must satisfy begin <= end");
   if (stats != nullptr) *stats = TriangulationStats{};
@@ -396,7 +397,7 @@ core::Tracklet3D PersonTriangulator::Triangulate(const geometry::CameraRig& rig,
         ++cursor_[e];
       }
     }
-    row_.assign(static_cast<std::size_t>(num_points), std::nullopt);
+    row_.assign(static_cast<std::size_t>(std::max(num_points, row_size)), std::nullopt);
     bool any = false;
     for (int k = 0; k < num_points; ++k) {
       if (Gather(tracklets, t, k, interpolate, /*best_only=*/!cmmt, stats) < 2) continue;

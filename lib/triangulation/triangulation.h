@@ -97,13 +97,16 @@ class PersonTriangulator {
   const TriangulationOptions& options() const { return options_; }
 
   /// See TriangulatePerson. `stats`, if non-null, is overwritten with this call's diagnostics.
+  /// Rows are max(num_points, row_size) long; points from num_points on are left empty for the
+  /// caller (box ends, triangulated afterwards).
   core::Tracklet3D Triangulate(const geometry::CameraRig& rig,
                                const std::vector<core::Tracklet2D>& tracklets,
                                const std::vector<int>& cluster,
                                FrameIndex begin,
                                FrameIndex end,
                                int num_points,
-                               TriangulationStats* stats = nullptr);
+                               TriangulationStats* stats = nullptr,
+                               int row_size = 0);
 
  private:
   /// One usable 2D point of one view at the current (frame, point).

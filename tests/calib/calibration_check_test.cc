@@ -189,9 +189,9 @@ TEST_CASE("Per-camera sanity warnings", "[unit]") {
 TEST_CASE("SeesPoint and option validation", "[unit]") {
   const geometry::CameraModel cam =
       LookAtCamera(0, Vec3(0, -5, 2), Vec3(0, 0, 1), 800.0, 1280, 720);
-  CHECK(SeesPoint(cam, Vec3(0, 0, 1)));
-  CHECK_FALSE(SeesPoint(cam, Vec3(0, -8, 1)));  // behind
-  CHECK_FALSE(SeesPoint(cam, Vec3(20, 0, 1)));  // far to the side
+  CHECK(geometry::SeesPoint(cam, Vec3(0, 0, 1)));
+  CHECK_FALSE(geometry::SeesPoint(cam, Vec3(0, -8, 1)));  // behind
+  CHECK_FALSE(geometry::SeesPoint(cam, Vec3(20, 0, 1)));  // far to the side
   CalibrationCheckOptions o;
   std::string why;
   CHECK(o.Validate(&why));

@@ -34,6 +34,8 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.window_size == b.window_size);
   REQUIRE(a.window_step == b.window_step);
   REQUIRE(a.box_point == b.box_point);
+  REQUIRE(a.box_ends_in_association == b.box_ends_in_association);
+  REQUIRE(a.box_ends_max_elevation_deg == b.box_ends_max_elevation_deg);
   REQUIRE(a.ground_height_m == b.ground_height_m);
   REQUIRE(a.min_detection_score == b.min_detection_score);
   REQUIRE(a.min_keypoint_confidence == b.min_keypoint_confidence);
@@ -57,11 +59,26 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.triangulation.min_inliers == b.triangulation.min_inliers);
   REQUIRE(a.triangulation.max_views == b.triangulation.max_views);
   REQUIRE(a.linking.max_link_distance_m == b.linking.max_link_distance_m);
+  REQUIRE(a.linking.unshared_link_distance_m == b.linking.unshared_link_distance_m);
   REQUIRE(a.linking.min_hits == b.linking.min_hits);
-  REQUIRE(a.linking.max_missed_windows == b.linking.max_missed_windows);
-  REQUIRE(a.linking.max_speed_m_per_frame == b.linking.max_speed_m_per_frame);
+  REQUIRE(a.linking.strong_birth_cameras == b.linking.strong_birth_cameras);
+  REQUIRE(a.linking.isolated_birth_distance_m == b.linking.isolated_birth_distance_m);
+  REQUIRE(a.linking.max_lost_s == b.linking.max_lost_s);
+  REQUIRE(a.linking.motion.measurement_sigma_m == b.linking.motion.measurement_sigma_m);
+  REQUIRE(a.linking.motion.acceleration_sigma_mps2 == b.linking.motion.acceleration_sigma_mps2);
+  REQUIRE(a.linking.motion.initial_speed_sigma_mps == b.linking.motion.initial_speed_sigma_mps);
+  REQUIRE(a.linking.gap_gate_chi2 == b.linking.gap_gate_chi2);
+  REQUIRE(a.linking.reid_gate_chi2 == b.linking.reid_gate_chi2);
+  REQUIRE(a.linking.reid_margin_chi2 == b.linking.reid_margin_chi2);
+  REQUIRE(a.linking.max_reid_gap_s == b.linking.max_reid_gap_s);
   REQUIRE(a.refinement.merge_distance_m == b.refinement.merge_distance_m);
   REQUIRE(a.refinement.min_duplicate_pairs == b.refinement.min_duplicate_pairs);
+  REQUIRE(a.refinement.box_min_duplicate_frames == b.refinement.box_min_duplicate_frames);
+  REQUIRE(a.refinement.box_bottom_min_height_m == b.refinement.box_bottom_min_height_m);
+  REQUIRE(a.refinement.box_bottom_max_height_m == b.refinement.box_bottom_max_height_m);
+  REQUIRE(a.refinement.box_top_min_height_m == b.refinement.box_top_min_height_m);
+  REQUIRE(a.refinement.box_top_max_height_m == b.refinement.box_top_max_height_m);
+  REQUIRE(a.refinement.jump_gate_chi2 == b.refinement.jump_gate_chi2);
   REQUIRE(a.refinement.box_merge_distance_m == b.refinement.box_merge_distance_m);
   REQUIRE(a.refinement.box_min_height_m == b.refinement.box_min_height_m);
   REQUIRE(a.refinement.box_max_height_m == b.refinement.box_max_height_m);
@@ -89,7 +106,9 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.layout = layouts[static_cast<std::size_t>(integer(0, last_layout))];
   o.window_size = small(2, 200);
   o.window_step = small(1, o.window_size);
-  o.box_point = integer(0, 1) == 0 ? tracker::BoxPoint::kCenter : tracker::BoxPoint::kBottomCenter;
+  o.box_point = static_cast<tracker::BoxPoint>(small(0, 2));
+  o.box_ends_in_association = integer(0, 1) == 0;
+  o.box_ends_max_elevation_deg = 90.0 * unit(*rng);
   o.ground_height_m = 6.0 * unit(*rng) - 3.0;
   o.min_detection_score = unit(*rng);
   o.min_keypoint_confidence = unit(*rng);
@@ -113,11 +132,26 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.triangulation.min_inliers = small(1, 8);
   o.triangulation.max_views = integer(0, 3) == 0 ? 0 : small(2, 16);
   o.linking.max_link_distance_m = 0.01 + 3.0 * unit(*rng);
+  o.linking.unshared_link_distance_m = o.linking.max_link_distance_m * unit(*rng);
   o.linking.min_hits = small(1, 5);
-  o.linking.max_missed_windows = small(0, 10);
-  o.linking.max_speed_m_per_frame = unit(*rng);
+  o.linking.strong_birth_cameras = small(2, 10);
+  o.linking.isolated_birth_distance_m = 4.0 * unit(*rng);
+  o.linking.max_lost_s = 10.0 * unit(*rng);
+  o.linking.motion.measurement_sigma_m = 0.01 + unit(*rng);
+  o.linking.motion.acceleration_sigma_mps2 = 0.01 + 3.0 * unit(*rng);
+  o.linking.motion.initial_speed_sigma_mps = 0.01 + 3.0 * unit(*rng);
+  o.linking.gap_gate_chi2 = 0.1 + 30.0 * unit(*rng);
+  o.linking.reid_gate_chi2 = 20.0 * unit(*rng);
+  o.linking.reid_margin_chi2 = 10.0 * unit(*rng);
+  o.linking.max_reid_gap_s = 5.0 * unit(*rng);
   o.refinement.merge_distance_m = unit(*rng);
   o.refinement.min_duplicate_pairs = small(1, 30);
+  o.refinement.box_min_duplicate_frames = small(1, 30);
+  o.refinement.box_bottom_min_height_m = -unit(*rng);
+  o.refinement.box_bottom_max_height_m = 0.01 + unit(*rng);
+  o.refinement.box_top_min_height_m = unit(*rng);
+  o.refinement.box_top_max_height_m = 1.01 + 2.0 * unit(*rng);
+  o.refinement.jump_gate_chi2 = 100.0 * unit(*rng);
   o.refinement.box_merge_distance_m = unit(*rng);
   o.refinement.box_min_height_m = -unit(*rng);
   o.refinement.box_max_height_m = 0.01 + 3.0 * unit(*rng);
@@ -158,9 +192,9 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   CHECK(sizeof(tracking2d::SortOptions) == 16);
   CHECK(sizeof(association::AssociationOptions) == 32);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
-  CHECK(sizeof(linking::LinkerOptions) == 24);
-  CHECK(sizeof(triangulation::RefinementOptions) == 88);
-  CHECK(sizeof(TrackerOptions) == 280);
+  CHECK(sizeof(linking::LinkerOptions) == 96);
+  CHECK(sizeof(triangulation::RefinementOptions) == 128);
+  CHECK(sizeof(TrackerOptions) == 400);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -186,6 +220,8 @@ TEST_CASE("Every key sets its own field", "[unit]") {
       "  window_size: 40\n"
       "  window_step: 10\n"
       "  box_point: bottom_center\n"
+      "  box_ends_in_association: false\n"
+      "  box_ends_max_elevation_deg: 35.5\n"
       "  ground_height_m: -0.25\n"
       "  min_detection_score: 0.35\n"
       "  min_keypoint_confidence: 0.45\n"
@@ -210,12 +246,27 @@ TEST_CASE("Every key sets its own field", "[unit]") {
       "    max_views: 0\n"
       "  linking:\n"
       "    max_link_distance_m: 0.65\n"
+      "    unshared_link_distance_m: 0.125\n"
       "    min_hits: 3\n"
-      "    max_missed_windows: 4\n"
-      "    max_speed_m_per_frame: 0.2\n"
+      "    strong_birth_cameras: 4\n"
+      "    isolated_birth_distance_m: 1.25\n"
+      "    max_lost_s: 4.5\n"
+      "    measurement_sigma_m: 0.05\n"
+      "    acceleration_sigma_mps2: 1.5\n"
+      "    initial_speed_sigma_mps: 2.5\n"
+      "    gap_gate_chi2: 13.25\n"
+      "    reid_gate_chi2: 9.5\n"
+      "    reid_margin_chi2: 4.25\n"
+      "    max_reid_gap_s: 1.25\n"
       "  refinement:\n"
       "    merge_distance_m: 0.15\n"
       "    min_duplicate_pairs: 7\n"
+      "    box_min_duplicate_frames: 5\n"
+      "    box_bottom_min_height_m: -0.25\n"
+      "    box_bottom_max_height_m: 0.5\n"
+      "    box_top_min_height_m: 0.75\n"
+      "    box_top_max_height_m: 2.25\n"
+      "    jump_gate_chi2: 33.5\n"
       "    box_merge_distance_m: 0.25\n"
       "    box_min_height_m: -0.5\n"
       "    box_max_height_m: 2.5\n"
@@ -232,6 +283,8 @@ TEST_CASE("Every key sets its own field", "[unit]") {
   CHECK(o.window_size == 40);
   CHECK(o.window_step == 10);
   CHECK(o.box_point == tracker::BoxPoint::kBottomCenter);
+  CHECK_FALSE(o.box_ends_in_association);
+  CHECK(o.box_ends_max_elevation_deg == 35.5);
   CHECK(o.ground_height_m == -0.25);
   CHECK(o.min_detection_score == 0.35);
   CHECK(o.min_keypoint_confidence == 0.45);
@@ -255,11 +308,26 @@ TEST_CASE("Every key sets its own field", "[unit]") {
   CHECK(o.triangulation.min_inliers == 3);
   CHECK(o.triangulation.max_views == 0);
   CHECK(o.linking.max_link_distance_m == 0.65);
+  CHECK(o.linking.unshared_link_distance_m == 0.125);
   CHECK(o.linking.min_hits == 3);
-  CHECK(o.linking.max_missed_windows == 4);
-  CHECK(o.linking.max_speed_m_per_frame == 0.2);
+  CHECK(o.linking.strong_birth_cameras == 4);
+  CHECK(o.linking.isolated_birth_distance_m == 1.25);
+  CHECK(o.linking.max_lost_s == 4.5);
+  CHECK(o.linking.motion.measurement_sigma_m == 0.05);
+  CHECK(o.linking.motion.acceleration_sigma_mps2 == 1.5);
+  CHECK(o.linking.motion.initial_speed_sigma_mps == 2.5);
+  CHECK(o.linking.gap_gate_chi2 == 13.25);
+  CHECK(o.linking.reid_gate_chi2 == 9.5);
+  CHECK(o.linking.reid_margin_chi2 == 4.25);
+  CHECK(o.linking.max_reid_gap_s == 1.25);
   CHECK(o.refinement.merge_distance_m == 0.15);
   CHECK(o.refinement.min_duplicate_pairs == 7);
+  CHECK(o.refinement.box_min_duplicate_frames == 5);
+  CHECK(o.refinement.box_bottom_min_height_m == -0.25);
+  CHECK(o.refinement.box_bottom_max_height_m == 0.5);
+  CHECK(o.refinement.box_top_min_height_m == 0.75);
+  CHECK(o.refinement.box_top_max_height_m == 2.25);
+  CHECK(o.refinement.jump_gate_chi2 == 33.5);
   CHECK(o.refinement.box_merge_distance_m == 0.25);
   CHECK(o.refinement.box_min_height_m == -0.5);
   CHECK(o.refinement.box_max_height_m == 2.5);
@@ -318,7 +386,7 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 13 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
-  CHECK(written.size() == 43);
+  CHECK(written.size() == 60);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);
@@ -514,25 +582,30 @@ TEST_CASE("Config ranges agree with Validate at every boundary", "[unit]") {
        [](O& o) { o.triangulation.max_views = 1; }},
       {"triangulation: {max_views: -1}", "tracker.triangulation.max_views", false,
        [](O& o) { o.triangulation.max_views = -1; }},
-      {"linking: {max_link_distance_m: 1e-9}", "", true,
-       [](O& o) { o.linking.max_link_distance_m = 1e-9; }},
+      {"linking: {max_link_distance_m: 1e-9, unshared_link_distance_m: 0}", "", true,
+       [](O& o) {
+         o.linking.max_link_distance_m = 1e-9;
+         o.linking.unshared_link_distance_m = 0.0;
+       }},
       {"linking: {max_link_distance_m: 0}", "tracker.linking.max_link_distance_m", false,
        [](O& o) { o.linking.max_link_distance_m = 0.0; }},
       {"linking: {min_hits: 1}", "", true, [](O& o) { o.linking.min_hits = 1; }},
       {"linking: {min_hits: 0}", "tracker.linking.min_hits", false,
        [](O& o) { o.linking.min_hits = 0; }},
-      {"linking: {max_missed_windows: 0}", "", true,
-       [](O& o) { o.linking.max_missed_windows = 0; }},
-      {"linking: {max_missed_windows: 2147483646}", "", true,
-       [](O& o) { o.linking.max_missed_windows = 2147483646; }},
-      {"linking: {max_missed_windows: 2147483647}", "tracker.linking.max_missed_windows", false,
-       [](O& o) { o.linking.max_missed_windows = 2147483647; }},
-      {"linking: {max_missed_windows: -1}", "tracker.linking.max_missed_windows", false,
-       [](O& o) { o.linking.max_missed_windows = -1; }},
-      {"linking: {max_speed_m_per_frame: 0}", "", true,
-       [](O& o) { o.linking.max_speed_m_per_frame = 0.0; }},
-      {"linking: {max_speed_m_per_frame: -0.01}", "tracker.linking.max_speed_m_per_frame", false,
-       [](O& o) { o.linking.max_speed_m_per_frame = -0.01; }},
+      {"linking: {max_lost_s: 0}", "", true, [](O& o) { o.linking.max_lost_s = 0.0; }},
+      {"linking: {max_lost_s: -0.5}", "tracker.linking.max_lost_s", false,
+       [](O& o) { o.linking.max_lost_s = -0.5; }},
+      {"linking: {unshared_link_distance_m: 0.5}", "", true,
+       [](O& o) { o.linking.unshared_link_distance_m = 0.5; }},
+      {"linking: {unshared_link_distance_m: 0.6}", "tracker.linking.unshared_link_distance_m",
+       false, [](O& o) { o.linking.unshared_link_distance_m = 0.6; }},
+      {"linking: {strong_birth_cameras: 1}", "tracker.linking.strong_birth_cameras", false,
+       [](O& o) { o.linking.strong_birth_cameras = 1; }},
+      {"linking: {reid_gate_chi2: 0}", "", true, [](O& o) { o.linking.reid_gate_chi2 = 0.0; }},
+      {"linking: {gap_gate_chi2: 0}", "tracker.linking.gap_gate_chi2", false,
+       [](O& o) { o.linking.gap_gate_chi2 = 0.0; }},
+      {"linking: {measurement_sigma_m: 0}", "tracker.linking.measurement_sigma_m", false,
+       [](O& o) { o.linking.motion.measurement_sigma_m = 0.0; }},
   };
   for (const Boundary& c : cases) {
     INFO("tracker: " << c.yaml);

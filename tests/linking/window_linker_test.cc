@@ -7,10 +7,8 @@
 #include <functional>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <optional>
 #include <random>
-#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,25 +16,27 @@
 namespace mvtrack::linking {
 namespace {
 
-// The paper's window geometry: size nu = 30, step delta = 20 (10 overlapping frames).
+// The paper's window geometry: size nu = 30, step delta = 20 (10 overlapping frames), 30 fps.
 constexpr std::int64_t kNu = 30;
 constexpr std::int64_t kDelta = 20;
+constexpr double kSpf = 1.0 / 30.0;
 
 using Trajectory = std::function<Vec3(FrameIndex)>;
 
-// A synthetic person: a ground-truth trajectory of its body centre and the windows in which
-// the 3D stage produced a tracklet for it.
+// A synthetic person: a ground-truth trajectory of its body centre, the windows in which the
+// 3D stage produced a tracklet for it, and the 2D tracks (one per camera 0 and 1) that
+// tracklet is built from in a window: by default the same two for the whole run, as when both
+// cameras keep tracking the person.
 struct Person {
   Trajectory centre;
   std::function<bool(std::int64_t)> present = [](std::int64_t) { return true; };
+  std::function<std::vector<TrackId2D>(std::int64_t)> tracks;  // per camera; empty = default
 };
 
 // Joint offsets from the body centre (a small "skeleton": head, chest, shoulders, feet).
 const std::vector<Vec3>& SkeletonOffsets() {
-  static const std::vector<Vec3> offsets = {Vec3(0.0, 0.0, 0.7),
-                                            Vec3(0.0, 0.0, 0.3),
-                                            Vec3(0.2, 0.0, 0.4),
-                                            Vec3(-0.2, 0.0, 0.4),
+  static const std::vector<Vec3> offsets = {Vec3(0.0, 0.0, 0.7), Vec3(0.0, 0.0, 0.3),
+                                            Vec3(0.2, 0.0, 0.4), Vec3(-0.2, 0.0, 0.4),
                                             Vec3(0.0, 0.0, -0.9)};
   return offsets;
 }
@@ -48,14 +48,33 @@ Trajectory Straight(const Vec3& start, const Vec3& velocity_m_per_frame) {
   };
 }
 
-// The short-term tracklet of `person` in window k: frames [k*delta, k*delta + nu), every joint
-// at its ground-truth position plus independent Gaussian noise (each window triangulates anew,
-// so the overlapping frames of two windows disagree by the noise).
-core::Tracklet3D MakeTracklet(const Trajectory& centre,
-                              std::int64_t window,
-                              const std::vector<Vec3>& offsets,
-                              double noise_sigma_m,
-                              std::mt19937* rng) {
+// Members (camera c, track tracks[c]) spanning [first, last], sorted by camera.
+std::vector<core::TrackletMember> Members(const std::vector<TrackId2D>& tracks, FrameIndex first,
+                                          FrameIndex last) {
+  std::vector<core::TrackletMember> m;
+  for (std::size_t c = 0; c < tracks.size(); ++c) {
+    m.push_back({static_cast<CameraId>(c), tracks[c], first, last,
+                 static_cast<int>(last - first + 1)});
+  }
+  return m;
+}
+
+// All 2D tracks of the window as live tracks (sorted by camera, then track).
+std::vector<core::TrackletMember> LiveOf(const std::vector<core::Tracklet3D>& tracklets) {
+  std::vector<core::TrackletMember> live;
+  for (const core::Tracklet3D& t : tracklets)
+    live.insert(live.end(), t.members.begin(), t.members.end());
+  std::sort(live.begin(), live.end(), [](const auto& a, const auto& b) {
+    return a.camera_id != b.camera_id ? a.camera_id < b.camera_id : a.track_id < b.track_id;
+  });
+  return live;
+}
+
+// The short-term tracklet of a trajectory in window k: frames [k*delta, k*delta + nu), every
+// joint at its ground-truth position plus independent Gaussian noise.
+core::Tracklet3D MakeTracklet(const Trajectory& centre, std::int64_t window,
+                              const std::vector<Vec3>& offsets, double noise_sigma_m,
+                              std::mt19937* rng, const std::vector<TrackId2D>& tracks) {
   std::normal_distribution<double> noise(0.0, noise_sigma_m);
   core::Tracklet3D tracklet;
   for (FrameIndex t = window * kDelta; t < window * kDelta + kNu; ++t) {
@@ -64,37 +83,37 @@ core::Tracklet3D MakeTracklet(const Trajectory& centre,
     for (const Vec3& offset : offsets) {
       Vec3 p = centre(t) + offset;
       if (noise_sigma_m > 0.0) {
-        // One draw per statement: argument evaluation order is unspecified.
-        for (int axis = 0; axis < 3; ++axis) p[axis] += noise(*rng);
+        for (int axis = 0; axis < 3; ++axis) p[axis] += noise(*rng);  // one draw per statement
       }
       points.emplace_back(p);
     }
     tracklet.points.push_back(std::move(points));
   }
+  for (std::size_t c = 0; c < tracks.size(); ++c)
+    tracklet.cameras.push_back(static_cast<CameraId>(c));
+  tracklet.members = Members(tracks, window * kDelta, window * kDelta + kNu - 1);
   return tracklet;
 }
 
-// One window of a scene: the tracklets in shuffled order and the person behind each.
 struct SceneWindow {
   std::vector<core::Tracklet3D> tracklets;
   std::vector<int> person_of_tracklet;
 };
 
-SceneWindow MakeWindow(const std::vector<Person>& people,
-                       std::int64_t window,
-                       const std::vector<Vec3>& offsets,
-                       double noise_sigma_m,
-                       std::mt19937* rng) {
+SceneWindow MakeWindow(const std::vector<Person>& people, std::int64_t window,
+                       double noise_sigma_m, std::mt19937* rng) {
   std::vector<int> order;
   for (int p = 0; p < static_cast<int>(people.size()); ++p) {
     if (people[static_cast<std::size_t>(p)].present(window)) order.push_back(p);
   }
-  // Index order must carry no identity.
-  std::shuffle(order.begin(), order.end(), *rng);
+  std::shuffle(order.begin(), order.end(), *rng);  // index order carries no identity
   SceneWindow w;
   for (int p : order) {
+    const Person& person = people[static_cast<std::size_t>(p)];
+    const std::vector<TrackId2D> tracks =
+        person.tracks ? person.tracks(window) : std::vector<TrackId2D>{1000 + p, 2000 + p};
     w.tracklets.push_back(
-        MakeTracklet(people[static_cast<std::size_t>(p)].centre, window, offsets, noise_sigma_m, rng));
+        MakeTracklet(person.centre, window, SkeletonOffsets(), noise_sigma_m, rng, tracks));
     w.person_of_tracklet.push_back(p);
   }
   return w;
@@ -107,27 +126,33 @@ const LinkedTrack* FindTrack(const WindowLinker& linker, TrackId3D id) {
   return nullptr;
 }
 
-// Index of person `p` in a window, or -1.
-int IndexOfPerson(const SceneWindow& w, int p) {
-  const auto it = std::find(w.person_of_tracklet.begin(), w.person_of_tracklet.end(), p);
-  return it == w.person_of_tracklet.end() ? -1
-                                          : static_cast<int>(it - w.person_of_tracklet.begin());
-}
-
-bool IsSortedUnique(const std::vector<TrackId3D>& ids) {
-  return std::adjacent_find(ids.begin(), ids.end(), [](TrackId3D a, TrackId3D b) {
-           return a >= b;
-         }) == ids.end();
-}
-
-// A single-point (box mode) tracklet over the given frames, all at `point`.
-core::Tracklet3D ConstantTracklet(FrameIndex first, FrameIndex last, const Vec3& point) {
+// A single-point (box mode) tracklet at a fixed place, with members `tracks` (cameras 0, 1, ...).
+core::Tracklet3D ConstantTracklet(FrameIndex first, FrameIndex last, const Vec3& point,
+                                  const std::vector<TrackId2D>& tracks = {1, 2}) {
   core::Tracklet3D tracklet;
   for (FrameIndex t = first; t <= last; ++t) {
     tracklet.frames.push_back(t);
     tracklet.points.push_back({point});
   }
+  for (std::size_t c = 0; c < tracks.size(); ++c)
+    tracklet.cameras.push_back(static_cast<CameraId>(c));
+  tracklet.members = Members(tracks, first, last);
   return tracklet;
+}
+
+// A single-point tracklet moving along `centre` over [first, last].
+core::Tracklet3D MovingTracklet(FrameIndex first, FrameIndex last, const Trajectory& centre,
+                                const std::vector<TrackId2D>& tracks) {
+  core::Tracklet3D tracklet = ConstantTracklet(first, last, Vec3::Zero(), tracks);
+  for (std::size_t f = 0; f < tracklet.frames.size(); ++f) {
+    tracklet.points[f][0] = centre(tracklet.frames[f]);
+  }
+  return tracklet;
+}
+
+LinkResult LinkWindow(WindowLinker* linker, std::int64_t k,
+                      const std::vector<core::Tracklet3D>& tracklets) {
+  return linker->Link(k, k * kDelta, kSpf, tracklets, LiveOf(tracklets));
 }
 
 TEST_CASE("Eq. 8 distance on a hand-made case", "[unit]") {
@@ -185,65 +210,62 @@ TEST_CASE("Eq. 8 distance is undefined without overlap or without common points"
   CHECK(*d == Approx(5.0));
 }
 
-TEST_CASE("Gap measurement uses the last and first valid frames and common joints", "[unit]") {
-  core::Tracklet3D from;
-  from.frames = {0, 1, 2, 3};
-  from.points = {{Vec3(9.0, 9.0, 9.0), Vec3(9.0, 9.0, 9.0), std::nullopt},
-                 {Vec3(0.0, 0.0, 1.0), Vec3(1.0, 0.0, 1.0), std::nullopt},  // last valid frame
-                 {std::nullopt, std::nullopt, std::nullopt},
-                 {std::nullopt, std::nullopt, std::nullopt}};
-  core::Tracklet3D to;
-  to.frames = {10, 11, 12};
-  to.points = {{std::nullopt, std::nullopt, std::nullopt},
-               {std::nullopt, Vec3(1.0, 2.0, 1.0), Vec3(5.0, 5.0, 5.0)},  // first valid frame
-               {Vec3(0.0, 0.0, 0.0), Vec3(0.0, 0.0, 0.0), Vec3(0.0, 0.0, 0.0)}};
-  const auto gap = MeasureGap(from, to);
-  REQUIRE(gap.has_value());
-  CHECK(gap->gap_frames == 11 - 1);
-  // Only point 1 is valid in both frames: |(1,2,1) - (1,0,1)| = 2 (all valid points would give
-  // |mean{(1,2,1),(5,5,5)} - mean{(0,0,1),(1,0,1)}| instead).
-  CHECK(gap->distance_m == Approx(2.0));
+TEST_CASE("Footprints: the footprint points' mean, else the valid points' mean", "[unit]") {
+  const std::vector<std::optional<Vec3>> points = {Vec3(0.0, 0.0, 1.0), Vec3(2.0, 0.0, 1.0),
+                                                   std::nullopt, Vec3(4.0, 6.0, 9.0)};
+  const std::optional<Vec2> hips = FrameFootprint(points, {0, 1});
+  REQUIRE(hips.has_value());
+  CHECK(hips->x() == Approx(1.0));
+  CHECK(hips->y() == Approx(0.0));
+  // A footprint point missing: the mean of the valid points (x, y only).
+  const std::optional<Vec2> all = FrameFootprint(points, {0, 2});
+  REQUIRE(all.has_value());
+  CHECK(all->x() == Approx(2.0));
+  CHECK(all->y() == Approx(2.0));
+  CHECK(FrameFootprint(points, {}) == all);
+  CHECK_FALSE(FrameFootprint({std::nullopt, std::nullopt}, {0}).has_value());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CHECK_FALSE(FrameFootprint({Vec3(nan, 0.0, 0.0)}, {}).has_value());
+}
 
-  // Without a common joint each frame's own valid points are used.
-  to.points[1] = {std::nullopt, std::nullopt, Vec3(0.5, 3.0, 1.0)};
-  const auto gap2 = MeasureGap(from, to);
-  REQUIRE(gap2.has_value());
-  CHECK(gap2->distance_m == Approx((Vec3(0.5, 3.0, 1.0) - Vec3(0.5, 0.0, 1.0)).norm()));
-
-  core::Tracklet3D empty_points;
-  empty_points.frames = {20};
-  empty_points.points = {{std::nullopt}};
-  CHECK_FALSE(MeasureGap(from, empty_points).has_value());
-  CHECK_FALSE(MeasureGap(empty_points, to).has_value());
+TEST_CASE("Shared members count equal (camera, 2D track) pairs", "[unit]") {
+  core::Tracklet3D t;
+  t.members = {{0, 5, 0, 9, 10}, {1, 7, 0, 9, 10}, {2, 3, 0, 9, 10}};
+  CHECK(SharedMembers({{0, 5, 9}, {1, 8, 9}, {2, 3, 9}}, t) == 2);
+  CHECK(SharedMembers({{0, 7, 9}, {1, 5, 9}}, t) == 0);  // same ids, other cameras
+  CHECK(SharedMembers({}, t) == 0);
 }
 
 TEST_CASE("LinkerOptions::Validate rejects out-of-range settings", "[unit]") {
   std::string why;
   CHECK(LinkerOptions{}.Validate(&why));
-  LinkerOptions o;
-  o.max_link_distance_m = 0.0;
-  CHECK_FALSE(o.Validate(&why));
-  CHECK(why.find("max_link_distance_m") != std::string::npos);
-  o = {};
-  o.max_link_distance_m = std::numeric_limits<double>::infinity();
-  CHECK_FALSE(o.Validate(nullptr));
-  o = {};
-  o.min_hits = 0;
-  CHECK_FALSE(o.Validate(&why));
-  CHECK(why.find("min_hits") != std::string::npos);
-  o = {};
-  o.max_missed_windows = -1;
-  CHECK_FALSE(o.Validate(&why));
-  CHECK(why.find("max_missed_windows") != std::string::npos);
-  o = {};
-  o.max_speed_m_per_frame = -0.1;
-  CHECK_FALSE(o.Validate(&why));
-  CHECK(why.find("max_speed_m_per_frame") != std::string::npos);
+  const auto rejects = [](const std::function<void(LinkerOptions*)>& change, const char* name) {
+    LinkerOptions o;
+    change(&o);
+    std::string reason;
+    CHECK_FALSE(o.Validate(&reason));
+    CHECK(reason.find(name) != std::string::npos);
+  };
+  rejects([](LinkerOptions* o) { o->max_link_distance_m = 0.0; }, "max_link_distance_m");
+  rejects([](LinkerOptions* o) { o->max_link_distance_m = INFINITY; }, "max_link_distance_m");
+  rejects([](LinkerOptions* o) { o->unshared_link_distance_m = 0.6; }, "unshared_link_distance_m");
+  rejects([](LinkerOptions* o) { o->min_hits = 0; }, "min_hits");
+  rejects([](LinkerOptions* o) { o->strong_birth_cameras = 1; }, "strong_birth_cameras");
+  rejects([](LinkerOptions* o) { o->isolated_birth_distance_m = -1.0; },
+          "isolated_birth_distance_m");
+  rejects([](LinkerOptions* o) { o->max_lost_s = NAN; }, "max_lost_s");
+  rejects([](LinkerOptions* o) { o->gap_gate_chi2 = 0.0; }, "gap_gate_chi2");
+  rejects([](LinkerOptions* o) { o->reid_gate_chi2 = -1.0; }, "reid_gate_chi2");
+  rejects([](LinkerOptions* o) { o->reid_margin_chi2 = -1.0; }, "reid_margin_chi2");
+  rejects([](LinkerOptions* o) { o->max_reid_gap_s = -0.5; }, "max_reid_gap_s");
+  rejects([](LinkerOptions* o) { o->motion.measurement_sigma_m = 0.0; }, "measurement_sigma_m");
+  rejects([](LinkerOptions* o) { o->motion.acceleration_sigma_mps2 = -1.0; },
+          "acceleration_sigma_mps2");
 }
 
 TEST_CASE("Three walking people keep their identities, two passing 0.4 m apart", "[unit]") {
-  // A and B walk towards each other on parallel lines 0.4 m apart (0.028 m/frame, ~0.84 m/s
-  // at 30 fps) and pass at frame 125, inside the overlap of windows 5 and 6; C walks a circle.
+  // A and B walk towards each other on parallel lines 0.4 m apart (0.028 m/frame, ~0.84 m/s)
+  // and pass at frame 125, inside the overlap of windows 5 and 6; C walks a circle.
   std::vector<Person> people(3);
   people[0].centre = Straight(Vec3(-3.5, 0.0, 1.0), Vec3(0.028, 0.0, 0.0));
   people[1].centre = Straight(Vec3(3.5, 0.4, 1.0), Vec3(-0.028, 0.0, 0.0));
@@ -251,351 +273,251 @@ TEST_CASE("Three walking people keep their identities, two passing 0.4 m apart",
     const double phase = 0.01 * static_cast<double>(t);
     return Vec3(2.0 * std::cos(phase), 3.0 + 2.0 * std::sin(phase), 1.0);
   };
-  constexpr double kNoise = 0.02;
-  constexpr std::int64_t kWindows = 12;
   std::mt19937 rng(20240531);
   WindowLinker linker;
   std::map<int, TrackId3D> id_of_person;
-  SceneWindow previous;
-  bool checked_crossing = false;
-  for (std::int64_t k = 0; k < kWindows; ++k) {
-    const SceneWindow w = MakeWindow(people, k, SkeletonOffsets(), kNoise, &rng);
-    const LinkResult r = linker.Link(k, w.tracklets);
+  for (std::int64_t k = 0; k < 12; ++k) {
+    const SceneWindow w = MakeWindow(people, k, 0.02, &rng);
+    const LinkResult r = LinkWindow(&linker, k, w.tracklets);
     REQUIRE(r.window_id == k);
     REQUIRE(r.track_of_tracklet.size() == w.tracklets.size());
-    REQUIRE(r.link_distance_m.size() == w.tracklets.size());
     CHECK(r.died.empty());
-    if (k == 0) {
-      CHECK(r.born == std::vector<TrackId3D>{1, 2, 3});
-      for (std::size_t i = 0; i < w.tracklets.size(); ++i) {
-        id_of_person[w.person_of_tracklet[i]] = r.track_of_tracklet[i];
+    for (std::size_t i = 0; i < w.tracklets.size(); ++i) {
+      const int p = w.person_of_tracklet[i];
+      if (k == 0) {
         CHECK(r.link_kind[i] == LinkKind::kBirth);
-        CHECK(std::isnan(r.link_distance_m[i]));
-      }
-      CHECK(id_of_person.size() == 3);
-    } else {
-      CHECK(r.born.empty());
-      for (std::size_t i = 0; i < w.tracklets.size(); ++i) {
-        const int p = w.person_of_tracklet[i];
+        id_of_person[p] = r.track_of_tracklet[i];
+      } else {
         CHECK(r.track_of_tracklet[i] == id_of_person.at(p));
         CHECK(r.link_kind[i] == LinkKind::kOverlap);
         CHECK(r.link_distance_m[i] < 0.1);
+        CHECK(r.shared_members[i] == 2);
       }
-    }
-    if (k == 6) {
-      // The crossing is a real test of the assignment: the swapped pairs are inside the gate
-      // too, so only the minimum-cost assignment keeps A and B apart.
-      const auto swap_ab = MeanOverlapDistance(
-          previous.tracklets[static_cast<std::size_t>(IndexOfPerson(previous, 0))],
-          w.tracklets[static_cast<std::size_t>(IndexOfPerson(w, 1))]);
-      const auto swap_ba = MeanOverlapDistance(
-          previous.tracklets[static_cast<std::size_t>(IndexOfPerson(previous, 1))],
-          w.tracklets[static_cast<std::size_t>(IndexOfPerson(w, 0))]);
-      REQUIRE(swap_ab.has_value());
-      REQUIRE(swap_ba.has_value());
-      CHECK(*swap_ab <= linker.options().max_link_distance_m);
-      CHECK(*swap_ba <= linker.options().max_link_distance_m);
-      checked_crossing = true;
     }
     REQUIRE(linker.tracks().size() == 3);
     for (const LinkedTrack& t : linker.tracks()) {
+      // Two cameras, but at birth nobody within 2 m of anybody: isolated births, confirmed.
       CHECK(t.state == TrackState::kConfirmed);
       CHECK(t.hits == k + 1);
-      CHECK(t.missed_windows == 0);
-      CHECK(t.first_window == 0);
-      CHECK(t.last_window == k);
-      CHECK(t.last_tracklet.frames.front() == k * kDelta);
+      CHECK(t.members.size() == 2);
     }
-    previous = w;
   }
-  CHECK(checked_crossing);
-  CHECK(std::is_sorted(linker.tracks().begin(),
-                       linker.tracks().end(),
-                       [](const LinkedTrack& x, const LinkedTrack& y) { return x.id < y.id; }));
+  CHECK(id_of_person.size() == 3);
 }
 
-TEST_CASE("Missing people: re-linked across a gap, or reborn after max_missed_windows",
+TEST_CASE("Shared 2D tracks outweigh Eq. 8: a track keeps the tracklet that continues it",
           "[unit]") {
-  // max_missed_windows = 2 (default). Windows 0-2: everyone. Then:
-  //   P0 always present;
-  //   P1 misses window 3 (1 window)   -> re-linked at window 4 by the gap rule;
-  //   P3 misses windows 3-4 (2 = max) -> re-linked at window 5 by the gap rule;
-  //   P2 misses windows 3-5 (3 > max) -> dies at window 5, new id at window 6;
-  //   D appears at window 4, 1.2 m from P1's last seen position (inside P1's gap gate, but
-  //     farther than P1's own tracklet) -> born.
-  std::vector<Person> people(5);
-  people[0].centre = Straight(Vec3(-3.0, 0.0, 1.0), Vec3(0.02, 0.0, 0.0));
-  people[1].centre = Straight(Vec3(-3.0, 3.0, 1.0), Vec3(0.03, 0.0, 0.0));
-  people[1].present = [](std::int64_t k) { return k != 3; };
-  people[2].centre = Straight(Vec3(0.0, -6.0, 1.0), Vec3(0.0, 0.025, 0.0));
-  people[2].present = [](std::int64_t k) { return k < 3 || k > 5; };
-  people[3].centre = Straight(Vec3(0.0, -14.0, 1.0), Vec3(-0.025, 0.0, 0.0));
-  people[3].present = [](std::int64_t k) { return k < 3 || k > 4; };
-  const Vec3 d_position = people[1].centre(80) + Vec3(0.0, 1.2, 0.0);
-  people[4].centre = [d_position](FrameIndex) { return d_position; };
-  people[4].present = [](std::int64_t k) { return k >= 4; };
-
-  constexpr double kNoise = 0.02;
-  std::mt19937 rng(7);
   WindowLinker linker;
-  std::map<int, TrackId3D> id_of_person;
-  std::set<TrackId3D> all_ids;
-  for (std::int64_t k = 0; k < 9; ++k) {
-    const SceneWindow w = MakeWindow(people, k, SkeletonOffsets(), kNoise, &rng);
-    const LinkResult r = linker.Link(k, w.tracklets);
-    CHECK(IsSortedUnique(r.born));
-    CHECK(IsSortedUnique(r.died));
-    const auto id_at = [&](int p) {
-      return r.track_of_tracklet[static_cast<std::size_t>(IndexOfPerson(w, p))];
-    };
-    const auto kind_at = [&](int p) {
-      return r.link_kind[static_cast<std::size_t>(IndexOfPerson(w, p))];
-    };
-    if (k == 0) {
-      for (int p = 0; p < 4; ++p) id_of_person[p] = id_at(p);
-      CHECK(r.born == std::vector<TrackId3D>{1, 2, 3, 4});
-    }
-    if (k == 3) {
-      CHECK(r.died.empty());
-      for (int p : {1, 2, 3}) {
-        const LinkedTrack* t = FindTrack(linker, id_of_person[p]);
-        REQUIRE(t != nullptr);
-        CHECK(t->state == TrackState::kLost);
-        CHECK(t->missed_windows == 1);
-        CHECK(t->last_window == 2);
-      }
-    }
-    if (k == 4) {
-      // P1 re-linked across its one-window gap; the distractor is born instead.
-      CHECK(id_at(1) == id_of_person[1]);
-      CHECK(kind_at(1) == LinkKind::kGap);
-      const double truth = (people[1].centre(80) - people[1].centre(69)).norm();
-      CHECK(r.link_distance_m[static_cast<std::size_t>(IndexOfPerson(w, 1))] ==
-            Approx(truth).margin(0.06));
-      const TrackId3D d_id = id_at(4);
-      CHECK(all_ids.count(d_id) == 0);
-      CHECK(r.born == std::vector<TrackId3D>{d_id});
-      CHECK(kind_at(4) == LinkKind::kBirth);
-      CHECK(FindTrack(linker, id_of_person[1])->state == TrackState::kConfirmed);
-      // P2 and P3 have missed exactly max_missed_windows: lost but alive.
-      CHECK(r.died.empty());
-      for (int p : {2, 3}) {
-        const LinkedTrack* t = FindTrack(linker, id_of_person[p]);
-        REQUIRE(t != nullptr);
-        CHECK(t->missed_windows == 2);
-        CHECK(t->state == TrackState::kLost);
-      }
-    }
-    if (k == 5) {
-      // P3 re-linked after two missed windows; P2's third miss kills its track.
-      CHECK(id_at(3) == id_of_person[3]);
-      CHECK(kind_at(3) == LinkKind::kGap);
-      CHECK(r.died == std::vector<TrackId3D>{id_of_person[2]});
-      CHECK(FindTrack(linker, id_of_person[2]) == nullptr);
-      CHECK(r.born.empty());
-    }
-    if (k == 6) {
-      const TrackId3D reborn = id_at(2);
-      CHECK(reborn != id_of_person[2]);
-      CHECK(all_ids.count(reborn) == 0);
-      CHECK(r.born == std::vector<TrackId3D>{reborn});
-      CHECK(kind_at(2) == LinkKind::kBirth);
-      id_of_person[2] = reborn;
-    }
-    if (k >= 5) {
-      for (int p : {0, 1, 3}) CHECK(id_at(p) == id_of_person[p]);
-    }
-    if (k >= 7) {
-      CHECK(r.born.empty());
-      CHECK(r.died.empty());
-      CHECK(id_at(2) == id_of_person[2]);
-      CHECK(kind_at(2) == LinkKind::kOverlap);
-    }
-    CHECK(id_at(0) == id_of_person[0]);
-    for (TrackId3D id : r.track_of_tracklet) all_ids.insert(id);
-  }
-  // Ids: 1-4 at window 0, D = 5 at window 4, P2 reborn = 6 at window 6; never reused.
-  CHECK(all_ids == std::set<TrackId3D>{1, 2, 3, 4, 5, 6});
-}
-
-TEST_CASE("min_hits confirmation counts matched windows; a lost track keeps its hits",
-          "[unit]") {
-  LinkerOptions options;
-  options.min_hits = 3;
-  WindowLinker linker(options);
-  const Trajectory walk = Straight(Vec3(0.0, 0.0, 1.0), Vec3(0.02, 0.0, 0.0));
-  const Trajectory other = Straight(Vec3(0.0, 5.0, 1.0), Vec3(0.0, 0.02, 0.0));
-  std::mt19937 rng(3);
-  const std::vector<Vec3> box = {Vec3::Zero()};
-  // `walk` present in windows 0,1,2,4; `other` in 0,2,3.
-  const auto run = [&](std::int64_t k, bool with_walk, bool with_other) {
-    std::vector<core::Tracklet3D> tracklets;
-    if (with_walk) tracklets.push_back(MakeTracklet(walk, k, box, 0.01, &rng));
-    if (with_other) tracklets.push_back(MakeTracklet(other, k, box, 0.01, &rng));
-    return linker.Link(k, tracklets);
-  };
-  const LinkResult r0 = run(0, true, true);
-  REQUIRE(r0.born == std::vector<TrackId3D>{1, 2});
-  const auto state = [&](TrackId3D id) { return FindTrack(linker, id)->state; };
-  const auto hits = [&](TrackId3D id) { return FindTrack(linker, id)->hits; };
-  CHECK(state(1) == TrackState::kTentative);
-  CHECK(hits(1) == 1);
-  CHECK(state(2) == TrackState::kTentative);
-
-  run(1, true, false);
-  CHECK(state(1) == TrackState::kTentative);
-  CHECK(hits(1) == 2);
-  CHECK(state(2) == TrackState::kLost);
-  CHECK(hits(2) == 1);
-
-  const LinkResult r2 = run(2, true, true);
-  CHECK(r2.track_of_tracklet == std::vector<TrackId3D>{1, 2});
-  CHECK(r2.link_kind[1] == LinkKind::kGap);
-  CHECK(state(1) == TrackState::kConfirmed);
-  CHECK(hits(1) == 3);
-  CHECK(state(2) == TrackState::kTentative);  // re-linked, 2 of 3 hits
-  CHECK(hits(2) == 2);
-
-  run(3, false, true);
-  CHECK(state(1) == TrackState::kLost);
-  CHECK(state(2) == TrackState::kConfirmed);
-  CHECK(hits(2) == 3);
-
-  const LinkResult r4 = run(4, true, false);
-  CHECK(r4.track_of_tracklet == std::vector<TrackId3D>{1});
-  CHECK(state(1) == TrackState::kConfirmed);  // confirmed tracks stay confirmed after a miss
-  CHECK(hits(1) == 4);
-  CHECK(state(2) == TrackState::kLost);
-}
-
-TEST_CASE("Skipped window ids count as windows without tracklets", "[unit]") {
-  const Trajectory a = Straight(Vec3(0.0, 0.0, 1.0), Vec3(0.03, 0.0, 0.0));
-  const Trajectory b = Straight(Vec3(0.0, 4.0, 1.0), Vec3(0.0, -0.01, 0.0));
-  std::mt19937 rng(11);
-  const std::vector<Vec3> box = {Vec3::Zero()};
-  const auto window = [&](std::int64_t k) {
-    return std::vector<core::Tracklet3D>{MakeTracklet(a, k, box, 0.01, &rng),
-                                         MakeTracklet(b, k, box, 0.01, &rng)};
-  };
-  WindowLinker linker;  // max_missed_windows = 2
-  REQUIRE(linker.Link(0, window(0)).born == std::vector<TrackId3D>{1, 2});
-
-  // Window 1 skipped: one miss, then re-linked across the gap.
-  const LinkResult r2 = linker.Link(2, window(2));
-  CHECK(r2.track_of_tracklet == std::vector<TrackId3D>{1, 2});
-  CHECK(r2.link_kind == std::vector<LinkKind>{LinkKind::kGap, LinkKind::kGap});
-  CHECK(r2.born.empty());
-  CHECK(r2.died.empty());
-  CHECK(FindTrack(linker, 1)->hits == 2);
-  CHECK(FindTrack(linker, 1)->last_window == 2);
-
-  // Windows 3 and 4 skipped: exactly max_missed_windows, still linked.
-  const LinkResult r5 = linker.Link(5, window(5));
-  CHECK(r5.track_of_tracklet == std::vector<TrackId3D>{1, 2});
-  CHECK(r5.died.empty());
-
-  // An empty window is a miss as well.
-  const LinkResult r6 = linker.Link(6, {});
-  CHECK(r6.track_of_tracklet.empty());
-  CHECK(FindTrack(linker, 1)->missed_windows == 1);
-  CHECK(FindTrack(linker, 1)->state == TrackState::kLost);
-
-  // Windows 7 and 8 skipped: 3 misses > 2, both die before linking window 9.
-  const LinkResult r9 = linker.Link(9, window(9));
-  CHECK(r9.died == std::vector<TrackId3D>{1, 2});
-  CHECK(r9.born == std::vector<TrackId3D>{3, 4});
-  CHECK(r9.track_of_tracklet == std::vector<TrackId3D>{3, 4});
-  REQUIRE(linker.tracks().size() == 2);
-  CHECK(linker.tracks()[0].id == 3);
-  CHECK(linker.tracks()[0].first_window == 9);
-
-  // A huge skip neither overflows nor keeps anyone alive.
-  const std::int64_t far = std::numeric_limits<std::int64_t>::max();
-  const LinkResult rfar = linker.Link(far, {});
-  CHECK(rfar.died == std::vector<TrackId3D>{3, 4});
-  CHECK(linker.tracks().empty());
-}
-
-TEST_CASE("An overlapping tracklet beyond the gate is born, never gap-linked", "[unit]") {
-  WindowLinker linker;
-  linker.Link(0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0))});
-  // Overlaps frames 20-29 at 0.8 m > 0.5 m. Its centroid distance (0.8 m over |20 - 29| = 9
-  // frames) would pass the gap gate, but overlapping pairs are judged by Eq. 8 only.
-  const LinkResult r = linker.Link(1, {ConstantTracklet(20, 49, Vec3(0.8, 0.0, 1.0))});
-  CHECK(r.born == std::vector<TrackId3D>{2});
+  LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+  // Window 1: the person appears twice (split into two clusters): one tracklet continues both
+  // 2D tracks 0.2 m off, the other shares one 2D track and lies right on the old track.
+  const core::Tracklet3D continues = ConstantTracklet(20, 49, Vec3(0.2, 0.0, 1.0), {1, 2});
+  const core::Tracklet3D fragment = ConstantTracklet(20, 49, Vec3(0.0, 0.0, 1.0), {1, 9});
+  const LinkResult r = LinkWindow(&linker, 1, {fragment, continues});
+  CHECK(r.track_of_tracklet[1] == 1);
+  CHECK(r.link_kind[1] == LinkKind::kOverlap);
+  CHECK(r.track_of_tracklet[0] == 2);
   CHECK(r.link_kind[0] == LinkKind::kBirth);
+}
+
+TEST_CASE("Overlap without a shared 2D track: a new candidate unless nobody else explains it",
+          "[unit]") {
+  // Window 0: track 1 at the origin with 2D tracks {1, 2}.
+  // Window 1: a tracklet 0.1 m away whose 2D tracks all changed, while nobody continues the
+  // old ones -> linked (the stricter unshared gate, 0.25 m).
+  {
+    WindowLinker linker;
+    LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+    const LinkResult r =
+        LinkWindow(&linker, 1, {ConstantTracklet(20, 49, Vec3(0.1, 0.0, 1.0), {7, 8})});
+    CHECK(r.track_of_tracklet[0] == 1);
+    CHECK(r.link_kind[0] == LinkKind::kOverlap);
+    CHECK(r.shared_members[0] == 0);
+  }
+  // ... but 0.3 m away (inside Eq. 8's gate, outside the unshared one) it is born.
+  {
+    WindowLinker linker;
+    LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+    const LinkResult r =
+        LinkWindow(&linker, 1, {ConstantTracklet(20, 49, Vec3(0.3, 0.0, 1.0), {7, 8})});
+    CHECK(r.link_kind[0] == LinkKind::kBirth);
+    CHECK(r.track_of_tracklet[0] == 2);
+  }
+  // ... and when the old track's 2D tracks continue in another tracklet, the unshared one is a
+  // new person even right on top of the track.
+  {
+    WindowLinker linker;
+    LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+    const LinkResult r =
+        LinkWindow(&linker, 1, {ConstantTracklet(20, 49, Vec3(0.0, 0.0, 1.0), {7, 8}),
+                                ConstantTracklet(20, 49, Vec3(0.45, 0.0, 1.0), {1, 2})});
+    CHECK(r.track_of_tracklet[1] == 1);
+    CHECK(r.link_kind[0] == LinkKind::kBirth);
+  }
+}
+
+TEST_CASE("A gap is bridged by a 2D track that continued, within the motion gate", "[unit]") {
+  // A person walks at 1.2 m/s along x; window 1 has no 3D tracklet for them (one camera only),
+  // but camera 0's 2D track 1 stays alive; window 2 brings it back with a new camera 1 track.
+  const Trajectory walk = Straight(Vec3(0.0, 0.0, 1.0), Vec3(0.04, 0.0, 0.0));
+  WindowLinker linker;
+  LinkWindow(&linker, 0, {MovingTracklet(0, 29, walk, {1, 2})});
+  const std::vector<core::TrackletMember> alive = {{0, 1, 20, 49, 30}};
+  LinkResult r1 = linker.Link(1, 20, kSpf, {}, alive);
+  CHECK(r1.died.empty());
   REQUIRE(FindTrack(linker, 1) != nullptr);
-  CHECK(FindTrack(linker, 1)->missed_windows == 1);
-
-  // Within the gate it links, with the Eq. 8 distance reported.
-  const LinkResult r2 = linker.Link(2, {ConstantTracklet(40, 69, Vec3(0.8, 0.3, 1.0))});
-  CHECK(r2.track_of_tracklet == std::vector<TrackId3D>{2});
-  CHECK(r2.link_kind[0] == LinkKind::kOverlap);
-  CHECK(r2.link_distance_m[0] == Approx(0.3));
-}
-
-TEST_CASE("Overlap matches take precedence over gap matches", "[unit]") {
-  // P (track 1) at the origin, Q (track 2) 1.0 m away. Q misses window 1. In window 2 the
-  // tracklet x continues P (Eq. 8 = 0.05 m) and a newcomer y stands 0.45 m on P's other side
-  // (Eq. 8 to P = 0.45 m, inside the gate). x is inside Q's gap gate (0.5 + 0.05 * 11 = 1.05
-  // m), y is not (1.45 m). A single matrix maximising the number of matches would give P's id
-  // to y and Q's id to x; the staged assignment keeps P on x and starts a track for y.
-  LinkerOptions options;
-  options.max_speed_m_per_frame = 0.05;
-  WindowLinker linker(options);
-  const Vec3 p(0.0, 0.0, 1.0);
-  const Vec3 q(1.0, 0.0, 1.0);
-  REQUIRE(linker.Link(0, {ConstantTracklet(0, 29, p), ConstantTracklet(0, 29, q)}).born ==
-          std::vector<TrackId3D>{1, 2});
-  REQUIRE(linker.Link(1, {ConstantTracklet(20, 49, p)}).track_of_tracklet ==
-          std::vector<TrackId3D>{1});
-  const core::Tracklet3D y = ConstantTracklet(40, 69, Vec3(-0.45, 0.0, 1.0));
-  const core::Tracklet3D x = ConstantTracklet(40, 69, Vec3(0.05, 0.0, 1.0));
-  const LinkResult r = linker.Link(2, {y, x});
-  CHECK(r.track_of_tracklet == std::vector<TrackId3D>{3, 1});
-  CHECK(r.link_kind == std::vector<LinkKind>{LinkKind::kBirth, LinkKind::kOverlap});
-  CHECK(r.link_distance_m[1] == Approx(0.05));
-  CHECK(r.born == std::vector<TrackId3D>{3});
-  CHECK(FindTrack(linker, 2)->missed_windows == 2);
-}
-
-TEST_CASE("Overlap stage minimises the total Eq. 8 cost (Eq. 9), not greedily", "[unit]") {
-  // Track 1 at x = 0, track 2 at x = 0.42. New tracklets: u at x = 0.20 (0.20 from track 1,
-  // 0.22 from track 2) and v at x = -0.25 (0.25 from track 1, 0.67 from track 2: gated out).
-  // Nearest-first (per track or globally) gives u to track 1 and strands track 2; the optimal
-  // assignment links 1-v and 2-u (total 0.47).
-  WindowLinker linker;
-  REQUIRE(linker
-              .Link(0,
-                    {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0)),
-                     ConstantTracklet(0, 29, Vec3(0.42, 0.0, 1.0))})
-              .born == std::vector<TrackId3D>{1, 2});
-  const LinkResult r = linker.Link(1,
-                                   {ConstantTracklet(20, 49, Vec3(0.20, 0.0, 1.0)),
-                                    ConstantTracklet(20, 49, Vec3(-0.25, 0.0, 1.0))});
-  CHECK(r.track_of_tracklet == std::vector<TrackId3D>{2, 1});
-  CHECK(r.link_kind == std::vector<LinkKind>{LinkKind::kOverlap, LinkKind::kOverlap});
-  CHECK(r.link_distance_m[0] == Approx(0.22));
-  CHECK(r.link_distance_m[1] == Approx(0.25));
-  CHECK(r.born.empty());
-}
-
-TEST_CASE("Gap stage picks the closest lost track and respects the speed gate", "[unit]") {
-  // Two lost tracks, one tracklet between them: the nearer one takes it. A tracklet beyond
-  // every gap gate is born.
-  WindowLinker linker;
-  linker.Link(0,
-              {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0)),
-               ConstantTracklet(0, 29, Vec3(3.0, 0.0, 1.0))});
-  // Window 1: nobody. Window 2 (gap 40 - 29 = 11 frames, gate 0.5 + 0.15 * 11 = 2.15 m).
-  linker.Link(1, {});
-  const LinkResult r = linker.Link(2,
-                                   {ConstantTracklet(40, 69, Vec3(20.0, 0.0, 1.0)),
-                                    ConstantTracklet(40, 69, Vec3(1.9, 0.0, 1.0))});
-  CHECK(r.track_of_tracklet == std::vector<TrackId3D>{3, 2});
-  CHECK(r.link_kind == std::vector<LinkKind>{LinkKind::kBirth, LinkKind::kGap});
-  CHECK(r.link_distance_m[1] == Approx(1.1));
   CHECK(FindTrack(linker, 1)->state == TrackState::kLost);
+  // Window 2 starts at 40; the tracklet only from frame 45 on (no overlap with frames <= 29).
+  const LinkResult r2 = LinkWindow(&linker, 2, {MovingTracklet(45, 69, walk, {1, 5})});
+  CHECK(r2.track_of_tracklet[0] == 1);
+  CHECK(r2.link_kind[0] == LinkKind::kGap);
+  CHECK(r2.shared_members[0] == 1);
+  CHECK(r2.link_distance_m[0] < 3.0);  // the chi-square test statistic of a good continuation
+  CHECK(FindTrack(linker, 1)->state == TrackState::kConfirmed);
+
+  // The same, but the tracklet that comes back is 3 m away from where the person could be:
+  // a 2D track that jumped to somebody else. Born, and the old track waits.
+  WindowLinker other;
+  LinkWindow(&other, 0, {MovingTracklet(0, 29, walk, {1, 2})});
+  other.Link(1, 20, kSpf, {}, alive);
+  const Trajectory elsewhere = Straight(Vec3(0.0, 3.0, 1.0), Vec3(0.04, 0.0, 0.0));
+  const LinkResult r3 = LinkWindow(&other, 2, {MovingTracklet(45, 69, elsewhere, {1, 5})});
+  CHECK(r3.link_kind[0] == LinkKind::kBirth);
+  CHECK(r3.track_of_tracklet[0] == 2);
+  REQUIRE(FindTrack(other, 1) != nullptr);
+}
+
+TEST_CASE("The motion gate grows with the gap in seconds, not frames", "[unit]") {
+  // After a gap of 5 frames the person is 1.5 m further than a constant-velocity prediction:
+  // impossible in 0.17 s at 30 fps, plausible in 2.5 s at 2 fps.
+  const auto run = [&](double spf) {
+    const double v = 1.2 * spf;  // 1.2 m/s in metres per frame
+    const Trajectory walk = Straight(Vec3(0.0, 0.0, 1.0), Vec3(v, 0.0, 0.0));
+    WindowLinker linker;
+    const core::Tracklet3D first = MovingTracklet(0, 29, walk, {1, 2});
+    linker.Link(0, 0, spf, {first}, LiveOf({first}));
+    const Trajectory later = [&](FrameIndex t) { return Vec3(walk(t) + Vec3(1.5, 0.0, 0.0)); };
+    const core::Tracklet3D back = MovingTracklet(34, 49, later, {1, 3});
+    return linker.Link(1, 20, spf, {back}, LiveOf({back})).link_kind[0];
+  };
+  CHECK(run(1.0 / 30.0) == LinkKind::kBirth);
+  CHECK(run(0.5) == LinkKind::kGap);
+}
+
+TEST_CASE("A lost track ends when none of its 2D tracks continues, or after max_lost_s",
+          "[unit]") {
+  WindowLinker linker;
+  LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+  // Window 1: nobody in 3D, camera 1's track 2 still alive.
+  LinkResult r = linker.Link(1, 20, kSpf, {}, {{1, 2, 20, 49, 30}});
+  CHECK(r.died.empty());
+  // Window 2: no 2D track of it left (the person walked out of every camera's view).
+  r = linker.Link(2, 40, kSpf, {}, {{0, 77, 40, 69, 30}});
+  CHECK(r.died == std::vector<TrackId3D>{1});
+  REQUIRE(r.died_reason.size() == 1);
+  CHECK(r.died_reason[0] == EndReason::kLeftView);
+  CHECK(linker.tracks().empty());
+  // Whoever appears there next is somebody new.
+  r = LinkWindow(&linker, 3, {ConstantTracklet(60, 89, Vec3(0.0, 0.0, 1.0), {5, 6})});
+  CHECK(r.track_of_tracklet[0] == 2);
+
+  // With a 2D track alive, the track still ends max_lost_s after its last footprint.
+  LinkerOptions o;
+  o.max_lost_s = 2.0;
+  WindowLinker waiting(o);
+  LinkWindow(&waiting, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+  const std::vector<core::TrackletMember> alive = {{0, 1, 0, 100, 100}};
+  for (std::int64_t k = 1; k <= 4; ++k) {
+    r = waiting.Link(k, k * kDelta, kSpf, {}, alive);
+    CHECK(r.died.empty());  // window 4 starts 51 frames (1.7 s) after the last footprint (29)
+  }
+  r = waiting.Link(5, 5 * kDelta, kSpf, {}, alive);  // 71 frames: 2.37 s
+  CHECK(r.died == std::vector<TrackId3D>{1});
+  CHECK(r.died_reason[0] == EndReason::kLostTooLong);
+}
+
+TEST_CASE("Weak births wait for a second window; strong ones are confirmed at once", "[unit]") {
+  WindowLinker linker;
+  // Two cameras 1.2 m from another person: weak (possibly a duplicate split off that person).
+  // Three cameras: strong. Two cameras, 4.8 m from anybody: strong (isolated).
+  core::Tracklet3D weak = ConstantTracklet(26, 29, Vec3(0.0, 0.0, 1.0), {1, 2});
+  const core::Tracklet3D three = ConstantTracklet(26, 29, Vec3(1.2, 0.0, 1.0), {1, 2, 3});
+  const core::Tracklet3D isolated = ConstantTracklet(0, 29, Vec3(6.0, 0.0, 1.0), {4, 5});
+  LinkWindow(&linker, 0, {weak, three, isolated});
+  CHECK(FindTrack(linker, 1)->state == TrackState::kTentative);
+  CHECK(FindTrack(linker, 2)->state == TrackState::kConfirmed);
+  CHECK(FindTrack(linker, 3)->state == TrackState::kConfirmed);
+  // Linked again: confirmed (min_hits 2).
+  LinkWindow(&linker, 1, {ConstantTracklet(20, 49, Vec3(0.0, 0.0, 1.0), {1, 2})});
+  CHECK(FindTrack(linker, 1)->state == TrackState::kConfirmed);
+  CHECK(FindTrack(linker, 1)->hits == 2);
+
+  LinkerOptions o;
+  o.isolated_birth_distance_m = 0.0;  // the camera rule only
+  WindowLinker strict(o);
+  LinkWindow(&strict, 0, {isolated});
+  CHECK(strict.tracks().front().state == TrackState::kTentative);
+  o.min_hits = 1;  // every birth is output at once
+  WindowLinker eager(o);
+  LinkWindow(&eager, 0, {weak});
+  CHECK(eager.tracks().front().state == TrackState::kConfirmed);
+}
+
+TEST_CASE("Re-identification by motion alone is off by default; when on, only unambiguous",
+          "[unit]") {
+  // Track 1 walks at 1.2 m/s and vanishes (every 2D track lost) after frame 29; a tracklet with
+  // new 2D tracks appears on its predicted path after a 16-frame gap.
+  const Trajectory walk = Straight(Vec3(0.0, 0.0, 1.0), Vec3(0.04, 0.0, 0.0));
+  const core::Tracklet3D first = MovingTracklet(0, 29, walk, {1, 2});
+  const core::Tracklet3D back = MovingTracklet(46, 69, walk, {7, 8});
+  {
+    WindowLinker linker;
+    linker.Link(0, 0, kSpf, {first}, LiveOf({first}));
+    const LinkResult r = linker.Link(1, 40, kSpf, {back}, LiveOf({back}));
+    CHECK(r.link_kind[0] == LinkKind::kBirth);
+    // No 2D track of track 1 continues and nothing can re-identify it: it ends before the
+    // next window is linked.
+    const LinkResult r2 = linker.Link(2, 60, kSpf, {}, LiveOf({back}));
+    CHECK(r2.died == std::vector<TrackId3D>{1});
+  }
+  LinkerOptions o;
+  o.reid_gate_chi2 = 9.49;
+  {
+    WindowLinker linker(o);
+    linker.Link(0, 0, kSpf, {first}, LiveOf({first}));
+    const LinkResult r = linker.Link(1, 40, kSpf, {back}, LiveOf({back}));
+    CHECK(r.link_kind[0] == LinkKind::kReidentified);
+    CHECK(r.track_of_tracklet[0] == 1);
+  }
+  {
+    // Two tracklets on the path, 0.1 m apart: ambiguous, both born.
+    const core::Tracklet3D twin =
+        MovingTracklet(46, 69, [&](FrameIndex t) { return Vec3(walk(t) + Vec3(0.0, 0.1, 0.0)); },
+                       {9, 10});
+    WindowLinker linker(o);
+    linker.Link(0, 0, kSpf, {first}, LiveOf({first}));
+    const LinkResult r = linker.Link(1, 40, kSpf, {back, twin}, LiveOf({back, twin}));
+    CHECK(r.link_kind[0] == LinkKind::kBirth);
+    CHECK(r.link_kind[1] == LinkKind::kBirth);
+  }
+}
+
+TEST_CASE("Skipped window ids count as missed windows; the stream end ends every track",
+          "[unit]") {
+  WindowLinker linker;
+  const core::Tracklet3D a = ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2});
+  LinkWindow(&linker, 0, {a});
+  linker.Link(3, 60, kSpf, {}, {{0, 1, 60, 89, 30}});  // windows 1, 2 skipped
+  REQUIRE(FindTrack(linker, 1) != nullptr);
+  CHECK(FindTrack(linker, 1)->missed_windows == 3);
+  const std::vector<EndedTrack> ended = linker.EndStream();
+  REQUIRE(ended.size() == 1);
+  CHECK(ended[0].id == 1);
+  CHECK(ended[0].reason == EndReason::kStreamEnd);
+  CHECK(linker.tracks().empty());
+  // Ids continue after the stream end.
+  const LinkResult r = LinkWindow(&linker, 4, {a});
+  CHECK(r.born == std::vector<TrackId3D>{2});
 }
 
 TEST_CASE("A tracklet without valid points is born and later linked by others only", "[unit]") {
@@ -603,12 +525,16 @@ TEST_CASE("A tracklet without valid points is born and later linked by others on
   core::Tracklet3D blank;
   blank.frames = {0, 1, 2};
   blank.points = {{std::nullopt}, {std::nullopt}, {std::nullopt}};
-  const LinkResult r0 = linker.Link(0, {blank, ConstantTracklet(0, 29, Vec3(1.0, 1.0, 1.0))});
+  const LinkResult r0 =
+      LinkWindow(&linker, 0, {blank, ConstantTracklet(0, 29, Vec3(1.0, 1.0, 1.0))});
   CHECK(r0.born == std::vector<TrackId3D>{1, 2});
-  const LinkResult r1 = linker.Link(1, {ConstantTracklet(20, 49, Vec3(1.0, 1.0, 1.0)), blank});
+  const LinkResult r1 =
+      LinkWindow(&linker, 1, {ConstantTracklet(20, 49, Vec3(1.0, 1.0, 1.0)), blank});
   CHECK(r1.track_of_tracklet == std::vector<TrackId3D>{2, 3});
   CHECK(r1.born == std::vector<TrackId3D>{3});
-  CHECK(FindTrack(linker, 1)->missed_windows == 1);
+  // The blank track has no footprint to wait at: it ends before the next window is linked.
+  const LinkResult r2 = LinkWindow(&linker, 2, {ConstantTracklet(40, 69, Vec3(1.0, 1.0, 1.0))});
+  CHECK(std::find(r2.died.begin(), r2.died.end(), 1) != r2.died.end());
 }
 
 }  // namespace

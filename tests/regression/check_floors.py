@@ -3,10 +3,10 @@
 
 Usage: check_floors.py KEY FLOORS_FILE EVAL_JSON
 Floors file lines: `KEY METRIC >=|<= BOUND` ('#' starts a comment); only KEY's lines are
-checked and there must be at least one. Metrics: mota, idf1, mpjpe_m, false_positives, misses,
-id_switches (tracking); pcp_average, pcp_actorN (PCP); median_distance_m, p90_distance_m,
+checked and there must be at least one. Metrics: mota, idf1, hota, mpjpe_m, false_positives,
+misses, id_switches, id_transfers, id_fragmentations, predicted_ids (tracking); pcp_average, pcp_actorN (PCP); median_distance_m, p90_distance_m,
 precision, recall, mean_abs_count_difference (--points). Exit 0 when every bound holds.
-Shared by replay_regression_test.sh (datasets) and sim_store_test.sh (simulated scenes).
+Shared by replay_regression_test.sh (datasets) and sim_regression_test.sh (simulated scenes).
 """
 import json
 import sys
@@ -23,6 +23,10 @@ if "tracking" in report:
         "false_positives": clear["num_false_positives"],
         "misses": clear["num_misses"],
         "id_switches": clear["num_switches"],
+        "hota": report["tracking"]["hota"]["hota"],
+        "id_transfers": report["tracking"]["coverage"]["num_id_transfers"],
+        "id_fragmentations": report["tracking"]["coverage"]["num_id_fragmentations"],
+        "predicted_ids": clear["num_unique_predictions"],
     })
 if "pcp" in report:
     metrics["pcp_average"] = report["pcp"]["average_pcp"]

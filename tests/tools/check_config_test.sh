@@ -9,7 +9,7 @@ expect_exit 0 "$OUT/example.txt" "$MVTRACK" check-config "$EX/tracker_options.ya
 expect_grep "^tracker:" "$OUT/example.txt"
 expect_grep "^  window_size: 30$" "$OUT/example.txt"
 expect_grep "^    lambda: 0.3$" "$OUT/example.txt"
-expect_grep "^# ok: .*tracker_options.yaml: mode boxes, box point center, window 30/20 frames$" "$OUT/example.txt"
+expect_grep "^# ok: .*tracker_options.yaml: mode boxes, box point center_ends, window 30/20 frames$" "$OUT/example.txt"
 # The printed document is itself a valid options file with the same effective options.
 "$MVTRACK" check-config "$EX/tracker_options.yaml" >"$OUT/effective.yaml" 2>/dev/null
 expect_exit 0 "$OUT/again.txt" "$MVTRACK" check-config "$OUT/effective.yaml"

@@ -24,6 +24,10 @@ std::unique_ptr<tracker::Tracker> MakeTracker(const sim::Scene& scene, tracker::
   tracker::TrackerOptions options;
   options.mode = mode;
   options.layout = core::KeypointLayoutId::kCoco17;
+  // These scenes check recovery and identity from the first frame on; a person first seen by
+  // two of the three cameras near another person would otherwise be output from their second
+  // window only (LinkerOptions::strong_birth_cameras, isolated_birth_distance_m; tests/linking).
+  options.linking.strong_birth_cameras = 2;
   std::string why;
   auto t = tracker::Tracker::Create(geometry::CameraRig(scene.cameras), options, &why);
   INFO(why);

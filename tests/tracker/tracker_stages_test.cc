@@ -221,7 +221,7 @@ TEST_CASE("WindowBuilder: skipped frames and a new stream after a flush", "[unit
   }
   CHECK(begins == std::vector<std::int64_t>{0, 20});  // [0,30) and [20,50); [40,70) is open
 
-  // After a flush, window ids continue with a gap of max_missed_windows + 2.
+  // After a flush, window ids continue.
   tracker::FrameGate gate(rig, options);
   tracker::WindowBuilder builder(rig, options);
   out.clear();
@@ -241,7 +241,7 @@ TEST_CASE("WindowBuilder: skipped frames and a new stream after a flush", "[unit
   }
   const auto* j = std::get_if<tracker::WindowJob>(&out[30]);  // 30 closed frames, then window
   REQUIRE(j != nullptr);
-  CHECK(j->window_id == 1 + options.linking.max_missed_windows + 2);
+  CHECK(j->window_id == 1);
 }
 
 TEST_CASE("CameraStage: a newer stream epoch restarts SORT", "[unit][tracker]") {

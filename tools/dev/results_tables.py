@@ -138,7 +138,10 @@ def metrics(report):
             "ids": c["num_switches"], "gt_objects": c["num_objects"],
             "gt_ids": c["num_unique_objects"], "pred_ids": c["num_unique_predictions"],
             "mpjpe_m": p["mpjpe_m"], "tracking_frames": t["frame_ranges"],
-            "gate_m": t["threshold_m"], "distance": t["distance"]})
+            "gate_m": t["threshold_m"], "distance": t["distance"],
+            "hota": t["hota"]["hota"], "deta": t["hota"]["det_a"], "assa": t["hota"]["ass_a"],
+            "id_transfers": t["coverage"]["num_id_transfers"],
+            "id_fragmentations": t["coverage"]["num_id_fragmentations"]})
     pc = report.get("pcp")
     if pc and pc.get("valid"):
         out["pcp_average"] = pc["average_pcp"]
@@ -163,17 +166,19 @@ def actor_pcp(m, actor):
 def pose_row(label, rid, m):
     return [label, pct(actor_pcp(m, 0)), pct(actor_pcp(m, 1)), pct(actor_pcp(m, 2)),
             pct(m.get("pcp_average")), mm(m.get("mpjpe_m")), pct(m.get("mota")),
-            pct(m.get("idf1")), m.get("mt", "n/a"), m.get("ml", "n/a"), m.get("fp", "n/a"),
+            pct(m.get("idf1")), pct(m.get("hota")), m.get("id_transfers", "n/a"),
+            m.get("id_fragmentations", "n/a"), m.get("mt", "n/a"), m.get("ml", "n/a"), m.get("fp", "n/a"),
             m.get("fn", "n/a"), m.get("ids", "n/a"), f"`{rid}`"]
 
 
 POSE_HEADER = ["", "Actor 1", "Actor 2", "Actor 3", "Avg PCP", "MPJPE mm", "MOTA", "IDF1",
+               "HOTA", "IDTR", "IDFRAG",
                "MT", "ML", "FP", "FN", "IDs", "run"]
 
 
 def paper_rows(rows):
     return [[name + " †", num(a1), num(a2), num(a3), num(avg), "", num(mota) if mota else "",
-             "", "", "", "", "", "", "Table 6"] for name, a1, a2, a3, avg, mota in rows]
+             "", "", "", "", "", "", "", "", "", "Table 6"] for name, a1, a2, a3, avg, mota in rows]
 
 
 def panoptic_cameras(out_dir, rid):
@@ -195,7 +200,9 @@ def render(out_dir, runs, info):
               f"`{info['version']}`. † = published number copied from the paper (each method "
               f"with its own detector), not re-run. Every other number is produced by the "
               f"command listed under its run id in [Commands](#commands). PCP and MOTA in %, "
-              f"MPJPE in mm. MT/ML count ground-truth actors.\n")
+              f"MPJPE in mm. MT/ML count ground-truth actors. HOTA (Luiten et al. 2021) in %; IDTR = "
+              f"predicted ids covering two or more actors (id transfers), IDFRAG = actors "
+              f"covered by two or more predicted ids (`mvtrack eval`, docs/FORMATS.md).\n")
 
     # Targets.
     s, c = R["shelf"]["metrics"], R["campus"]["metrics"]
@@ -242,15 +249,16 @@ def render(out_dir, runs, info):
     md.append("\n### Ablation: cross-view association (PDNC vs hierarchical clustering)\n\n")
     md.append("Paper Table 5 (WILDTRACK, w/o appearance) †: " + "; ".join(
         f"{n}: IDF1 {a} %, MOTA {b} %, IDs {c_}" for n, a, b, c_ in PAPER_T5) + ".\n\n")
-    hdr = ["dataset", "association", "Avg PCP", "MPJPE mm", "MOTA", "IDF1", "FP", "FN", "IDs",
-           "run"]
+    hdr = ["dataset", "association", "Avg PCP", "MPJPE mm", "MOTA", "IDF1", "HOTA", "IDTR",
+           "FP", "FN", "IDs", "run"]
     rows = []
     for ds in ("shelf", "campus"):
         for key, label in ASSOCIATION:
             rid = ds if key == "pdnc" else f"{ds}_{key}"
             m = R[rid]["metrics"]
             rows.append([ds.capitalize(), label, pct(m.get("pcp_average")), mm(m.get("mpjpe_m")),
-                         pct(m.get("mota")), pct(m.get("idf1")), m.get("fp"), m.get("fn"),
+                         pct(m.get("mota")), pct(m.get("idf1")), pct(m.get("hota")),
+                         m.get("id_transfers"), m.get("fp"), m.get("fn"),
                          m.get("ids"), f"`{rid}`"])
     md.append(table(hdr, rows))
     rows = []
@@ -287,15 +295,16 @@ def render(out_dir, runs, info):
     md.append("The paper's Table 8 is measured on MMPTRACK (not available here) †; the same grid "
               "on Shelf and Campus:\n\n")
     hdr = ["ν", "δ", "λ", "paper MOTA †", "paper IDF1 †", "Shelf Avg PCP", "Shelf MOTA",
-           "Shelf IDF1", "Shelf IDs", "Campus Avg PCP", "Campus MOTA", "Campus IDF1",
-           "Campus IDs", "runs"]
+           "Shelf IDF1", "Shelf HOTA", "Shelf IDs", "Campus Avg PCP", "Campus MOTA",
+           "Campus IDF1", "Campus HOTA", "Campus IDTR", "Campus IDs", "runs"]
     rows = []
     for (nu, delta, lam), (_, _, _, pm, pi, _) in zip(WINDOWS, PAPER_T8):
         v = f"window_nu{nu}_delta{delta}_lambda{lam}"
         sm, cm = R[f"shelf_{v}"]["metrics"], R[f"campus_{v}"]["metrics"]
         rows.append([nu, delta, lam, pm, pi, pct(sm.get("pcp_average")), pct(sm.get("mota")),
-                     pct(sm.get("idf1")), sm.get("ids"), pct(cm.get("pcp_average")),
-                     pct(cm.get("mota")), pct(cm.get("idf1")), cm.get("ids"),
+                     pct(sm.get("idf1")), pct(sm.get("hota")), sm.get("ids"),
+                     pct(cm.get("pcp_average")), pct(cm.get("mota")), pct(cm.get("idf1")),
+                     pct(cm.get("hota")), cm.get("id_transfers"), cm.get("ids"),
                      f"`shelf_{v}`, `campus_{v}`"])
     md.append(table(hdr, rows))
 
@@ -367,6 +376,11 @@ def floors(out_dir):
         lines.append(f"{ds} mpjpe_m <= {math.ceil((m['mpjpe_m'] + 0.002) * 10000) / 10000:.4f}")
         for key, name in (("fp", "false_positives"), ("fn", "misses"), ("ids", "id_switches")):
             lines.append(f"{ds} {name} <= {m[key] + max(2, math.ceil(0.1 * m[key]))}")
+        # Identity coverage: no margin (no id may pass between actors; Shelf's actors keep one
+        # id each).
+        lines.append(f"{ds} id_transfers <= {m['id_transfers']}")
+        if ds == "shelf":
+            lines.append(f"{ds} id_fragmentations <= {m['id_fragmentations']}")
     m = runs["wildtrack_bottom_center"]["metrics"]
     for key in ("median_distance_m", "p90_distance_m"):
         lines.append(f"wildtrack {key} <= {math.ceil((m[key] + 0.01) * 10000) / 10000:.4f}")

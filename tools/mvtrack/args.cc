@@ -1,8 +1,11 @@
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
+#include <string_view>
+#include <system_error>
 
 #include "mvtrack/cli.h"
 
@@ -124,6 +127,47 @@ std::int64_t Args::GetInt(const std::string& name) const {
     throw UsageError("--" + name + ": '" + s + "' is not an integer");
   }
   return v;
+}
+
+// A non-negative decimal integer, the whole of `text`.
+std::optional<std::int64_t> ParseNonNegative(std::string_view text) {
+  std::int64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || v < 0) {
+    return std::nullopt;
+  }
+  return v;
+}
+
+std::vector<std::string_view> SplitCommas(std::string_view text) {
+  std::vector<std::string_view> parts;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', begin);
+    parts.push_back(text.substr(begin, comma == std::string_view::npos ? comma : comma - begin));
+    if (comma == std::string_view::npos) break;
+    begin = comma + 1;
+  }
+  return parts;
+}
+
+std::vector<eval::FrameRange> ParseFrameRanges(const std::string& text, const std::string& option) {
+  std::vector<eval::FrameRange> ranges;
+  for (std::string_view part : SplitCommas(text)) {
+    const std::size_t dash = part.find('-');
+    const std::optional<std::int64_t> first = ParseNonNegative(part.substr(0, dash));
+    const std::optional<std::int64_t> last =
+        dash == std::string_view::npos ? first : ParseNonNegative(part.substr(dash + 1));
+    if (!first || !last) {
+      throw UsageError(option + ": '" + std::string(part) +
+                       "' is not a frame range A-B (non-negative frame indices, A <= B)");
+    }
+    if (*first > *last) {
+      throw UsageError(option + ": range '" + std::string(part) + "' ends before it starts");
+    }
+    ranges.push_back({*first, *last});
+  }
+  return ranges;
 }
 
 }  // namespace mvtrack::cli

@@ -34,6 +34,7 @@
 
 #include <Eigen/Dense>
 
+#include "config/tracker_options.h"
 #include "eval/tracking_metrics.h"
 #include "mvtrack/cli.h"
 #include "mvtrack/sim_scene.h"
@@ -161,7 +162,9 @@ class JsonObject {
       out += (i == 0 ? "\n" : ",\n") + pad + JsonString(members_[i].first) + ": " +
              members_[i].second;
     }
-    return out + (members_.empty() ? "}" : "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "}");
+    return out + (members_.empty()
+                      ? "}"
+                      : "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "}");
   }
 
  private:
@@ -171,7 +174,8 @@ std::string JsonArray(const std::vector<std::string>& items, int indent) {
   const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
   std::string out = "[";
   for (std::size_t i = 0; i < items.size(); ++i) out += (i == 0 ? "\n" : ",\n") + pad + items[i];
-  return out + (items.empty() ? "]" : "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "]");
+  return out +
+         (items.empty() ? "]" : "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "]");
 }
 
 // --- scenes ---------------------------------------------------------------------------------
@@ -213,8 +217,14 @@ PreparedScene Prepare(const sim::SceneOptions& options) {
   return s;
 }
 
+// The tracker options every run starts from (--config; default: the paper's defaults).
+tracker::TrackerOptions& BaseTrackerOptions() {
+  static tracker::TrackerOptions options;
+  return options;
+}
+
 tracker::TrackerOptions TrackerOptionsFor(const sim::SceneOptions& so) {
-  tracker::TrackerOptions to;
+  tracker::TrackerOptions to = BaseTrackerOptions();
   to.mode = so.poses ? tracker::InputMode::kPoses : tracker::InputMode::kBoxes;
   to.layout = core::KeypointLayoutId::kCoco17;
   return to;
@@ -224,23 +234,36 @@ tracker::TrackerOptions TrackerOptionsFor(const sim::SceneOptions& so) {
 struct Accuracy {
   double mota = std::nan("");
   double idf1 = std::nan("");
+  double hota = std::nan("");
   double mpjpe_m = std::nan("");
   std::int64_t switches = 0;
+  std::int64_t id_transfers = 0;       // IDTR: predicted ids covering >= 2 GT persons
+  std::int64_t id_fragmentations = 0;  // IDFRAG: GT persons covered by >= 2 predicted ids
+  std::int64_t gt_ids = 0;
+  std::int64_t predicted_ids = 0;
 };
 
-Accuracy Score(const eval::EvalSequence& truth, const std::vector<tracker::Frame3D>& frames) {
+// The accuracy of `frames` against `truth` over `ranges` (empty: every frame).
+Accuracy Score(const eval::EvalSequence& truth, const std::vector<tracker::Frame3D>& frames,
+               const std::vector<eval::FrameRange>& ranges = {}) {
   eval::EvalSequence pred;
   pred.reserve(frames.size());
   for (const tracker::Frame3D& f : frames) pred.push_back(TrackEvalFrame(f));
   eval::TrackingOptions eo;
   eo.distance = eval::DistanceKind::kFootprint;
+  eo.frame_ranges = ranges;
   const eval::TrackingEvaluation e = eval::EvaluateTracking(truth, pred, eo);
   if (!e.valid) throw std::runtime_error("evaluation: " + e.error);
   Accuracy a;
   a.mota = e.clear.mota;
   a.idf1 = e.identity.idf1;
+  a.hota = e.hota.mean_hota;
   a.mpjpe_m = e.pose.mpjpe_m;
   a.switches = e.clear.num_switches;
+  a.id_transfers = static_cast<std::int64_t>(e.coverage.transfers.size());
+  a.id_fragmentations = static_cast<std::int64_t>(e.coverage.fragmentations.size());
+  a.gt_ids = e.clear.num_unique_objects;
+  a.predicted_ids = e.clear.num_unique_predictions;
   return a;
 }
 
@@ -407,13 +430,73 @@ JsonObject PointJson(const PointResult& r) {
       .Num("realtime_factor_at_30fps", r.realtime_factor)
       .Num("mota", r.accuracy.mota)
       .Num("idf1", r.accuracy.idf1)
+      .Num("hota", r.accuracy.hota)
       .Num("mpjpe_m", r.accuracy.mpjpe_m)
       .Int("id_switches", r.accuracy.switches)
+      .Int("id_transfers", r.accuracy.id_transfers)
       .Num("coverage_two_views", r.coverage)
       .Num("detections_per_frame", r.detections_per_frame)
       .Num("peak_rss_mib", r.peak_rss_mib)
       .Num("scene_generation_s", r.generate_s);
   if (r.paper_fps > 0.0) o.Num("paper_fps", r.paper_fps).Num("ratio_to_paper", r.fps / r.paper_fps);
+  return o;
+}
+
+// --- identity over long runs -------------------------------------------------------------------
+
+// One long scene: who is who over minutes, with people coming and going (docs/BENCHMARKS.md
+// "Identity over long runs").
+struct IdentityResult {
+  int cameras = 0;
+  int people = 0;
+  bool poses = false;
+  bool enter_leave = false;
+  int frames = 0;
+  std::uint64_t seed = 0;
+  double fps = 0.0;
+  Accuracy whole;
+  Accuracy head;  // the first 10 % of the frames
+};
+
+IdentityResult MeasureIdentity(int cameras, int people, bool poses, bool enter_leave, int frames,
+                               std::uint64_t seed) {
+  sim::SceneOptions so = sim::SizedScene(cameras, people, poses, seed);
+  so.num_frames = frames;
+  so.enter_and_leave = enter_leave;
+  const PreparedScene scene = Prepare(so);
+  const TimedRun run = RunOnce(scene, 0);
+  IdentityResult r;
+  r.cameras = cameras;
+  r.people = people;
+  r.poses = poses;
+  r.enter_leave = enter_leave;
+  r.frames = frames;
+  r.seed = seed;
+  r.fps = frames / run.seconds;
+  r.whole = Score(scene.truth, run.frames);
+  r.head = Score(scene.truth, run.frames, {{0, frames / 10 - 1}});
+  std::fprintf(stderr,
+               "  identity %2d cams %3d people %-5s %s %d frames seed %llu: IDF1 %.3f (first 10 %% "
+               "%.3f), HOTA %.3f, MOTA %.3f, ids %lld / %lld GT, IDTR %lld, IDFRAG %lld\n",
+               cameras, people, poses ? "poses" : "boxes", enter_leave ? "enter/leave" : "closed",
+               frames, static_cast<unsigned long long>(seed), r.whole.idf1, r.head.idf1,
+               r.whole.hota, r.whole.mota, static_cast<long long>(r.whole.predicted_ids),
+               static_cast<long long>(r.whole.gt_ids),
+               static_cast<long long>(r.whole.id_transfers),
+               static_cast<long long>(r.whole.id_fragmentations));
+  return r;
+}
+
+JsonObject AccuracyJson(const Accuracy& a) {
+  JsonObject o;
+  o.Num("mota", a.mota)
+      .Num("idf1", a.idf1)
+      .Num("hota", a.hota)
+      .Int("id_switches", a.switches)
+      .Int("id_transfers", a.id_transfers)
+      .Int("id_fragmentations", a.id_fragmentations)
+      .Int("gt_ids", a.gt_ids)
+      .Int("predicted_ids", a.predicted_ids);
   return o;
 }
 
@@ -651,11 +734,15 @@ SoakResult MeasureSoak(int cameras, int people, bool poses, int threads, std::in
 // --- the plot -------------------------------------------------------------------------------
 
 // A log-scale panel of FPS against cameras, one line per people count.
-void DrawPanel(cv::Mat* img, const cv::Rect& area, const std::string& title,
-               const std::string& x_label, const std::vector<int>& xs,
-               const std::vector<std::pair<std::string, std::vector<std::pair<int, double>>>>& lines,
-               const std::vector<std::tuple<int, double, std::string>>& markers,
-               double realtime_line) {
+void DrawPanel(
+    cv::Mat* img,
+    const cv::Rect& area,
+    const std::string& title,
+    const std::string& x_label,
+    const std::vector<int>& xs,
+    const std::vector<std::pair<std::string, std::vector<std::pair<int, double>>>>& lines,
+    const std::vector<std::tuple<int, double, std::string>>& markers,
+    double realtime_line) {
   const cv::Scalar black(0, 0, 0), grey(200, 200, 200);
   const int left = area.x + 70, right = area.x + area.width - 20;
   const int top = area.y + 40, bottom = area.y + area.height - 50;
@@ -672,11 +759,13 @@ void DrawPanel(cv::Mat* img, const cv::Rect& area, const std::string& title,
   const double yhi = std::pow(10.0, std::ceil(std::log10(hi)));
   const int xmin = xs.front(), xmax = xs.back();
   auto px = [&](double x) {
-    return left + static_cast<int>(std::lround((x - xmin) / std::max(1, xmax - xmin) * (right - left)));
+    return left +
+           static_cast<int>(std::lround((x - xmin) / std::max(1, xmax - xmin) * (right - left)));
   };
   auto py = [&](double y) {
-    return bottom - static_cast<int>(std::lround((std::log10(y) - std::log10(ylo)) /
-                                                 (std::log10(yhi) - std::log10(ylo)) * (bottom - top)));
+    return bottom -
+           static_cast<int>(std::lround((std::log10(y) - std::log10(ylo)) /
+                                        (std::log10(yhi) - std::log10(ylo)) * (bottom - top)));
   };
   cv::putText(*img, title, {area.x + 70, area.y + 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, black, 1,
               cv::LINE_AA);
@@ -800,8 +889,8 @@ std::string Fmt(const char* format, double v) {
 std::string PointsTable(const std::vector<PointResult>& points, const std::string& suite) {
   std::string t =
       "| cameras | people | mode | threads | FPS | FPS per CPU-s | camera-frames/s | paper FPS | "
-      "ratio | MOTA | IDF1 | MPJPE mm | 2-view coverage | peak RSS MiB |\n"
-      "|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      "ratio | MOTA | IDF1 | HOTA | IDTR | MPJPE mm | 2-view coverage | peak RSS MiB |\n"
+      "|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const PointResult& r : points) {
     if (r.suite != suite) continue;
     t += "| " + std::to_string(r.cameras) + " | " + std::to_string(r.people) + " | " +
@@ -812,6 +901,7 @@ std::string PointsTable(const std::vector<PointResult>& points, const std::strin
          (r.paper_fps > 0 ? Fmt("%.0f", r.paper_fps) : "") + " | " +
          (r.paper_fps > 0 ? Fmt("%.1f×", r.fps / r.paper_fps) : "") + " | " +
          Fmt("%.3f", r.accuracy.mota) + " | " + Fmt("%.3f", r.accuracy.idf1) + " | " +
+         Fmt("%.3f", r.accuracy.hota) + " | " + std::to_string(r.accuracy.id_transfers) + " | " +
          Fmt("%.1f", r.accuracy.mpjpe_m * 1000.0) + " | " + Fmt("%.2f", r.coverage) + " | " +
          Fmt("%.0f", r.peak_rss_mib) + " |\n";
   }
@@ -863,8 +953,8 @@ std::vector<int> IntList(const std::string& text, const std::string& option, int
 int RunBench(int argc, char** argv) {
   Args args;
   args.Option("suite",
-              "comma-separated suites: smoke, paper, scale, latency, soak, or full (= paper, "
-              "scale, latency, soak)",
+              "comma-separated suites: smoke, paper, scale, latency, soak, identity, custom, or "
+              "full (= paper, scale, latency, soak, identity)",
               "smoke")
       .Option("out", "directory for results.json, results.md and fps.png", "bench/results")
       .Option("frames", "frames per scene of the paper and scale grids", "900")
@@ -879,23 +969,33 @@ int RunBench(int argc, char** argv) {
       .Option("threads",
               "suite custom: comma-separated runners, 0 = tracker inline (one thread), "
               "N = pipeline with N workers",
-              "0");
-  if (!args.Parse(argc, argv, "mvtrack bench [options]",
-                  "Measures the tracker on simulated scenes (mvtrack sim's presets) and scores\n"
-                  "every run against the simulation's ground truth. FPS = multi-view frames (one\n"
-                  "camera-frame of every camera) per second of tracking, detections in to tracks\n"
-                  "out, detection and simulation excluded. Suites:\n"
-                  "  paper    the paper's speed study: cameras {2,3,4,5,6,8} x people {2,4,8,16},\n"
-                  "           boxes and poses, one thread (tracker::Tracker inline)\n"
-                  "  scale    store floor: cameras {16,32} x people {32,64,100}, boxes, inline\n"
-                  "           and the threaded pipeline with 1 and 2 workers\n"
-                  "  latency  8 cameras x 16 people fed in real time to the pipeline (2 workers):\n"
-                  "           window close -> publish p50/p99/max\n"
-                  "  soak     --soak-frames of 8 cameras x 16 people entering and leaving, as fast\n"
-                  "           as possible, RSS sampled (memory must stay flat)\n"
-                  "  smoke    a tiny version of all of them (seconds; what CI runs)\n"
-                  "  custom   --cameras x --people x --mode x --threads, for sizing a deployment\n"
-                  "Writes OUT/results.json, OUT/results.md and OUT/fps.png; progress on stderr.")) {
+              "0")
+      .Option("config",
+              "tracker options file (a `tracker:` YAML document) every run starts from; the "
+              "mode comes from the suite",
+              "");
+  if (!args.Parse(
+          argc,
+          argv,
+          "mvtrack bench [options]",
+          "Measures the tracker on simulated scenes (mvtrack sim's presets) and scores\n"
+          "every run against the simulation's ground truth. FPS = multi-view frames (one\n"
+          "camera-frame of every camera) per second of tracking, detections in to tracks\n"
+          "out, detection and simulation excluded. Suites:\n"
+          "  paper    the paper's speed study: cameras {2,3,4,5,6,8} x people {2,4,8,16},\n"
+          "           boxes and poses, one thread (tracker::Tracker inline)\n"
+          "  scale    store floor: cameras {16,32} x people {32,64,100}, boxes, inline\n"
+          "           and the threaded pipeline with 1 and 2 workers\n"
+          "  latency  8 cameras x 16 people fed in real time to the pipeline (2 workers):\n"
+          "           window close -> publish p50/p99/max\n"
+          "  soak     --soak-frames of 8 cameras x 16 people entering and leaving, as fast\n"
+          "           as possible, RSS sampled (memory must stay flat)\n"
+          "  smoke    a tiny version of all of them (seconds; what CI runs)\n"
+          "  identity long runs with people coming and going (4 x 12 enter/leave, 9000\n"
+          "           frames, boxes and poses; 2 x 8, 6000 frames; 32 x 100): MOTA,\n"
+          "           IDF1 (whole run and first 10 %), HOTA, id transfers/fragmentations\n"
+          "  custom   --cameras x --people x --mode x --threads, for sizing a deployment\n"
+          "Writes OUT/results.json, OUT/results.md and OUT/fps.png; progress on stderr.")) {
     return 0;
   }
   std::vector<std::string> suites;
@@ -904,15 +1004,20 @@ int RunBench(int argc, char** argv) {
     std::string s;
     while (std::getline(ss, s, ',')) {
       if (s == "full") {
-        for (const char* x : {"paper", "scale", "latency", "soak"}) suites.emplace_back(x);
+        for (const char* x : {"paper", "scale", "latency", "soak", "identity"}) {
+          suites.emplace_back(x);
+        }
       } else if (s == "smoke" || s == "paper" || s == "scale" || s == "latency" || s == "soak" ||
-                 s == "custom") {
+                 s == "custom" || s == "identity") {
         suites.push_back(s);
       } else {
         throw UsageError("--suite: unknown suite '" + s +
-                         "' (smoke, paper, scale, latency, soak, full, custom)");
+                         "' (smoke, paper, scale, latency, soak, identity, full, custom)");
       }
     }
+  }
+  if (!args.Get("config").empty()) {
+    BaseTrackerOptions() = config::LoadTrackerOptionsFile(args.Get("config"));
   }
   const auto frames = static_cast<int>(args.GetInt("frames"));
   const auto repeats = static_cast<int>(args.GetInt("repeats"));
@@ -944,6 +1049,7 @@ int RunBench(int argc, char** argv) {
                std::thread::hardware_concurrency(), load_before.c_str());
 
   std::vector<PointResult> points;
+  std::vector<IdentityResult> identities;
   std::vector<LatencyResult> latencies;
   std::vector<SoakResult> soaks;
   for (const std::string& suite : suites) {
@@ -975,7 +1081,8 @@ int RunBench(int argc, char** argv) {
       }
     } else if (suite == "latency") {
       const int n = static_cast<int>(std::lround(latency_seconds * 30.0));
-      for (const bool poses : {false, true}) latencies.push_back(MeasureLatency(8, 16, poses, 2, n, seed));
+      for (const bool poses : {false, true})
+        latencies.push_back(MeasureLatency(8, 16, poses, 2, n, seed));
     } else if (suite == "custom") {
       const std::string mode = args.Get("mode");
       if (mode != "boxes" && mode != "poses" && mode != "both") {
@@ -993,6 +1100,16 @@ int RunBench(int argc, char** argv) {
       }
     } else if (suite == "soak") {
       soaks.push_back(MeasureSoak(8, 16, false, 2, soak_frames, 1000, 9000, seed));
+    } else if (suite == "identity") {
+      // The scenes (seeds 11 and 5), then a second seed of each, 32 x 100 last.
+      for (const std::uint64_t s : {std::uint64_t{11}, std::uint64_t{21}}) {
+        identities.push_back(MeasureIdentity(4, 12, false, true, 9000, s));
+        identities.push_back(MeasureIdentity(4, 12, true, true, 9000, s));
+      }
+      for (const std::uint64_t s : {std::uint64_t{5}, std::uint64_t{15}}) {
+        identities.push_back(MeasureIdentity(2, 8, false, false, 6000, s));
+      }
+      identities.push_back(MeasureIdentity(32, 100, false, false, 900, 1));
     }
   }
   const double total_s = SecondsSince(bench_start);
@@ -1017,8 +1134,24 @@ int RunBench(int argc, char** argv) {
                                .Int("late_frames", l.late_frames)
                                .Num("mota", l.accuracy.mota)
                                .Num("idf1", l.accuracy.idf1)
+                               .Num("hota", l.accuracy.hota)
+                               .Int("id_transfers", l.accuracy.id_transfers)
                                .Num("mpjpe_m", l.accuracy.mpjpe_m)
                                .Dump(4));
+  }
+  std::vector<std::string> identity_json;
+  for (const IdentityResult& r : identities) {
+    identity_json.push_back(JsonObject()
+                                .Int("cameras", r.cameras)
+                                .Int("people", r.people)
+                                .Str("mode", r.poses ? "poses" : "boxes")
+                                .Bool("enter_and_leave", r.enter_leave)
+                                .Int("frames", r.frames)
+                                .Int("seed", static_cast<std::int64_t>(r.seed))
+                                .Num("fps", r.fps)
+                                .Raw("whole_run", AccuracyJson(r.whole).Dump(6))
+                                .Raw("first_10_percent", AccuracyJson(r.head).Dump(6))
+                                .Dump(4));
   }
   for (const SoakResult& s : soaks) {
     std::vector<std::string> samples, chunks;
@@ -1026,25 +1159,26 @@ int RunBench(int argc, char** argv) {
       samples.push_back("[" + std::to_string(f) + ", " + JsonNumber(mib) + "]");
     }
     for (const Accuracy& a : s.chunks) {
-      chunks.push_back(JsonObject().Num("mota", a.mota).Num("idf1", a.idf1).Dump(6));
+      chunks.push_back(AccuracyJson(a).Dump(6));
     }
-    soak_json.push_back(JsonObject()
-                            .Int("cameras", s.cameras)
-                            .Int("people", s.people)
-                            .Str("mode", s.poses ? "poses" : "boxes")
-                            .Bool("enter_and_leave", true)
-                            .Int("worker_threads", s.threads)
-                            .Int("frames", s.frames)
-                            .Num("wall_s", s.wall_s)
-                            .Num("simulate_s", s.simulate_s)
-                            .Num("fps_including_simulation", static_cast<double>(s.frames) / s.wall_s)
-                            .Num("peak_rss_mib", s.peak_rss_mib)
-                            .Num("rss_growth_after_warmup_mib", s.rss_growth_after_warmup_mib)
-                            .Int("tracks_born", s.tracks_born)
-                            .Int("chunk_frames", s.chunk_frames)
-                            .Raw("rss_samples_frame_mib", JsonArray(samples, 4))
-                            .Raw("chunk_accuracy", JsonArray(chunks, 4))
-                            .Dump(4));
+    soak_json.push_back(
+        JsonObject()
+            .Int("cameras", s.cameras)
+            .Int("people", s.people)
+            .Str("mode", s.poses ? "poses" : "boxes")
+            .Bool("enter_and_leave", true)
+            .Int("worker_threads", s.threads)
+            .Int("frames", s.frames)
+            .Num("wall_s", s.wall_s)
+            .Num("simulate_s", s.simulate_s)
+            .Num("fps_including_simulation", static_cast<double>(s.frames) / s.wall_s)
+            .Num("peak_rss_mib", s.peak_rss_mib)
+            .Num("rss_growth_after_warmup_mib", s.rss_growth_after_warmup_mib)
+            .Int("tracks_born", s.tracks_born)
+            .Int("chunk_frames", s.chunk_frames)
+            .Raw("rss_samples_frame_mib", JsonArray(samples, 4))
+            .Raw("chunk_accuracy", JsonArray(chunks, 4))
+            .Dump(4));
   }
   JsonObject growth;
   for (const bool poses : {false, true}) {
@@ -1068,6 +1202,7 @@ int RunBench(int argc, char** argv) {
                "time, detections in to tracks out; detection and simulation excluded")
           .Raw("growth_exponents", growth.Dump(2))
           .Raw("points", JsonArray(point_json, 2))
+          .Raw("identity", JsonArray(identity_json, 2))
           .Raw("latency", JsonArray(latency_json, 2))
           .Raw("soak", JsonArray(soak_json, 2))
           .Dump() +
@@ -1080,8 +1215,8 @@ int RunBench(int argc, char** argv) {
 
   // results.md
   std::string md = "Measured " + started + " with `mvtrack bench --suite " + args.Get("suite") +
-                   "` (" + build_type + " build, mvtrack " + MVTRACK_VERSION + ") on " + CpuModel() +
-                   ", " + std::to_string(std::thread::hardware_concurrency()) +
+                   "` (" + build_type + " build, mvtrack " + MVTRACK_VERSION + ") on " +
+                   CpuModel() + ", " + std::to_string(std::thread::hardware_concurrency()) +
                    " hardware threads; load average before: " + load_before +
                    ", after: " + load_after + "; total " + Fmt("%.0f", total_s) + " s.\n\n";
   for (const char* suite : {"smoke", "smoke_scale", "paper", "scale", "custom"}) {
@@ -1098,21 +1233,47 @@ int RunBench(int argc, char** argv) {
             Fmt("%.2f", b) + " × people^" + Fmt("%.2f", c) + "\n\n";
     }
   }
+  if (!identities.empty()) {
+    md += "### identity over long runs\n\n| cameras × people | mode | people | frames | seed | "
+          "MOTA | IDF1 | IDF1 first 10 % | HOTA | GT ids | predicted ids | IDTR | IDFRAG | FPS "
+          "|\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const IdentityResult& r : identities) {
+      md += "| " + std::to_string(r.cameras) + " × " + std::to_string(r.people) + " | " +
+            (r.poses ? "poses" : "boxes") + " | " + (r.enter_leave ? "enter/leave" : "stay") +
+            " | " + std::to_string(r.frames) + " | " + std::to_string(r.seed) + " | " +
+            Fmt("%.1f", 100.0 * r.whole.mota) + " | " + Fmt("%.1f", 100.0 * r.whole.idf1) +
+            " | " + Fmt("%.1f", 100.0 * r.head.idf1) + " | " + Fmt("%.1f", 100.0 * r.whole.hota) +
+            " | " + std::to_string(r.whole.gt_ids) + " | " + std::to_string(r.whole.predicted_ids) +
+            " | " + std::to_string(r.whole.id_transfers) + " | " +
+            std::to_string(r.whole.id_fragmentations) + " | " + Fmt("%.0f", r.fps) + " |\n";
+    }
+    md += "\n";
+  }
   if (!latencies.empty()) {
-    md += "### latency (window close → publish)\n\n| cameras | people | mode | workers | windows "
-          "| p50 ms | p99 ms | max ms | MOTA | IDF1 |\n|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    md +=
+        "### latency (window close → publish)\n\n| cameras | people | mode | workers | windows "
+        "| p50 ms | p99 ms | max ms | MOTA | IDF1 | HOTA | IDTR "
+        "|\n|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const LatencyResult& l : latencies) {
       md += "| " + std::to_string(l.cameras) + " | " + std::to_string(l.people) + " | " +
             (l.poses ? "poses" : "boxes") + " | " + std::to_string(l.threads) + " | " +
             std::to_string(l.windows) + " | " + Fmt("%.2f", l.p50_ms) + " | " +
             Fmt("%.2f", l.p99_ms) + " | " + Fmt("%.2f", l.max_ms) + " | " +
-            Fmt("%.3f", l.accuracy.mota) + " | " + Fmt("%.3f", l.accuracy.idf1) + " |\n";
+            Fmt("%.3f", l.accuracy.mota) + " | " + Fmt("%.3f", l.accuracy.idf1) + " | " +
+            Fmt("%.3f", l.accuracy.hota) + " | " + std::to_string(l.accuracy.id_transfers) +
+            " |\n";
     }
     md += "\n";
   }
   for (const SoakResult& s : soaks) {
-    double mota = 0.0, idf1 = 0.0;
-    for (const Accuracy& a : s.chunks) mota += a.mota, idf1 += a.idf1;
+    double mota = 0.0, idf1 = 0.0, hota = 0.0;
+    std::int64_t transfers = 0;
+    for (const Accuracy& a : s.chunks) {
+      mota += a.mota;
+      idf1 += a.idf1;
+      hota += a.hota;
+      transfers += a.id_transfers;
+    }
     const double n = static_cast<double>(std::max<std::size_t>(1, s.chunks.size()));
     md += "### soak\n\n" + std::to_string(s.frames) + " frames, " + std::to_string(s.cameras) +
           " cameras, " + std::to_string(s.people) + " people entering and leaving (" +
@@ -1123,11 +1284,14 @@ int RunBench(int argc, char** argv) {
           " s simulating on the feeding thread). RSS " + Fmt("%.1f", s.rss_mib.front().second) +
           " MiB at the start, " + Fmt("%.1f", s.rss_mib.back().second) + " MiB at the end, peak " +
           Fmt("%.1f", s.peak_rss_mib) + " MiB; growth after the first " +
-          std::to_string(s.chunk_frames) + " frames: " + Fmt("%.2f", s.rss_growth_after_warmup_mib) +
-          " MiB. Accuracy, mean over " + std::to_string(s.chunks.size()) + " chunks of " +
-          std::to_string(s.chunk_frames) + " frames: MOTA " + Fmt("%.3f", mota / n) + ", IDF1 " +
-          Fmt("%.3f", idf1 / n) + ".\n\nRSS samples (frame: MiB): ";
-    for (std::size_t i = 0; i < s.rss_mib.size(); i += std::max<std::size_t>(1, s.rss_mib.size() / 12)) {
+          std::to_string(s.chunk_frames) +
+          " frames: " + Fmt("%.2f", s.rss_growth_after_warmup_mib) + " MiB. Accuracy, mean over " +
+          std::to_string(s.chunks.size()) + " chunks of " + std::to_string(s.chunk_frames) +
+          " frames: MOTA " + Fmt("%.3f", mota / n) + ", IDF1 " + Fmt("%.3f", idf1 / n) +
+          ", HOTA " + Fmt("%.3f", hota / n) + ", id transfers " + std::to_string(transfers) +
+          " in all.\n\nRSS samples (frame: MiB): ";
+    for (std::size_t i = 0; i < s.rss_mib.size();
+         i += std::max<std::size_t>(1, s.rss_mib.size() / 12)) {
       md += std::to_string(s.rss_mib[i].first) + ": " + Fmt("%.1f", s.rss_mib[i].second) + ", ";
     }
     md += std::to_string(s.rss_mib.back().first) + ": " + Fmt("%.1f", s.rss_mib.back().second) +

@@ -9,7 +9,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "eval/sequence.h"
 
 namespace mvtrack::cli {
 
@@ -51,6 +54,16 @@ class Args {
   std::map<std::string, std::string> values_;
   std::map<std::string, bool> given_;
 };
+
+/// A non-negative decimal integer, the whole of `text`; nullopt otherwise.
+std::optional<std::int64_t> ParseNonNegative(std::string_view text);
+
+/// `text` split at every comma (empty parts kept).
+std::vector<std::string_view> SplitCommas(std::string_view text);
+
+/// Frame ranges "A-B[,C-D...]" (inclusive, a single frame "A" meaning A-A).
+/// @throws UsageError naming `option` on a malformed or reversed range.
+std::vector<eval::FrameRange> ParseFrameRanges(const std::string& text, const std::string& option);
 
 /// `mvtrack demo`: simulate a scene, track it, print tracks and accuracy (demo.cc).
 int RunDemo(int argc, char** argv);

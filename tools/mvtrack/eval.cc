@@ -27,48 +27,6 @@
 namespace mvtrack::cli {
 namespace {
 
-// A non-negative decimal integer, the whole of `text`.
-std::optional<std::int64_t> ParseNonNegative(std::string_view text) {
-  std::int64_t v = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || v < 0) {
-    return std::nullopt;
-  }
-  return v;
-}
-
-std::vector<std::string_view> SplitCommas(std::string_view text) {
-  std::vector<std::string_view> parts;
-  std::size_t begin = 0;
-  while (true) {
-    const std::size_t comma = text.find(',', begin);
-    parts.push_back(text.substr(begin, comma == std::string_view::npos ? comma : comma - begin));
-    if (comma == std::string_view::npos) break;
-    begin = comma + 1;
-  }
-  return parts;
-}
-
-// "A-B[,C-D...]", a single frame "A" meaning A-A.
-std::vector<eval::FrameRange> ParseFrameRanges(const std::string& text) {
-  std::vector<eval::FrameRange> ranges;
-  for (std::string_view part : SplitCommas(text)) {
-    const std::size_t dash = part.find('-');
-    const std::optional<std::int64_t> first = ParseNonNegative(part.substr(0, dash));
-    const std::optional<std::int64_t> last =
-        dash == std::string_view::npos ? first : ParseNonNegative(part.substr(dash + 1));
-    if (!first || !last) {
-      throw UsageError("--frames: '" + std::string(part) +
-                       "' is not a frame range A-B (non-negative frame indices, A <= B)");
-    }
-    if (*first > *last) {
-      throw UsageError("--frames: range '" + std::string(part) + "' ends before it starts");
-    }
-    ranges.push_back({*first, *last});
-  }
-  return ranges;
-}
-
 std::vector<std::int64_t> ParseActors(const std::string& text) {
   std::vector<std::int64_t> ids;
   std::set<std::int64_t> seen;
@@ -221,6 +179,10 @@ int RunEval(int argc, char** argv) {
               "footprint")
       .Option("threshold", "matching gate, metres", "0.5")
       .Option("frames", "evaluate only these frames: A-B[,C-D...] (inclusive; default: all)")
+      .Option("cover-frames",
+              "a predicted id covers a GT person when CLEAR MOT matches them in at least this "
+              "many frames (IDTR: ids covering >= 2 persons, IDFRAG: persons covered by >= 2 ids)",
+              "15")
       .Option("actors", "PCP only: GT actor ids scored, e.g. 0,1,2 (default: every actor)")
       .Option("head-rule",
               "how head_top is derived when joints are mapped to shelf14: campus (VoxelPose's "
@@ -236,21 +198,25 @@ int RunEval(int argc, char** argv) {
                    "else every bone of the layout")
       .Option("json", "also write the report as JSON (schema mvtrack.eval/1) to this file "
                       "('-': stdout, the table then goes to stderr)");
-  if (!args.Parse(argc, argv,
-                  "mvtrack eval --gt GT [--pred] TRACKS [--layout NAME] "
-                  "[--distance footprint|joints] [--threshold M] [--frames A-B[,C-D]] "
-                  "[--actors 0,1,2] [--head-rule campus|shelf-4da] [--pcp | --points] [--json OUT.json]",
-                  "Scores tracks against ground truth with CLEAR MOT (MOTA, MOTP, FP, FN, IDSW, MT,\n"
-                  "ML; py-motmetrics semantics), identity F1 (IDF1, IDP, IDR) and MPJPE, and with\n"
-                  "--pcp the PCP of Belagiannis et al. as the Shelf/Campus evaluations compute it.\n"
-                  "Both files may be canonical tracks JSONL or LCM logs of tracks3d_t (recognised\n"
-                  "by content). Joints in different keypoint layouts are mapped to one layout\n"
-                  "(the mapping is printed). The protocol of every metric is printed with it.\n"
-                  "With --points the ground truth is a set of reference points without\n"
-                  "identities: each frame's footprints and points are paired one-to-one\n"
-                  "(min-cost, within --threshold) and the counts and distances are reported.\n\n"
-                  "Exit status: 0 evaluated, 1 failure (unreadable input, inputs that cannot be\n"
-                  "compared), 2 usage error.")) {
+  if (!args.Parse(
+          argc,
+          argv,
+          "mvtrack eval --gt GT [--pred] TRACKS [--layout NAME] "
+          "[--distance footprint|joints] [--threshold M] [--frames A-B[,C-D]] [--cover-frames N] "
+          "[--actors 0,1,2] [--head-rule campus|shelf-4da] [--pcp | --points] [--json OUT.json]",
+          "Scores tracks against ground truth with CLEAR MOT (MOTA, MOTP, FP, FN, IDSW, MT,\n"
+          "ML; py-motmetrics semantics), identity F1 (IDF1, IDP, IDR), HOTA (DetA, AssA,\n"
+          "LocA; TrackEval's definitions), id transfers and fragmentations (IDTR, IDFRAG)\n"
+          "and MPJPE, and with --pcp the PCP of Belagiannis et al. as the Shelf/Campus\n"
+          "evaluations compute it.\n"
+          "Both files may be canonical tracks JSONL or LCM logs of tracks3d_t (recognised\n"
+          "by content). Joints in different keypoint layouts are mapped to one layout\n"
+          "(the mapping is printed). The protocol of every metric is printed with it.\n"
+          "With --points the ground truth is a set of reference points without\n"
+          "identities: each frame's footprints and points are paired one-to-one\n"
+          "(min-cost, within --threshold) and the counts and distances are reported.\n\n"
+          "Exit status: 0 evaluated, 1 failure (unreadable input, inputs that cannot be\n"
+          "compared), 2 usage error.")) {
     return 0;
   }
   if (!args.Has("gt")) throw UsageError("--gt is required");
@@ -275,7 +241,11 @@ int RunEval(int argc, char** argv) {
   if (!(threshold > 0.0)) throw UsageError("--threshold must be > 0 (metres)");
   tracking_options.footprint_threshold_m = threshold;
   tracking_options.mean_joint_threshold_m = threshold;
-  if (args.Has("frames")) tracking_options.frame_ranges = ParseFrameRanges(args.Get("frames"));
+  if (args.Has("frames")) {
+    tracking_options.frame_ranges = ParseFrameRanges(args.Get("frames"), "--frames");
+  }
+  tracking_options.cover_min_frames = args.GetInt("cover-frames");
+  if (tracking_options.cover_min_frames < 1) throw UsageError("--cover-frames must be >= 1");
   const bool pcp = args.Has("pcp");
   const bool points = args.Has("points");
   if (points && pcp) throw UsageError("--points and --pcp exclude each other");

@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Accuracy regression on a seeded simulated scene (labels regression + sim, no data needed):
+# `mvtrack sim` writes SCENE's recording, `mvtrack replay` tracks it twice -- window jobs inline
+# (--threads 0) and on a 2-worker pool (--threads 2) -- which must write byte-identical JSONL,
+# and `mvtrack eval` (footprints, 0.5 m gate) must keep every metric of
+# tests/regression/sim_floors.txt for SCENE within its bound. The scene is generated at test
+# time (same options and seed: byte-identical files). Scenes:
+#   store16x32         16 cameras, 32 people, 300 frames, boxes: the ceiling grid where
+#                      association over-segments people seen by many cameras
+#   identity4x12boxes  4 cameras, 12 people entering and leaving, 3000 frames, boxes: ids that
+#                      must not pass from a person who leaves to the next who enters
+#   identity4x12poses  the same scene in pose mode
+# Usage: sim_regression_test.sh SCENE MVTRACK WORK_DIR SOURCE_DIR
+set -euo pipefail
+if [ $# -ne 4 ]; then
+  echo "usage: $0 SCENE MVTRACK WORK_DIR SOURCE_DIR" >&2
+  exit 2
+fi
+SCENE=$1
+MVTRACK=$2
+WORK=$3
+SRC=$4
+# shellcheck source=../support/shell_asserts.sh
+. "$SRC/tests/support/shell_asserts.sh"
+case $SCENE in
+  store16x32)
+    mode=boxes
+    sim_args=(--cameras 16 --people 32 --frames 300 --seed 1) ;;
+  identity4x12boxes)
+    mode=boxes
+    sim_args=(--cameras 4 --people 12 --enter-leave --frames 3000 --seed 11) ;;
+  identity4x12poses)
+    mode=poses
+    sim_args=(--cameras 4 --people 12 --enter-leave --frames 3000 --seed 11) ;;
+  *) echo "unknown scene '$SCENE' (store16x32, identity4x12boxes, identity4x12poses)" >&2; exit 2 ;;
+esac
+OUT=$WORK/$SCENE
+rm -rf "$OUT"
+mkdir -p "$OUT"
+
+expect_exit 0 "$OUT/sim.log" \
+  "$MVTRACK" sim "${sim_args[@]}" --mode "$mode" --out "$OUT/scene" --quiet
+for threads in 0 2; do
+  expect_exit 0 "$OUT/replay$threads.log" \
+    "$MVTRACK" replay --calibration "$OUT/scene/calibration.yaml" --mode "$mode" \
+    --threads "$threads" --jsonl "$OUT/tracks$threads.jsonl" --quiet "$OUT/scene/detections.lcmlog"
+done
+cmp "$OUT/tracks0.jsonl" "$OUT/tracks2.jsonl" ||
+  fail "two replays of $SCENE (--threads 0 and 2) wrote different JSONL"
+[ -s "$OUT/tracks0.jsonl" ] || fail "the replay of $SCENE wrote no tracks"
+expect_exit 0 "$OUT/eval.txt" \
+  "$MVTRACK" eval --gt "$OUT/scene/gt.jsonl" "$OUT/tracks0.jsonl" --json "$OUT/eval.json"
+cat "$OUT/eval.txt"
+
+python3 "$SRC/tests/regression/check_floors.py" "$SCENE" "$SRC/tests/regression/sim_floors.txt" "$OUT/eval.json"
