@@ -154,6 +154,8 @@ std::vector<Field> MakeFields() {
       IntField("", "window_size", [](auto& o) -> auto& { return o.window_size; }, 2, 10000));
   f.push_back(
       IntField("", "window_step", [](auto& o) -> auto& { return o.window_step; }, 1, 10000));
+  f.push_back(DoubleField("", "reference_fps", [](auto& o) -> auto& { return o.reference_fps; },
+                          DoubleRange::Closed(0.0, 1000.0)));
   f.push_back(EnumField<tracker::BoxPoint>(
       "", "box_point", [](auto& o) -> auto& { return o.box_point; }, BoxPointFromName,
       BoxPointName, {"center", "bottom_center", "center_ends"}));

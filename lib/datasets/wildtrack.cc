@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <utility>
 
 #include "core/check.h"
@@ -21,6 +23,11 @@ using internal::JsonValue;
 
 constexpr double kWildtrackFps = 2.0;  // annotated frames: every 5th image of a 10 fps video
 constexpr double kCmToM = 0.01;
+// gt.txt: annotated frame k is image frame 5 k; the grid is 480 x 1440 cells of 2.5 cm.
+constexpr std::int64_t kImageFramesPerAnnotatedFrame = 5;
+constexpr std::int64_t kGridWidth = 480;
+constexpr std::int64_t kGridHeight = 1440;
+constexpr double kGridCellM = 0.025;
 // Largest allowed difference between the file's R and Rodrigues(rvec).
 constexpr double kRotationTolerance = 1e-6;
 
@@ -132,6 +139,8 @@ Dataset LoadWildtrack(const std::filesystem::path& data_root) {
     ++f;
   }
   ds.gt_layout = core::KeypointLayoutId::kNone;
+  const bool has_gt = HasWildtrackGroundTruth(data_root);
+  if (has_gt) ds.ground_truth = WildtrackGroundTruth(data_root, frames.front(), frames.back());
   ds.protocol_notes =
       "WILDTRACK (Chavdarova et al., CVPR 2018): 7 cameras (C1-C7 = ids 0-6), 1920x1080, "
       "official calibration (intrinsic_zero, undistorted images; cm -> m; ground z = 0). "
@@ -139,8 +148,71 @@ Dataset LoadWildtrack(const std::filesystem::path& data_root) {
       std::to_string(frames.front()) + "-" + std::to_string(frames.back()) +
       " (annotated-frame indices, image file = 5 x index, 2 fps) from ReST's "
       "MVDeTr_test.json, box-only, score 1. They are ground-plane detections drawn into every "
-      "view, not independent per-view detections. No ground truth: no MOTA/IDF1.";
+      "view, not independent per-view detections. " +
+      (has_gt ? std::string("Ground truth: the floor positions of mvdet/gt.txt (MVDet), no "
+                            "person ids: detection metrics (MODA, MODP, precision, recall) "
+                            "only, with `mvtrack eval --points`; ids in ground_truth.jsonl are "
+                            "per-frame indices. Annotated area x in [-3, 9) m, y in [-9, 27) m.")
+              : std::string("No ground truth (mvdet/gt.txt missing)."));
   return ds;
+}
+
+bool HasWildtrackGroundTruth(const std::filesystem::path& data_root) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(data_root / "wildtrack" / "mvdet" / "gt.txt", ec);
+}
+
+eval::EvalSequence WildtrackGroundTruth(const std::filesystem::path& data_root, FrameIndex first,
+                                        FrameIndex last) {
+  const std::filesystem::path file = data_root / "wildtrack" / "mvdet" / "gt.txt";
+  const std::string name = file.string();
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw DatasetError(name, "file not found or not readable");
+  std::map<FrameIndex, std::vector<eval::EvalObject>> by_frame;
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::string at = "line " + std::to_string(line_number);
+    std::istringstream fields(line);
+    std::int64_t image_frame = 0, gx = 0, gy = 0;
+    std::string rest;
+    if (!(fields >> image_frame >> gx >> gy) || (fields >> rest)) {
+      throw DatasetError(name, at + ": expected three integers 'frame grid_x grid_y'");
+    }
+    if (image_frame < 0 || image_frame % kImageFramesPerAnnotatedFrame != 0 ||
+        image_frame > 1'000'000'000) {
+      throw DatasetError(name, at + ": image frame " + std::to_string(image_frame) +
+                                   " is not a non-negative multiple of 5");
+    }
+    if (gx < 0 || gx >= kGridWidth || gy < 0 || gy >= kGridHeight) {
+      throw DatasetError(name, at + ": grid cell (" + std::to_string(gx) + ", " +
+                                   std::to_string(gy) + ") outside the 480 x 1440 grid");
+    }
+    const FrameIndex frame = image_frame / kImageFramesPerAnnotatedFrame;
+    std::vector<eval::EvalObject>& objects = by_frame[frame];
+    eval::EvalObject o;
+    o.id = static_cast<std::int64_t>(objects.size());
+    o.position = Vec3(WildtrackArea::kMinX + kGridCellM * static_cast<double>(gx),
+                      WildtrackArea::kMinY + kGridCellM * static_cast<double>(gy), 0.0);
+    objects.push_back(o);
+  }
+  if (by_frame.empty()) throw DatasetError(name, "no positions");
+  if (first > last || first < by_frame.begin()->first || last > by_frame.rbegin()->first) {
+    throw DatasetError(name, "frames " + std::to_string(first) + "-" + std::to_string(last) +
+                                 " are not within the file's annotated frames " +
+                                 std::to_string(by_frame.begin()->first) + "-" +
+                                 std::to_string(by_frame.rbegin()->first));
+  }
+  eval::EvalSequence out;
+  for (FrameIndex f = first; f <= last; ++f) {
+    eval::EvalFrame ef;
+    ef.frame = f;
+    if (const auto it = by_frame.find(f); it != by_frame.end()) ef.objects = it->second;
+    out.push_back(std::move(ef));
+  }
+  return out;
 }
 
 bool WildtrackGroundOptions::Validate(std::string* why) const {

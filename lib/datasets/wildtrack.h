@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// WILDTRACK (Chavdarova et al., CVPR 2018): 7 cameras (1920x1080), the official calibration,
-/// and MVDeTr's detections of the 40 test frames 360..399 drawn as boxes into every view. No
-/// ground truth is available. Files and formats: `<data_root>/wildtrack/SOURCE.md`. Stateless.
+/// MVDeTr's detections of the 40 test frames 360..399 drawn as boxes into every view, and the
+/// ground-truth floor positions of the 400 annotated frames (MVDet's gt.txt: positions without
+/// person ids). Files and formats: `<data_root>/wildtrack/SOURCE.md`. Stateless.
 
 #include <filesystem>
 #include <string>
@@ -21,9 +22,33 @@ namespace mvtrack::datasets {
 ///  - detections: every [left, top, width, height, -1, cam] entry as a box-only Detection2D
 ///    (layout kNone), box [left, left + width] x [top, top + height], score 1; source ids are
 ///    kUnknownSourceId;
-///  - no ground truth (gt_layout kNone, empty ground_truth).
+///  - ground truth: WildtrackGroundTruth of the detection frames (no joints, gt_layout kNone;
+///    ids are per-frame position indices, not person ids), when mvdet/gt.txt exists; else empty.
 /// @throws DatasetError on a missing or malformed file.
 Dataset LoadWildtrack(const std::filesystem::path& data_root);
+
+/// The floor area WILDTRACK annotates (its 480 x 1440 grid of 2.5 cm cells from (-3, -9) m):
+/// x in [-3, 9) m, y in [-9, 27) m. Positions outside are never annotated.
+struct WildtrackArea {
+  static constexpr double kMinX = -3.0;
+  static constexpr double kMaxX = 9.0;
+  static constexpr double kMinY = -9.0;
+  static constexpr double kMaxY = 27.0;
+};
+
+/// Ground-truth floor positions of the annotated frames `first`..`last` (annotated-frame
+/// indices 0..399, image file = 5 x index) from `<data_root>`/wildtrack/mvdet/gt.txt: rows
+/// `image_frame grid_x grid_y` (integers), position x = -3 + 0.025 grid_x m, y = -9 + 0.025
+/// grid_y m, z = 0 (SOURCE.md). One EvalFrame per annotated frame in the range (also frames
+/// without people), objects in file order with id = their index within the frame (gt.txt has no
+/// person ids: detection metrics only). The range must lie within the file's frames.
+/// @throws DatasetError on a missing or malformed file (a non-integer field, an image frame
+/// that is not a multiple of 5, a cell outside the grid) or a range outside the file.
+eval::EvalSequence WildtrackGroundTruth(const std::filesystem::path& data_root, FrameIndex first,
+                                        FrameIndex last);
+
+/// Whether `<data_root>`/wildtrack/mvdet/gt.txt exists.
+bool HasWildtrackGroundTruth(const std::filesystem::path& data_root);
 
 /// Options of WildtrackGroundPoints.
 struct WildtrackGroundOptions {

@@ -22,7 +22,19 @@ std::string Protocol(const PointComparisonOptions& options, std::int64_t num_fra
           internal::FormatFixed(options.gate_m, 3) + " m. ";
   text += "Distance statistics over the matched pairs of all frames (median: mean of the two ";
   text += "middle values for an even count; p90: nearest rank). ";
+  text += "MODA = 1 - (FP + FN) / reference points; MODP = mean of 1 - d / gate over the pairs ";
+  text += "(MVDet's evaluation), MODP[m] = mean matched distance. ";
   text += "Counts: per frame predicted vs reference points. ";
+  if (options.area) {
+    text += "Area: points of either side outside x in [" +
+            internal::FormatFixed(options.area->min_x, 2) + ", " +
+            internal::FormatFixed(options.area->max_x, 2) + "] m, y in [" +
+            internal::FormatFixed(options.area->min_y, 2) + ", " +
+            internal::FormatFixed(options.area->max_y, 2) +
+            "] m are dropped before matching. ";
+  } else {
+    text += "Area: everywhere. ";
+  }
   text += "Frames: " + DescribeFrameRanges(options.frame_ranges) + " (" +
           std::to_string(num_frames) + " compared: union of reference and prediction frames).";
   return text;
@@ -35,6 +47,12 @@ bool PointComparisonOptions::Validate(std::string* why) const {
     if (why != nullptr) *why = "gate_m must be finite and > 0";
     return false;
   }
+  if (area && !(std::isfinite(area->min_x) && std::isfinite(area->max_x) &&
+                std::isfinite(area->min_y) && std::isfinite(area->max_y) &&
+                area->min_x < area->max_x && area->min_y < area->max_y)) {
+    if (why != nullptr) *why = "area must be finite with min < max on both axes";
+    return false;
+  }
   return ValidateFrameRanges(frame_ranges, why);
 }
 
@@ -44,6 +62,7 @@ PointComparison ComparePoints(const EvalSequence& reference,
   PointComparison result;
   result.gate_m = options.gate_m;
   result.frame_ranges = options.frame_ranges;
+  result.area = options.area;
   if (!options.Validate(&result.error)) {
     result.error = "point comparison options: " + result.error;
     return result;
@@ -62,13 +81,30 @@ PointComparison ComparePoints(const EvalSequence& reference,
     if (InFrameRanges(f.frame, options.frame_ranges)) by_frame[f.frame].second = &f;
   }
 
-  static const std::vector<EvalObject> kNone;
+  const auto inside = [&](const EvalObject& o) {
+    const PointComparisonOptions::Area& a = *options.area;
+    return o.position.x() >= a.min_x && o.position.x() <= a.max_x && o.position.y() >= a.min_y &&
+           o.position.y() <= a.max_y;
+  };
+  // The frame's objects of one side inside the area; `outside` counts the others.
+  const auto kept = [&](const EvalFrame* frame, std::int64_t* outside) {
+    std::vector<EvalObject> out;
+    if (frame == nullptr) return out;
+    for (const EvalObject& o : frame->objects) {
+      if (!options.area || inside(o)) {
+        out.push_back(o);
+      } else {
+        ++*outside;
+      }
+    }
+    return out;
+  };
   std::vector<double> distances;
   std::int64_t sum_abs_difference = 0;
   std::int64_t sum_difference = 0;
   for (const auto& [index, sides] : by_frame) {
-    const std::vector<EvalObject>& ref = sides.first != nullptr ? sides.first->objects : kNone;
-    const std::vector<EvalObject>& pred = sides.second != nullptr ? sides.second->objects : kNone;
+    const std::vector<EvalObject> ref = kept(sides.first, &result.num_reference_outside);
+    const std::vector<EvalObject> pred = kept(sides.second, &result.num_predicted_outside);
     Eigen::MatrixXd cost(static_cast<Eigen::Index>(ref.size()),
                          static_cast<Eigen::Index>(pred.size()));
     for (std::size_t r = 0; r < ref.size(); ++r) {
@@ -115,7 +151,16 @@ PointComparison ComparePoints(const EvalSequence& reference,
     result.recall =
         static_cast<double>(result.num_matched) / static_cast<double>(result.num_reference);
   }
+  result.false_positives = result.num_predicted - result.num_matched;
+  result.misses = result.num_reference - result.num_matched;
+  if (result.num_reference > 0) {
+    result.moda = 1.0 - static_cast<double>(result.false_positives + result.misses) /
+                            static_cast<double>(result.num_reference);
+  }
   if (!distances.empty()) {
+    double closeness = 0.0;
+    for (const double d : distances) closeness += 1.0 - d / options.gate_m;
+    result.modp = closeness / static_cast<double>(distances.size());
     std::sort(distances.begin(), distances.end());
     const std::size_t n = distances.size();
     result.median_distance_m =

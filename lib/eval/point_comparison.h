@@ -1,12 +1,14 @@
 #pragma once
 /// @file
-/// Footprints against reference ground points that carry no identities (e.g. WILDTRACK, where
-/// no ground truth is public and the only reference is MVDeTr's own merged ground points): per
-/// frame the number of points on each side, and the ground-plane distance between the
-/// footprints and the points they are matched to. Stateless and pure: no I/O, deterministic.
+/// Footprints against reference ground points that carry no identities (e.g. WILDTRACK's
+/// ground-truth positions, or MVDeTr's merged ground points): per frame the number of points on
+/// each side, the detection metrics (MODA, MODP, precision, recall) and the ground-plane
+/// distance between the footprints and the points they are matched to. Stateless and pure: no
+/// I/O, deterministic.
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,8 +23,19 @@ struct PointComparisonOptions {
   double gate_m = 0.5;
   /// Frames compared; empty = every frame of either sequence.
   std::vector<FrameRange> frame_ranges;
+  /// The evaluated floor area, an axis-aligned rectangle [min_x, max_x] x [min_y, max_y] in
+  /// metres: points of either side outside it are dropped before matching (and counted), as a
+  /// dataset's annotations cover only its area. Empty = everywhere.
+  struct Area {
+    double min_x = 0.0;
+    double max_x = 0.0;
+    double min_y = 0.0;
+    double max_y = 0.0;
+  };
+  std::optional<Area> area;
 
-  /// Gate finite and > 0, frame ranges well-formed. On failure writes a reason to `why`.
+  /// Gate finite and > 0, frame ranges well-formed, area finite with min < max. On failure
+  /// writes a reason to `why`.
   bool Validate(std::string* why) const;
 };
 
@@ -42,6 +55,10 @@ struct PointComparison {
   std::string protocol;
   double gate_m = 0.0;
   std::vector<FrameRange> frame_ranges;
+  std::optional<PointComparisonOptions::Area> area;
+  /// Points dropped for lying outside `area` (reference / predicted), all compared frames.
+  std::int64_t num_reference_outside = 0;
+  std::int64_t num_predicted_outside = 0;
   /// Compared frames (union of both sides' frames in range), in increasing frame order.
   std::vector<PointFrameCounts> frames;
   std::int64_t num_reference = 0;  ///< reference points, all compared frames
@@ -58,6 +75,15 @@ struct PointComparison {
   /// num_matched / num_predicted and num_matched / num_reference.
   double precision = std::numeric_limits<double>::quiet_NaN();
   double recall = std::numeric_limits<double>::quiet_NaN();
+  /// False positives (predicted - matched) and misses (reference - matched).
+  std::int64_t false_positives = 0;
+  std::int64_t misses = 0;
+  /// MODA = 1 - (false_positives + misses) / num_reference (CLEAR, Kasturi et al. 2009, as
+  /// MVDet's evaluation computes it; NaN without reference points).
+  double moda = std::numeric_limits<double>::quiet_NaN();
+  /// MODP as MVDet's evaluation computes it: the mean over matched pairs of 1 - d / gate (1 =
+  /// every match exact). The mean matched distance in metres is mean_distance_m.
+  double modp = std::numeric_limits<double>::quiet_NaN();
   /// Statistics of the matched pairs' ground-plane distances, metres: the median (mean of the
   /// two middle values for an even count), the mean, the 90th percentile (nearest rank:
   /// the ceil(0.9 n)-th smallest) and the largest.
@@ -72,8 +98,8 @@ struct PointComparison {
 /// are paired one-to-one by core::SolveAssignment on their ground-plane distances
 /// (FootprintDistance) with the gate: the largest number of pairs first, then the least total
 /// distance. Identities (ids) are ignored on both sides: each frame is matched afresh.
-/// Joints are ignored. Both sequences must pass ValidateSequence (as "reference" and
-/// "predictions").
+/// Joints are ignored. With an area, points of either side outside it are dropped first.
+/// Both sequences must pass ValidateSequence (as "reference" and "predictions").
 PointComparison ComparePoints(const EvalSequence& reference,
                               const EvalSequence& predictions,
                               const PointComparisonOptions& options);

@@ -310,6 +310,19 @@ Json PointsJson(const PointComparison& r) {
   o.emplace_back("max_abs_count_difference", Int(r.max_abs_count_difference));
   o.emplace_back("precision", Num(r.precision));
   o.emplace_back("recall", Num(r.recall));
+  o.emplace_back("false_positives", Int(r.false_positives));
+  o.emplace_back("misses", Int(r.misses));
+  o.emplace_back("moda", Num(r.moda));
+  o.emplace_back("modp", Num(r.modp));
+  o.emplace_back("modp_m", Num(r.mean_distance_m));
+  if (r.area) {
+    o.emplace_back("area", Obj({{"min_x", Num(r.area->min_x)},
+                                {"max_x", Num(r.area->max_x)},
+                                {"min_y", Num(r.area->min_y)},
+                                {"max_y", Num(r.area->max_y)}}));
+  }
+  o.emplace_back("num_reference_outside", Int(r.num_reference_outside));
+  o.emplace_back("num_predicted_outside", Int(r.num_predicted_outside));
   o.emplace_back("median_distance_m", Num(r.median_distance_m));
   o.emplace_back("mean_distance_m", Num(r.mean_distance_m));
   o.emplace_back("p90_distance_m", Num(r.p90_distance_m));
@@ -439,6 +452,14 @@ std::string PointsTable(const PointComparison& r) {
                    std::to_string(r.max_abs_count_difference), Metres(r.median_distance_m),
                    Metres(r.mean_distance_m), Metres(r.p90_distance_m),
                    Metres(r.max_distance_m)}});
+  out += Columns({{"MODA%", "MODP%", "MODP[m]", "TP", "FP", "FN", "Prec%", "Rec%",
+                   "outside area (ref/pred)"},
+                  {Percent(r.moda), Percent(r.modp), Metres(r.mean_distance_m),
+                   std::to_string(r.num_matched), std::to_string(r.false_positives),
+                   std::to_string(r.misses), Percent(r.precision), Percent(r.recall),
+                   r.area ? std::to_string(r.num_reference_outside) + "/" +
+                                std::to_string(r.num_predicted_outside)
+                          : std::string("no area")}});
   out += "  Protocol: " + r.protocol + "\n";
   return out;
 }

@@ -165,6 +165,9 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame, std::int
     // The stream ended (re-anchor or flush) since this camera's last frame: SORT restarts.
     sort_ = tracking2d::SortTracker(options_.sort);
     stream_epoch_ = stream_epoch;
+    period_.Clear();
+    sort_seconds_per_frame_ = 0.0;
+    frames_since_period_ = FramePeriod::kFrames - 1;
   }
   core::DetectionLimits limits;
   limits.image_width_px = camera_.width_px;
@@ -200,6 +203,19 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame, std::int
   out.camera_index = camera_index_;
   out.frame = frame.frame;
   out.utime = frame.utime;
+  // SORT's options follow the estimate at 2, 4, 8, 16 and 32 frames of the stream, then every
+  // kFrames frames (a median over kFrames frames moves slowly; it runs per camera-frame).
+  period_.Add(frame.frame, frame.utime);
+  const std::size_t n = period_.size();
+  const bool due = n < FramePeriod::kFrames ? (n & (n - 1)) == 0
+                                            : ++frames_since_period_ >= FramePeriod::kFrames;
+  if (due) {
+    frames_since_period_ = 0;
+    if (const double s = period_.Seconds(); s != sort_seconds_per_frame_) {
+      sort_.set_options(SortOptionsAtFrameRate(options_, s));
+      sort_seconds_per_frame_ = s;
+    }
+  }
   const std::vector<tracking2d::TrackedDetection> tracked = sort_.Update(frame.frame, boxes);
   out.observations.reserve(tracked.size());
   // Each detection belongs to at most one track, so its observation can be moved out.

@@ -18,6 +18,7 @@
 #include "core/observation.h"
 #include "core/types.h"
 #include "geometry/camera_model.h"
+#include "tracker/frame_period.h"
 #include "tracker/options.h"
 #include "tracking2d/sort_tracker.h"
 
@@ -82,6 +83,11 @@ class CameraStage {
   int num_points_ = 1;
   std::map<core::KeypointLayoutId, core::KeypointMapping> mappings_;
   tracking2d::SortTracker sort_;
+  // This camera's frame period (its own capture times) and the one SORT's options were last
+  // scaled to (TrackerOptions::reference_fps).
+  FramePeriod period_;
+  double sort_seconds_per_frame_ = 0.0;
+  std::size_t frames_since_period_ = FramePeriod::kFrames - 1;  // the first full window is due
   // Box ends: K^-1, the camera-to-world rotation and the vanishing point of the world's up.
   Mat3 k_inverse_;
   Mat3 world_from_cam_;

@@ -1,6 +1,9 @@
 #include "tracker/options.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "core/check.h"
 
 namespace mvtrack::tracker {
 
@@ -34,6 +37,9 @@ bool TrackerOptions::Validate(std::string* why) const {
     return fail("box_margin_fraction must be in [0, 10]");
   }
   if (max_detections_per_frame < 1) return fail("max_detections_per_frame must be >= 1");
+  if (!(reference_fps == 0.0 || (reference_fps >= 0.01 && reference_fps <= 1000.0))) {
+    return fail("reference_fps must be 0 or in [0.01, 1000]");
+  }
   std::string nested;
   if (!sort.Validate(&nested)) return fail("sort: " + nested);
   if (!association.Validate(&nested)) return fail("association: " + nested);
@@ -41,6 +47,50 @@ bool TrackerOptions::Validate(std::string* why) const {
   if (!linking.Validate(&nested)) return fail("linking: " + nested);
   if (!refinement.Validate(&nested)) return fail(nested);  // already prefixed "refinement: "
   return true;
+}
+
+namespace {
+
+// The factor f of AtFrameRate (>= 1: nothing scales).
+double RateFactor(const TrackerOptions& options, double seconds_per_frame) {
+  MVTRACK_CHECK(std::isfinite(seconds_per_frame) && seconds_per_frame > 0.0);
+  if (options.reference_fps <= 0.0) return 1.0;
+  return 1.0 / (seconds_per_frame * options.reference_fps);
+}
+
+// max(minimum, ceil(n f)); a small tolerance keeps an exact product (30 frames x 0.1) from
+// rounding up past it.
+int Scaled(int n, int minimum, double f) {
+  return std::max(minimum, static_cast<int>(std::ceil(static_cast<double>(n) * f - 1e-9)));
+}
+
+tracking2d::SortOptions ScaledSort(const tracking2d::SortOptions& sort, double f) {
+  tracking2d::SortOptions o = sort;
+  if (sort.max_age > 0) o.max_age = Scaled(sort.max_age, 1, f);
+  o.min_hits = Scaled(sort.min_hits, 1, f);
+  o.iou_threshold = sort.iou_threshold * f;
+  return o;
+}
+
+}  // namespace
+
+TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_frame) {
+  const double f = RateFactor(options, seconds_per_frame);
+  if (!(f < 1.0)) return options;
+  TrackerOptions o = options;
+  o.window_size = Scaled(options.window_size, 2, f);
+  o.window_step = std::min(o.window_size, Scaled(options.window_step, 1, f));
+  o.min_tracklet_length = Scaled(options.min_tracklet_length, 1, f);
+  o.sort = ScaledSort(options.sort, f);
+  if (options.triangulation.phi > 0) o.triangulation.phi = Scaled(options.triangulation.phi, 1, f);
+  o.refinement.box_min_duplicate_frames = Scaled(options.refinement.box_min_duplicate_frames, 1, f);
+  return o;
+}
+
+tracking2d::SortOptions SortOptionsAtFrameRate(const TrackerOptions& options,
+                                               double seconds_per_frame) {
+  const double f = RateFactor(options, seconds_per_frame);
+  return f < 1.0 ? ScaledSort(options.sort, f) : options.sort;
 }
 
 int NumPoints(const TrackerOptions& options) {

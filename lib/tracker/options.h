@@ -42,8 +42,17 @@ struct TrackerOptions {
   InputMode mode = InputMode::kBoxes;
   /// Pose mode: the layout tracks are estimated in; inputs in other layouts are mapped to it.
   core::KeypointLayoutId layout = core::KeypointLayoutId::kCoco17;
-  int window_size = 30;  ///< ν, frames
-  int window_step = 20;  ///< δ, frames (1 <= δ <= ν)
+  int window_size = 30;  ///< ν, frames at reference_fps or faster (AtFrameRate)
+  int window_step = 20;  ///< δ, frames (1 <= δ <= ν), likewise
+  /// The frame rate the frame-count options are set for: window_size, window_step,
+  /// min_tracklet_length, sort.max_age, sort.min_hits, triangulation.phi and
+  /// refinement.box_min_duplicate_frames count frames of a stream at this rate or faster, and
+  /// sort.iou_threshold holds at this rate. A slower stream (its rate measured from the capture
+  /// times) scales them by its rate / reference_fps (counts rounded up; AtFrameRate), so each
+  /// keeps its duration (ν = 30 frames = 1.2 s, 3 frames at 2 fps) and SORT accepts the longer
+  /// steps between frames. 25: the paper's defaults were set on 25 fps data (Shelf, Campus),
+  /// and 30 fps streams keep them unchanged. 0: counts are frames at any rate.
+  double reference_fps = 25.0;
   /// Box mode: which point of the box is associated and triangulated.
   BoxPoint box_point = BoxPoint::kCenterEnds;
   /// Box mode with box_point center_ends: the box ends also take part in cross-view
@@ -86,6 +95,18 @@ struct TrackerOptions {
   /// Validates these options and the nested ones; on failure `why` names the field.
   bool Validate(std::string* why) const;
 };
+
+/// The options in effect for a stream whose frames are `seconds_per_frame` apart (finite, > 0):
+/// `options` unchanged when reference_fps is 0 or the stream runs at reference_fps or faster;
+/// else with f = (1 / seconds_per_frame) / reference_fps < 1: every frame count n of
+/// TrackerOptions::reference_fps becomes max(its minimum, ceil(n f)) (ν >= 2, φ >= 1 unless 0,
+/// all others >= 1; δ <= ν) and sort.iou_threshold becomes iou_threshold * f. The result is
+/// valid when `options` is. docs/DECISIONS.md "Time".
+TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_frame);
+
+/// AtFrameRate(options, seconds_per_frame).sort, without copying the rest.
+tracking2d::SortOptions SortOptionsAtFrameRate(const TrackerOptions& options,
+                                               double seconds_per_frame);
 
 /// Number of points per observation under `options`: 1 in box mode, the layout's joints in
 /// pose mode. `options` must be valid.

@@ -9,34 +9,22 @@
 namespace mvtrack::tracker {
 
 WindowBuilder::WindowBuilder(const geometry::CameraRig& rig, const TrackerOptions& options)
-    : window_size_(options.window_size),
+    : options_(options),
+      window_size_(options.window_size),
       window_step_(options.window_step),
       min_tracklet_length_(options.min_tracklet_length) {
   for (int i = 0; i < rig.size(); ++i) camera_ids_.push_back(rig.camera(i).id);
   tracks_.resize(camera_ids_.size());
 }
 
-void WindowBuilder::RememberClosed(FrameIndex frame, Utime utime) {
-  recent_frames_.emplace_back(frame, utime);
-  if (recent_frames_.size() > kPeriodFrames) recent_frames_.pop_front();
-}
+void WindowBuilder::RememberClosed(FrameIndex frame, Utime utime) { period_.Add(frame, utime); }
 
-double WindowBuilder::SecondsPerFrame() const {
-  constexpr double kDefault = 1.0 / 30.0;
-  std::vector<double> periods;
-  periods.reserve(recent_frames_.size());
-  for (std::size_t i = 1; i < recent_frames_.size(); ++i) {
-    const auto& [f0, u0] = recent_frames_[i - 1];
-    const auto& [f1, u1] = recent_frames_[i];
-    // In double: differences of arbitrary int64 values may not fit in an int64.
-    const double df = static_cast<double>(f1) - static_cast<double>(f0);
-    const double du = static_cast<double>(u1) - static_cast<double>(u0);
-    if (df >= 1.0 && du > 0.0) periods.push_back(du * 1e-6 / df);
-  }
-  if (periods.empty()) return kDefault;
-  const auto mid = periods.begin() + static_cast<std::ptrdiff_t>(periods.size() / 2);
-  std::nth_element(periods.begin(), mid, periods.end());
-  return std::clamp(*mid, 1e-4, 60.0);
+void WindowBuilder::FixGeometry() {
+  const TrackerOptions o = AtFrameRate(options_, SecondsPerFrame());
+  window_size_ = o.window_size;
+  window_step_ = o.window_step;
+  min_tracklet_length_ = o.min_tracklet_length;
+  geometry_fixed_ = true;
 }
 
 std::size_t WindowBuilder::num_stored_observations() const {
@@ -103,6 +91,13 @@ void WindowBuilder::CloseOpenFrame(std::vector<BuilderOutput>* out) {
 void WindowBuilder::EmitWindowsUpTo(FrameIndex complete_through, bool flushing,
                                     std::vector<BuilderOutput>* out) {
   if (!grid_origin_) return;
+  // Three closed frames give two periods; their median is the larger, so one late frame among
+  // them can only shorten the windows. A stream that ends earlier uses what it has.
+  constexpr std::size_t kFramesToFixGeometry = 3;
+  if (!geometry_fixed_) {
+    if (period_.size() < kFramesToFixGeometry && !flushing) return;
+    FixGeometry();
+  }
   const FrameIndex origin = *grid_origin_;
   const std::int64_t nu = window_size_;
   const std::int64_t delta = window_step_;
@@ -200,7 +195,8 @@ void WindowBuilder::EndStream(std::vector<BuilderOutput>* out) {
   next_window_ = 0;
   grid_origin_.reset();
   last_closed_frame_.reset();
-  recent_frames_.clear();  // the next stream may run at another rate
+  period_.Clear();  // the next stream may run at another rate
+  geometry_fixed_ = false;
   for (auto& camera_tracks : tracks_) camera_tracks.clear();
 }
 

@@ -19,6 +19,7 @@
 #include "geometry/camera_rig.h"
 #include "tracker/camera_stage.h"
 #include "tracker/frame_gate.h"
+#include "tracker/frame_period.h"
 #include "tracker/options.h"
 #include "tracker/window_job.h"
 
@@ -39,6 +40,9 @@ struct StreamEnd {};
 using BuilderOutput = std::variant<ClosedFrame, WindowJob, StreamEnd>;
 
 /// Window grid (docs/DECISIONS.md "Tracker facade"): window k covers [F0 + kδ, F0 + kδ + ν),
+/// with ν, δ (and the minimum tracklet length) of AtFrameRate(options, SecondsPerFrame()) fixed
+/// per stream once three of its frames are closed (or at its end), so a 2 fps stream gets
+/// windows as long in seconds as a 25 fps one; until then no window is emitted;
 /// F0 = the first frame of the stream. A window is emitted once its last frame is closed or, for
 /// frames skipped in the input, once a later frame opens. Window k finalizes
 /// [F0 + kδ + ⌊(ν−δ)/2⌋, F0 + kδ + ⌊(ν−δ)/2⌋ + δ) (window 0 from F0). At the end of a stream
@@ -70,12 +74,11 @@ class WindowBuilder {
   const std::optional<FrameIndex>& open_frame() const { return open_frame_; }
   /// Number of stored 2D observations (all cameras, all live tracks).
   std::size_t num_stored_observations() const;
-  /// The stream's frame period, measured from the capture times (utime) of the latest closed
-  /// frames: the median over up to 32 consecutive ones of utime difference / frame difference,
-  /// so a few bad capture times (a skewed camera, a clock step) do not move it; 1/30 s before
-  /// two frames of the stream are closed; clamped to [0.1 ms, 60 s]. Every WindowJob carries
-  /// it.
-  double SecondsPerFrame() const;
+  /// The stream's frame period, measured from the capture times (utime) of its latest closed
+  /// frames (FramePeriod: each frame's smallest camera utime). Every WindowJob carries it.
+  double SecondsPerFrame() const { return period_.Seconds(); }
+  /// The window length ν in effect (the options' until the stream's geometry is fixed).
+  std::int64_t window_size() const { return window_size_; }
 
  private:
   struct TimedObservation {
@@ -94,7 +97,12 @@ class WindowBuilder {
   void EndStream(std::vector<BuilderOutput>* out);
   void RememberClosed(FrameIndex frame, Utime utime);
 
+  // Fixes ν, δ and the minimum tracklet length of this stream from its measured rate.
+  void FixGeometry();
+
   std::vector<CameraId> camera_ids_;  // by rig index
+  TrackerOptions options_;            // as given; the geometry below is AtFrameRate's
+  bool geometry_fixed_ = false;
   std::int64_t window_size_ = 0;      // ν
   std::int64_t window_step_ = 0;      // δ
   int min_tracklet_length_ = 0;
@@ -108,9 +116,8 @@ class WindowBuilder {
   std::int64_t window_id_offset_ = 0;      // added to grid window indices (re-anchoring)
   std::int64_t next_window_ = 0;           // grid index of the next window to emit
   std::optional<FrameIndex> last_closed_frame_;
-  // The latest closed frames of the stream (frame, utime), for SecondsPerFrame.
-  static constexpr std::size_t kPeriodFrames = 32;
-  std::deque<std::pair<FrameIndex, Utime>> recent_frames_;
+  // The latest closed frames of the stream, for SecondsPerFrame.
+  FramePeriod period_;
 
   /// By rig index: the observations of each 2D track, oldest first.
   std::vector<std::map<TrackId2D, std::vector<TimedObservation>>> tracks_;

@@ -18,7 +18,8 @@ namespace {
 
 bool SameTriangulationOptions(const triangulation::TriangulationOptions& a,
                               const triangulation::TriangulationOptions& b) {
-  return a.method == b.method && a.phi == b.phi && a.kappa_m == b.kappa_m &&
+  // phi is set per window (PersonTriangulator::set_phi, AtFrameRate).
+  return a.method == b.method && a.kappa_m == b.kappa_m &&
          a.min_confidence == b.min_confidence && a.ransac_threshold_px == b.ransac_threshold_px &&
          a.min_inliers == b.min_inliers && a.max_views == b.max_views;
 }
@@ -38,6 +39,8 @@ void GateBoxHeights(const TrackerOptions& options, core::Tracklet3D* person) {
 core::Tracklet3D TriangulateCluster(const geometry::CameraRig& rig, const TrackerOptions& options,
                                     const WindowJob& job, const std::vector<int>& cluster,
                                     WindowWorkspace* workspace) {
+  // `options` are the window's (AtFrameRate): φ follows the stream's frame rate.
+  workspace->triangulator().set_phi(options.triangulation.phi);
   core::Tracklet3D person = workspace->triangulator().Triangulate(
       rig, job.tracklets, cluster, job.begin, job.end, NumTriangulatedPoints(options), nullptr,
       NumPoints(options));
@@ -357,13 +360,15 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptio
   return ProcessWindowJob(rig, options, job, workspace, PersonLoop());
 }
 
-WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,
+WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& base_options,
                               const WindowJob& job, WindowWorkspace* workspace,
                               const PersonLoop& person_loop) {
   MVTRACK_CHECK(workspace != nullptr);
   MVTRACK_CHECK_MSG(SameTriangulationOptions(workspace->triangulator().options(),
-                                             options.triangulation),
+                                             base_options.triangulation),
                     "the workspace was made for other triangulation options");
+  // The frame counts in effect at the stream's measured rate (TrackerOptions::reference_fps).
+  const TrackerOptions options = AtFrameRate(base_options, job.seconds_per_frame);
   WindowResult r = EmptyWindowResult(job);
   // Cross-view association (Eq. 2-4, PDNC / Algorithm 1).
   association::AssociationOptions ao = options.association;

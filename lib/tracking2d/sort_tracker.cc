@@ -31,6 +31,12 @@ SortTracker::SortTracker(SortOptions options) : options_(options) {
   MVTRACK_CHECK_MSG(options_.Validate(&why), why.c_str());
 }
 
+void SortTracker::set_options(const SortOptions& options) {
+  std::string why;
+  MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
+  options_ = options;
+}
+
 std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
                                                   const std::vector<core::BoxPx>& boxes) {
   if (last_frame_.has_value() && frame <= *last_frame_) return {};

@@ -90,6 +90,9 @@ class SortTracker {
 
   /// The options in use.
   const SortOptions& options() const { return options_; }
+  /// Replaces the options for the following frames (valid: checked); live tracks keep their
+  /// state. The tracker scales max_age, min_hits and iou_threshold to the camera's frame rate.
+  void set_options(const SortOptions& options);
 
  private:
   struct Track {

@@ -311,6 +311,11 @@ std::optional<Vec3> PersonTriangulator::SolveRansac(TriangulationStats* stats) {
   return best_point;
 }
 
+void PersonTriangulator::set_phi(int phi) {
+  MVTRACK_CHECK_MSG(phi >= 0, "PersonTriangulator::set_phi: phi must be >= 0");
+  options_.phi = phi;
+}
+
 core::Tracklet3D PersonTriangulator::Triangulate(const geometry::CameraRig& rig,
                                                  const std::vector<core::Tracklet2D>& tracklets,
                                                  const std::vector<int>& cluster,

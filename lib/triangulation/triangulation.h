@@ -95,6 +95,9 @@ class PersonTriangulator {
 
   /// The options this triangulator uses.
   const TriangulationOptions& options() const { return options_; }
+  /// Sets the interpolation window φ (frames, >= 0; checked) for the following calls: the
+  /// tracker scales it to the stream's frame rate (tracker::AtFrameRate).
+  void set_phi(int phi);
 
   /// See TriangulatePerson. `stats`, if non-null, is overwritten with this call's diagnostics.
   /// Rows are max(num_points, row_size) long; points from num_points on are left empty for the

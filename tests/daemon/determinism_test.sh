@@ -2,7 +2,8 @@
 # Determinism: mvtrackd fed the recording through LCM's file:// provider publishes exactly the
 # tracks `mvtrack replay` writes for it, with 1, 2 and 8 window-job workers: the canonical
 # JSONL is byte-identical, and the tracks3d_t messages it published on LCM (captured by a
-# file://...?mode=w output) compare equal, frame by frame, to replay's LCM output.
+# file://...?mode=w output) compare equal, frame by frame, to replay's LCM output. The same
+# holds at 2 fps, where both scale the frame counts to the measured rate.
 source "$(dirname "$0")/common.sh"
 expect_exit 0 "$OUT/replay.log" "$MVTRACK" replay --quiet --calibration "$P/calibration.yaml" \
   --mode poses --jsonl "$OUT/replay.jsonl" --out "$OUT/replay.lcmlog" "$P/detections.lcmlog"
@@ -20,4 +21,24 @@ for n in 1 2 8; do
 done
 # The published LCM log also holds the status messages (one per period and a final one).
 expect_grep "status_messages=[1-9]" "$OUT/d8.log"
+# A 2 fps recording: the daemon and replay measure the same rate from the capture times and
+# scale the frame counts alike (reference_fps; 3-frame windows: about 30 over 60 frames).
+expect_exit 0 "$OUT/sim2.log" "$MVTRACK" sim --out "$OUT/sim2" --cameras 3 --people 4 \
+  --frames 60 --fps 2 --mode boxes --seed 3 --quiet
+expect_exit 0 "$OUT/replay2.log" "$MVTRACK" replay --calibration "$OUT/sim2/calibration.yaml" \
+  --mode boxes --jsonl "$OUT/replay2.jsonl" "$OUT/sim2/detections.lcmlog"
+windows=$(grep -o "[0-9]* window(s)" "$OUT/replay2.log" | grep -o "^[0-9]*")
+expect_ge "$windows" 25 "2 fps replay: windows of 3 frames"
+{
+  echo "format: mvtrack.daemon/1"
+  echo "cameras:"
+  echo "  calibration: $OUT/sim2/calibration.yaml"
+  echo "input:"
+  echo "  lcm_url: \"memq://\""
+  echo "tracker:"
+  echo "  mode: boxes"
+} > "$OUT/daemon2.yaml"
+expect_exit 0 "$OUT/d2fps.log" "$MVTRACKD" --config "$OUT/daemon2.yaml" --workers 2 \
+  --input-log "$OUT/sim2/detections.lcmlog" --tracks-jsonl "$OUT/d2fps.jsonl"
+cmp "$OUT/replay2.jsonl" "$OUT/d2fps.jsonl" || fail "2 fps: the daemon's JSONL differs from replay"
 echo "ok"

@@ -384,6 +384,28 @@ TEST_CASE("LoadWildtrack and WildtrackGroundPoints on a synthetic WILDTRACK", "[
   REQUIRE(ground[1].points.size() == 1);
   CHECK((ground[1].points[0].position_m - Vec3(2.0, 3.0, 0.0)).norm() < 1e-9);
   CHECK(ground[1].points[0].num_views == 1);
+
+  // Ground truth (mvdet/gt.txt, `image_frame grid_x grid_y`): image frame 1805 = annotated
+  // frame 361; cell (200, 480) = (-3 + 5, -9 + 12) = (2, 3) m.
+  CHECK_FALSE(HasWildtrackGroundTruth(dir.path()));
+  dir.Write("wildtrack/mvdet/gt.txt", "1800 0 0\n1805 200 480\n1805 479 1439\n\n");
+  CHECK(HasWildtrackGroundTruth(dir.path()));
+  const Dataset with_gt = LoadWildtrack(dir.path());
+  REQUIRE(with_gt.ground_truth.size() == 2);
+  CHECK(with_gt.ground_truth[0].frame == 360);
+  REQUIRE(with_gt.ground_truth[0].objects.size() == 1);
+  CHECK((with_gt.ground_truth[0].objects[0].position - Vec3(-3.0, -9.0, 0.0)).norm() < 1e-12);
+  REQUIRE(with_gt.ground_truth[1].objects.size() == 2);
+  CHECK(with_gt.ground_truth[1].objects[0].id == 0);
+  CHECK(with_gt.ground_truth[1].objects[1].id == 1);
+  CHECK((with_gt.ground_truth[1].objects[0].position - Vec3(2.0, 3.0, 0.0)).norm() < 1e-12);
+  CHECK((with_gt.ground_truth[1].objects[1].position - Vec3(8.975, 26.975, 0.0)).norm() < 1e-9);
+  for (const char* bad : {"1800 0\n", "1801 0 0\n", "1800 480 0\n", "1800 0 -1\n",
+                          "1800 0 0 7\n", "x 0 0\n"}) {
+    dir.Write("wildtrack/mvdet/gt.txt", bad);
+    INFO(bad);
+    CHECK_THROWS_AS(WildtrackGroundTruth(dir.path(), 360, 360), DatasetError);
+  }
 }
 
 TEST_CASE("MergeGroundPoints merges across views within the radius only", "[unit]") {

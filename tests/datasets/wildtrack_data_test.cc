@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <catch2/catch.hpp>
 #include <vector>
 
@@ -54,8 +55,49 @@ TEST_CASE("WILDTRACK real data (skipped without ../shared/data/wildtrack): sizes
     }
   }
   CHECK(boxes == 5155);
-  CHECK(ds.ground_truth.empty());
+  // Ground truth of the detection frames from mvdet/gt.txt (SOURCE.md: 952 positions in frames
+  // 360-399, 23.8 per frame).
+  REQUIRE(ds.ground_truth.size() == 40);
+  std::size_t positions = 0;
+  for (std::size_t f = 0; f < ds.ground_truth.size(); ++f) {
+    CHECK(ds.ground_truth[f].frame == 360 + static_cast<FrameIndex>(f));
+    for (std::size_t i = 0; i < ds.ground_truth[f].objects.size(); ++i) {
+      const eval::EvalObject& o = ds.ground_truth[f].objects[i];
+      CHECK(o.id == static_cast<std::int64_t>(i));
+      CHECK(o.joints.empty());
+      CHECK(o.position.z() == 0.0);
+      CHECK(o.position.x() >= WildtrackArea::kMinX);
+      CHECK(o.position.x() < WildtrackArea::kMaxX);
+      CHECK(o.position.y() >= WildtrackArea::kMinY);
+      CHECK(o.position.y() < WildtrackArea::kMaxY);
+    }
+    positions += ds.ground_truth[f].objects.size();
+  }
+  CHECK(positions == 952);
   CHECK(ds.gt_layout == core::KeypointLayoutId::kNone);
+}
+
+TEST_CASE("WILDTRACK real data (skipped without ../shared/data/wildtrack): ground truth of any "
+          "annotated frames",
+          "[data]") {
+  MVTRACK_REQUIRE_DATASET(root, "wildtrack");
+  // All 400 annotated frames (image frames 0, 5, ..., 1995), positions on the 2.5 cm grid.
+  const eval::EvalSequence all = WildtrackGroundTruth(root, 0, 399);
+  REQUIRE(all.size() == 400);
+  std::size_t positions = 0;
+  for (const eval::EvalFrame& f : all) {
+    positions += f.objects.size();
+    for (const eval::EvalObject& o : f.objects) {
+      const double gx = (o.position.x() - WildtrackArea::kMinX) / 0.025;
+      CHECK(std::abs(gx - std::round(gx)) < 1e-9);
+    }
+  }
+  CHECK(positions > 8000);  // about 20 people per frame
+  const eval::EvalSequence one = WildtrackGroundTruth(root, 360, 360);
+  REQUIRE(one.size() == 1);
+  CHECK(one[0].objects.size() == all[360].objects.size());
+  CHECK_THROWS_AS(WildtrackGroundTruth(root, 350, 400), DatasetError);
+  CHECK_THROWS_AS(WildtrackGroundTruth(root, 10, 5), DatasetError);
 }
 
 TEST_CASE("WILDTRACK real data (skipped without ../shared/data/wildtrack): calibration agrees "

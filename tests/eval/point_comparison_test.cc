@@ -118,5 +118,64 @@ TEST_CASE("Point comparison: frame ranges, empty input, bad options", "[unit]") 
   CHECK(d.error.find("reference") != std::string::npos);
 }
 
+TEST_CASE("Point comparison: MODA, MODP and the evaluated area", "[unit]") {
+  // Frame 0: reference (0, 0), (3, 0), (20, 0); footprints (0.1, 0), (3, 0.4), (8, 8).
+  //   Pairs 0.1 and 0.4 m; (8, 8) is a false positive, (20, 0) a miss.
+  // Frame 1: reference (0, 0); footprints (0, 0.2) and (-9, 0).
+  //   Pair 0.2 m; (-9, 0) a false positive.
+  // Everywhere: TP 3, FP 2, FN 1, GT 4 -> MODA = 1 - 3/4 = 0.25; MODP = mean of 1 - d / 0.5 =
+  //   (0.8 + 0.2 + 0.6) / 3 = 0.5333; mean matched distance (0.1 + 0.4 + 0.2) / 3 = 0.2333.
+  // Area x in [-1, 10], y in [-1, 10]: drops the reference (20, 0) and the footprint (-9, 0):
+  //   TP 3, FP 1, FN 0, GT 3 -> MODA = 1 - 1/3; precision 3/4, recall 1.
+  EvalSequence ref;
+  EvalSequence pred;
+  Add(&ref, 0, At(0, 0.0, 0.0));
+  Add(&ref, 0, At(1, 3.0, 0.0));
+  Add(&ref, 0, At(2, 20.0, 0.0));
+  Add(&pred, 0, At(5, 0.1, 0.0));
+  Add(&pred, 0, At(6, 3.0, 0.4));
+  Add(&pred, 0, At(7, 8.0, 8.0));
+  Add(&ref, 1, At(0, 0.0, 0.0));
+  Add(&pred, 1, At(5, 0.0, 0.2));
+  Add(&pred, 1, At(6, -9.0, 0.0));
+
+  const PointComparison all = ComparePoints(ref, pred, PointComparisonOptions{});
+  REQUIRE(all.valid);
+  CHECK(all.num_matched == 3);
+  CHECK(all.false_positives == 2);
+  CHECK(all.misses == 1);
+  CHECK(all.moda == Approx(0.25));
+  CHECK(all.modp == Approx(1.6 / 3.0));
+  CHECK(all.mean_distance_m == Approx(0.7 / 3.0));
+  CHECK(all.num_reference_outside == 0);
+  CHECK(all.protocol.find("Area: everywhere") != std::string::npos);
+
+  PointComparisonOptions options;
+  options.area = PointComparisonOptions::Area{-1.0, 10.0, -1.0, 10.0};
+  const PointComparison in = ComparePoints(ref, pred, options);
+  REQUIRE(in.valid);
+  CHECK(in.num_reference == 3);
+  CHECK(in.num_predicted == 4);
+  CHECK(in.num_reference_outside == 1);
+  CHECK(in.num_predicted_outside == 1);
+  CHECK(in.false_positives == 1);
+  CHECK(in.misses == 0);
+  CHECK(in.moda == Approx(1.0 - 1.0 / 3.0));
+  CHECK(in.precision == Approx(0.75));
+  CHECK(in.recall == Approx(1.0));
+  CHECK(in.protocol.find("x in [-1.00, 10.00] m") != std::string::npos);
+
+  PointComparisonOptions bad;
+  bad.area = PointComparisonOptions::Area{1.0, 1.0, 0.0, 2.0};
+  const PointComparison b = ComparePoints(ref, pred, bad);
+  CHECK_FALSE(b.valid);
+  CHECK(b.error.find("area") != std::string::npos);
+  // No reference points: MODA undefined.
+  const PointComparison none = ComparePoints({}, pred, PointComparisonOptions{});
+  REQUIRE(none.valid);
+  CHECK(std::isnan(none.moda));
+  CHECK(none.false_positives == 5);  // all five footprints
+}
+
 }  // namespace
 }  // namespace mvtrack::eval

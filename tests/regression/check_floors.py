@@ -5,7 +5,8 @@ Usage: check_floors.py KEY FLOORS_FILE EVAL_JSON
 Floors file lines: `KEY METRIC >=|<= BOUND` ('#' starts a comment); only KEY's lines are
 checked and there must be at least one. Metrics: mota, idf1, hota, mpjpe_m, false_positives,
 misses, id_switches, id_transfers, id_fragmentations, predicted_ids (tracking); pcp_average, pcp_actorN (PCP); median_distance_m, p90_distance_m,
-precision, recall, mean_abs_count_difference (--points). Exit 0 when every bound holds.
+precision, recall, mean_abs_count_difference, moda, modp_m, false_positives, misses
+(--points). Exit 0 when every bound holds.
 Shared by replay_regression_test.sh (datasets) and sim_regression_test.sh (simulated scenes).
 """
 import json
@@ -34,7 +35,7 @@ if "pcp" in report:
         metrics[f"pcp_actor{actor['actor_id']}"] = actor["pcp"]
 if "points" in report:
     for name in ("median_distance_m", "p90_distance_m", "precision", "recall",
-                 "mean_abs_count_difference"):
+                 "mean_abs_count_difference", "moda", "modp_m", "false_positives", "misses"):
         metrics[name] = report["points"][name]
 
 checked, failures = 0, []

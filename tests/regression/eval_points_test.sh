@@ -62,4 +62,23 @@ expect_grep 'points and --pcp' "$WORK/e1.txt"
 expect_exit 2 "$WORK/e2.txt" "$MVTRACK" eval --gt "$WORK/ref.jsonl" "$WORK/pred.jsonl" --points \
   --distance joints
 expect_grep 'distance must be footprint' "$WORK/e2.txt"
+# MODA / MODP in the table and the JSON; --area drops points outside on both sides.
+expect_grep 'MODA%' "$WORK/out2.txt"
+"$MVTRACK" eval --gt "$WORK/ref.jsonl" "$WORK/pred.jsonl" --points --area -100,100,-100,100 \
+  --json "$WORK/out3.json" >"$WORK/out3.txt"
+expect_grep 'outside area' "$WORK/out3.txt"
+python3 - "$WORK/out3.json" <<'PY'
+import json, sys
+b = json.load(open(sys.argv[1]))["points"]
+# Every point lies inside the area: TP 2, FP 1, FN 1 of GT 3; MODA = 1 - (FP + FN) / GT.
+assert (b["num_matched"], b["false_positives"], b["misses"]) == (2, 1, 1), b
+assert abs(b["moda"] - (1 - 2 / 3)) < 1e-5, b  # JSON keeps 6 digits
+assert b["area"] == {"min_x": -100, "max_x": 100, "min_y": -100, "max_y": 100}, b["area"]
+assert b["num_reference_outside"] == 0 and b["num_predicted_outside"] == 0, b
+PY
+expect_exit 2 "$WORK/e3.txt" "$MVTRACK" eval --gt "$WORK/ref.jsonl" "$WORK/pred.jsonl" --area 0,1,0,1
+expect_grep 'area needs --points' "$WORK/e3.txt"
+expect_exit 2 "$WORK/e4.txt" "$MVTRACK" eval --gt "$WORK/ref.jsonl" "$WORK/pred.jsonl" --points \
+  --area 1,0,0,1
+expect_grep 'MIN_X,MAX_X,MIN_Y,MAX_Y' "$WORK/e4.txt"
 echo "PASS: eval --points"

@@ -108,6 +108,7 @@ TEST_CASE("Window jobs list every live 2D track and the measured frame period",
   options.window_size = 10;
   options.window_step = 10;
   options.min_tracklet_length = 3;
+  options.reference_fps = 0.0;  // frame counts as given at this 2 fps stream
   tracker::FrameGate gate(rig, options);
   tracker::WindowBuilder builder(rig, options);
   std::vector<tracker::BuilderOutput> out;
@@ -143,6 +144,34 @@ TEST_CASE("Window jobs list every live 2D track and the measured frame period",
   CHECK(job->live_tracks[1].first_frame == 3);
   CHECK(job->live_tracks[1].last_frame == 4);
   CHECK(builder.SecondsPerFrame() == Approx(0.5));
+}
+
+TEST_CASE("At 2 fps the window grid keeps the durations of the 25 fps frame counts",
+          "[unit][tracker]") {
+  // reference_fps 25, nu 30, delta 20 -> at 2 fps nu = 3, delta = 2 (AtFrameRate); the geometry
+  // is fixed once three frames are closed, so window [0, 3) comes out when frame 3 opens.
+  const auto cameras = RoomCameras();
+  const geometry::CameraRig rig = MakeRig(cameras);
+  const tracker::TrackerOptions options;
+  tracker::FrameGate gate(rig, options);
+  tracker::WindowBuilder builder(rig, options);
+  std::vector<tracker::BuilderOutput> out;
+  for (FrameIndex f = 0; f < 9; ++f) {
+    core::CameraFrame cf;
+    cf.camera_id = rig.camera(0).id;
+    cf.frame = f;
+    cf.utime = f * 500'000;
+    const tracker::FrameAdmission admission = gate.Admit(cf);
+    builder.Add(admission.events, tracker::TrackedCameraFrame{0, f, cf.utime, {}}, &out);
+  }
+  std::vector<std::pair<FrameIndex, FrameIndex>> windows;
+  for (const auto& o : out) {
+    if (const auto* j = std::get_if<tracker::WindowJob>(&o)) windows.emplace_back(j->begin, j->end);
+  }
+  // Frames 0..7 are closed (8 is open): windows [0,3), [2,5), [4,7).
+  const std::vector<std::pair<FrameIndex, FrameIndex>> expected = {{0, 3}, {2, 5}, {4, 7}};
+  CHECK(windows == expected);
+  CHECK(builder.window_size() == 3);
 }
 
 // One camera-frame with a single box; returns its observation.

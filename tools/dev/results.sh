@@ -98,15 +98,13 @@ convert() {
 }
 
 # experiment ID DATASET_DIR MODE LAYOUT CONFIG EVAL_ARGS...
-#   replays $R/DATASET_DIR with CONFIG ('-' = defaults) and scores it against its ground truth
-#   (ground_points.jsonl for WILDTRACK).
+#   replays $R/DATASET_DIR with CONFIG ('-' = defaults) and scores it against its ground truth.
 experiment() {
   local id=$1 ds=$2 mode=$3 layout=$4 config=$5
   shift 5
   local cfg_arg=""
   [[ $config != - ]] && cfg_arg=" --config $config"
   local gt=ground_truth.jsonl
-  [[ -f $R/$ds/ground_points.jsonl ]] && gt=ground_points.jsonl
   local replay="mvtrack replay --calibration \$R/$ds/calibration.yaml --mode $mode --layout $layout$cfg_arg --jsonl \$R/runs/$id.jsonl --quiet \$R/$ds/detections.lcmlog"
   local ev="mvtrack eval --gt \$R/$ds/$gt \$R/runs/$id.jsonl $* --json \$R/runs/$id.eval.json"
   progress "$id"
@@ -117,11 +115,12 @@ experiment() {
     "runs/$id.eval.json" "runs/$id.replay.txt" >>"$manifest"
 }
 
-# peer ID DATASET_DIR EVAL_ARGS...: scores the dataset's peer.jsonl with our evaluator.
+# peer ID DATASET_DIR FILE EVAL_ARGS...: scores a file of the converted dataset that is not our
+# output (a peer's published output, peer.jsonl; WILDTRACK's input points) with our evaluator.
 peer() {
-  local id=$1 ds=$2
-  shift 2
-  local ev="mvtrack eval --gt \$R/$ds/ground_truth.jsonl \$R/$ds/peer.jsonl $* --json \$R/runs/$id.eval.json"
+  local id=$1 ds=$2 file=$3
+  shift 3
+  local ev="mvtrack eval --gt \$R/$ds/ground_truth.jsonl \$R/$ds/$file $* --json \$R/runs/$id.eval.json"
   progress "$id"
   run "$ev > \$R/runs/$id.eval.txt"
   printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$id" "$ds" "-" "$ev" "runs/$id.eval.json" "-" >>"$manifest"
@@ -133,7 +132,7 @@ ab=docs/examples/ablations
 shelf_eval="--frames 300-600 --distance joints --pcp --actors 0,1,2 --head-rule shelf-4da"
 campus_eval="--frames 350-470,650-750 --distance joints --pcp --actors 0,1,2"
 panoptic_eval="--distance joints --pcp"
-wildtrack_eval="--points"
+wildtrack_eval="--points --area -3,9,-9,27"
 
 # ---- Datasets.
 convert shelf shelf
@@ -148,10 +147,10 @@ convert wildtrack wildtrack
 experiment shelf shelf poses body25 - $shelf_eval
 experiment shelf_head_campus shelf poses body25 - --frames 300-600 --distance joints --pcp \
   --actors 0,1,2 --head-rule campus
-peer shelf_peer_4da shelf $shelf_eval
+peer shelf_peer_4da shelf peer.jsonl $shelf_eval
 experiment campus campus poses shelf14 - $campus_eval
 experiment campus_clean campus_clean poses shelf14 - $campus_eval
-peer campus_peer_crossview campus $campus_eval
+peer campus_peer_crossview campus peer.jsonl $campus_eval
 
 # ---- Ablations on Shelf and Campus: association (Table 5 / appendix), triangulation (Table 7),
 # the nu, delta, lambda grid (Table 8).
@@ -173,15 +172,13 @@ for seq in band1 band2; do
   done
 done
 
-# ---- WILDTRACK footprints against MVDeTr's ground points.
-experiment wildtrack_center wildtrack boxes none - $wildtrack_eval
-experiment wildtrack_bottom_center wildtrack boxes none $ab/box_point_bottom_center.yaml \
-  $wildtrack_eval
-experiment wildtrack_bottom_center_2fps wildtrack boxes none $ab/wildtrack_2fps_windows.yaml \
-  $wildtrack_eval
-for v in association_complete_linkage_empty_as_zero association_complete_linkage_empty_as_upper; do
-  experiment "wildtrack_bottom_center_$v" wildtrack boxes none \
-    $ab/wildtrack_bottom_center_$v.yaml $wildtrack_eval
+# ---- WILDTRACK footprints against its ground-truth positions (MODA, MODP, precision, recall),
+# next to the tracker's input (MVDeTr's ground points) scored the same way.
+peer wildtrack_input_mvdetr wildtrack ground_points.jsonl $wildtrack_eval
+experiment wildtrack wildtrack boxes none - $wildtrack_eval
+for v in box_point_center box_point_bottom_center frame_counts_at_any_rate \
+         association_complete_linkage_empty_as_zero association_complete_linkage_empty_as_upper; do
+  experiment "wildtrack_$v" wildtrack boxes none $ab/$v.yaml $wildtrack_eval
 done
 
 # ---- Tables.

@@ -217,6 +217,10 @@ struct DatasetJob {
   std::optional<datasets::PeerOutput> peer;
   std::optional<std::vector<datasets::WildtrackGroundFrame>> ground_points;
   double ground_cluster_radius_m = 0.0;
+  /// The ground truth is floor positions without person ids (WILDTRACK): its README text and
+  /// eval command differ, and `gt_area` is the annotated floor area (eval --area).
+  bool gt_without_ids = false;
+  std::string gt_area;
   /// The tracker mode and layout that match the detections.
   std::string replay_mode;
   std::string replay_layout;
@@ -349,7 +353,19 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
   r << "Files:\n" << LogDescription(c, st);
   r << "  " << kConvertCalibrationFile << ": mvtrack.calibration/1 (docs/FORMATS.md), "
     << ds.cameras.size() << " cameras, cam_from_world in metres, world z up.\n";
-  if (!ds.ground_truth.empty()) {
+  if (!ds.ground_truth.empty() && job.gt_without_ids) {
+    std::int64_t positions = 0;
+    for (const eval::EvalFrame& f : ds.ground_truth) {
+      positions += static_cast<std::int64_t>(f.objects.size());
+    }
+    r << "  " << kConvertGroundTruthFile << ": canonical tracks JSONL (transport::TracksJsonLine), "
+      << ds.ground_truth.size() << " lines (frames " << ds.ground_truth.front().frame << "-"
+      << ds.ground_truth.back().frame << "), " << positions << " annotated positions, z = 0.\n"
+      << "      There are NO person ids: track ids are the index of the position within its\n"
+      << "      frame. Score footprints only (mvtrack eval --points: MODA, MODP, precision,\n"
+      << "      recall) inside the annotated area, --area MIN_X,MAX_X,MIN_Y,MAX_Y = " << job.gt_area
+      << " (metres).\n";
+  } else if (!ds.ground_truth.empty()) {
     std::map<std::int64_t, std::int64_t> frames_per_actor;
     for (const eval::EvalFrame& f : ds.ground_truth) {
       for (const eval::EvalObject& o : f.objects) ++frames_per_actor[o.id];
@@ -390,7 +406,10 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
   r << "Tracking it (from this directory):\n"
     << "  mvtrack replay --calibration " << kConvertCalibrationFile << " --mode " << job.replay_mode
     << " --layout " << job.replay_layout << " --jsonl tracks.jsonl " << kConvertLogFile << "\n";
-  if (!ds.ground_truth.empty()) {
+  if (!ds.ground_truth.empty() && job.gt_without_ids) {
+    r << "  mvtrack eval --gt " << kConvertGroundTruthFile << " tracks.jsonl --points --area "
+      << job.gt_area << "\n";
+  } else if (!ds.ground_truth.empty()) {
     r << "  mvtrack eval --gt " << kConvertGroundTruthFile << " tracks.jsonl";
     if (!ds.protocol_frames.empty()) {
       r << " --frames ";
@@ -622,15 +641,20 @@ int ConvertPanoptic(int argc, char** argv, const std::string& command_line) {
 int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
   Args args;
   AddCommonOptions(&args, true);
+  args.Option("gt-frames",
+              "annotated frames A-B (0-399) whose ground-truth positions go to "
+              "ground_truth.jsonl (default: the 40 detection frames)");
   if (!args.Parse(argc,
                   argv,
-                  FormatUsage("wildtrack", "[--data DIR] "),
+                  FormatUsage("wildtrack", "[--data DIR] [--gt-frames A-B] "),
                   "WILDTRACK (Chavdarova et al., CVPR 2018): MVDeTr's detections of the 40 test\n"
                   "frames 360-399 (2 fps) drawn as boxes into the 7 views (1920x1080), box-only\n"
-                  "(layout none: track with --mode boxes). No ground truth exists; instead\n"
-                  "ground_points.jsonl holds MVDeTr's own ground-plane points per frame (the box\n"
-                  "bottoms mapped through the dataset's homographies and merged across views) for\n"
-                  "a footprint comparison. Their ids are meaningless.\n\n" +
+                  "(layout none: track with --mode boxes). ground_truth.jsonl: the annotated\n"
+                  "floor positions of mvdet/gt.txt (MVDet) without person ids (ids are per-frame\n"
+                  "indices): score with `mvtrack eval --points --area -3,9,-9,27` (MODA, MODP,\n"
+                  "precision, recall). ground_points.jsonl: MVDeTr's own ground points (the box\n"
+                  "bottoms mapped through the dataset's homographies and merged across views),\n"
+                  "the tracker's input as points; their ids are meaningless.\n\n" +
                       std::string(kFormatTrailer))) {
     return 0;
   }
@@ -640,15 +664,37 @@ int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
   Progress(c, "loading WILDTRACK from " + job.source_dir.string());
   const Clock::time_point start = Clock::now();
   job.ds = datasets::LoadWildtrack(c.data_root);
+  if (args.Has("gt-frames")) {
+    const std::vector<eval::FrameRange> r = ParseFrameRanges(args.Get("gt-frames"), "--gt-frames");
+    if (r.size() != 1) throw UsageError("--gt-frames takes one range A-B");
+    if (!datasets::HasWildtrackGroundTruth(c.data_root)) {
+      throw UsageError("--gt-frames: " + (job.source_dir / "mvdet" / "gt.txt").string() +
+                       " is missing");
+    }
+    job.ds.ground_truth = datasets::WildtrackGroundTruth(c.data_root, r[0].first, r[0].last);
+  }
   const datasets::WildtrackGroundOptions ground_options;
   job.ground_points = datasets::WildtrackGroundPoints(c.data_root, ground_options);
   job.ground_cluster_radius_m = ground_options.cluster_radius_m;
+  job.gt_without_ids = true;
+  {
+    std::ostringstream area;
+    area << datasets::WildtrackArea::kMinX << "," << datasets::WildtrackArea::kMaxX << ","
+         << datasets::WildtrackArea::kMinY << "," << datasets::WildtrackArea::kMaxY;
+    job.gt_area = area.str();
+  }
   job.load_seconds = SecondsSince(start);
   job.camera_names = NamesFromPattern(job.ds.cameras, "C", 1);
   job.what = {
       "WILDTRACK: MVDeTr's boxes (rest/MVDeTr_test.json) of 7 cameras C1-C7 (ids 0-6), box-only",
       "detections (layout none), score 1.",
-      "No ground truth. ground_points.jsonl: MVDeTr's ground points (see below)."};
+      job.ds.ground_truth.empty()
+          ? "No ground truth (mvdet/gt.txt missing). ground_points.jsonl: MVDeTr's ground points."
+          : "ground_truth.jsonl: the positions of mvdet/gt.txt, frames " +
+                std::to_string(job.ds.ground_truth.front().frame) + "-" +
+                std::to_string(job.ds.ground_truth.back().frame) +
+                ", no person ids (ids = per-frame indices; use `mvtrack eval --points --area "
+                "-3,9,-9,27`). ground_points.jsonl: MVDeTr's ground points."};
   job.replay_mode = "boxes";
   job.replay_layout = "none";
   WriteDatasetJob(c, job);

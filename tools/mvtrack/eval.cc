@@ -3,6 +3,7 @@
 // (tracks_io.h); ground-truth actors are tracks whose ids are the actor ids.
 
 #include <charconv>
+#include <cstdlib>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -136,6 +137,24 @@ void WriteJsonReport(const Args& args, const eval::EvaluationReport& report) {
 }
 
 // eval --points: footprints of `pred` against the identity-free reference points of `gt`.
+// "MIN_X,MAX_X,MIN_Y,MAX_Y" in metres.
+eval::PointComparisonOptions::Area ParseArea(const std::string& text) {
+  const std::vector<std::string_view> parts = SplitCommas(text);
+  std::vector<double> v;
+  for (std::string_view part : parts) {
+    const std::string s(part);
+    char* end = nullptr;
+    const double x = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(x)) break;
+    v.push_back(x);
+  }
+  if (parts.size() != 4 || v.size() != 4 || !(v[0] < v[1]) || !(v[2] < v[3])) {
+    throw UsageError("--area: '" + text +
+                     "' is not MIN_X,MAX_X,MIN_Y,MAX_Y (four finite numbers in metres, min < max)");
+  }
+  return {v[0], v[1], v[2], v[3]};
+}
+
 int RunPointComparison(const Args& args,
                        const TrackFile& gt,
                        const TrackFile& pred,
@@ -143,6 +162,7 @@ int RunPointComparison(const Args& args,
   eval::PointComparisonOptions options;
   options.gate_m = tracking_options.footprint_threshold_m;
   options.frame_ranges = tracking_options.frame_ranges;
+  if (args.Has("area")) options.area = ParseArea(args.Get("area"));
   std::string why;
   if (!options.Validate(&why)) throw UsageError(why);
   const bool json_to_stdout = args.Has("json") && args.Get("json") == "-";
@@ -194,6 +214,10 @@ int RunEval(int argc, char** argv) {
             "instead of tracking metrics, compare footprints with reference points that carry no "
             "identities (GT = e.g. WILDTRACK's ground_points.jsonl): per-frame counts and the "
             "distances of the per-frame one-to-one matches within --threshold")
+      .Option("area",
+              "--points only: MIN_X,MAX_X,MIN_Y,MAX_Y (metres): points of either side outside "
+              "this floor rectangle are dropped before matching (a dataset's annotated area; "
+              "WILDTRACK: -3,9,-9,27)")
       .Flag("pcp", "also score PCP (alpha 0.5): the Shelf/Campus parts when the layout is shelf14, "
                    "else every bone of the layout")
       .Option("json", "also write the report as JSON (schema mvtrack.eval/1) to this file "
@@ -203,7 +227,8 @@ int RunEval(int argc, char** argv) {
           argv,
           "mvtrack eval --gt GT [--pred] TRACKS [--layout NAME] "
           "[--distance footprint|joints] [--threshold M] [--frames A-B[,C-D]] [--cover-frames N] "
-          "[--actors 0,1,2] [--head-rule campus|shelf-4da] [--pcp | --points] [--json OUT.json]",
+          "[--actors 0,1,2] [--head-rule campus|shelf-4da] [--pcp | --points [--area X0,X1,Y0,Y1]] "
+          "[--json OUT.json]",
           "Scores tracks against ground truth with CLEAR MOT (MOTA, MOTP, FP, FN, IDSW, MT,\n"
           "ML; py-motmetrics semantics), identity F1 (IDF1, IDP, IDR), HOTA (DetA, AssA,\n"
           "LocA; TrackEval's definitions), id transfers and fragmentations (IDTR, IDFRAG)\n"
@@ -214,7 +239,8 @@ int RunEval(int argc, char** argv) {
           "(the mapping is printed). The protocol of every metric is printed with it.\n"
           "With --points the ground truth is a set of reference points without\n"
           "identities: each frame's footprints and points are paired one-to-one\n"
-          "(min-cost, within --threshold) and the counts and distances are reported.\n\n"
+          "(min-cost, within --threshold) and the counts, MODA, MODP, precision, recall\n"
+          "and distances are reported (e.g. WILDTRACK's ground_truth.jsonl with --area).\n\n"
           "Exit status: 0 evaluated, 1 failure (unreadable input, inputs that cannot be\n"
           "compared), 2 usage error.")) {
     return 0;
@@ -249,6 +275,7 @@ int RunEval(int argc, char** argv) {
   const bool pcp = args.Has("pcp");
   const bool points = args.Has("points");
   if (points && pcp) throw UsageError("--points and --pcp exclude each other");
+  if (args.Has("area") && !points) throw UsageError("--area needs --points");
   if (points && tracking_options.distance != eval::DistanceKind::kFootprint) {
     throw UsageError("--points compares footprints: --distance must be footprint");
   }
