@@ -171,6 +171,11 @@ DaemonConfig LoadConfig(const Options& o) {
   }
   if (o.output_url) c.output_url = *o.output_url;
   if (o.workers) c.workers = *o.workers;
+  // systemd's StateDirectory= (the unit's /var/lib/mvtrackd) when the file names none.
+  if (const char* env = std::getenv("STATE_DIRECTORY"); c.state_directory.empty() && env != nullptr) {
+    const std::string dirs = env;
+    c.state_directory = dirs.substr(0, dirs.find(':'));
+  }
   if (o.log_level) c.log_level = *o.log_level;
   return c;
 }
@@ -202,7 +207,10 @@ long MaxRssKb() {
 void LogSummary(const mvtrack::service::ServiceCounters& c, double seconds) {
   const auto& st = c.pipeline.tracker;
   std::int64_t late = 0, flood = 0, backwards = 0, duplicates = 0, far_future = 0, missed = 0;
+  std::int64_t clock_offset = 0, camera_restarts = 0;
   for (const auto& cam : c.sync.cameras) {
+    clock_offset += cam.clock_offset;
+    camera_restarts += cam.restarts;
     late += cam.late;
     flood += cam.flood;
     backwards += cam.backwards;
@@ -215,9 +223,11 @@ void LogSummary(const mvtrack::service::ServiceCounters& c, double seconds) {
                c.messages, c.foreign_messages, c.decode_errors, Counts(c.decode_errors_by_kind),
                c.channel_mismatches, c.image_size_mismatches);
   spdlog::info("summary: camera_frames={} unknown_camera={} backwards={} duplicates={} "
-               "far_future={} late={} flood={} resyncs={} submitted={} gate_rejected={}",
+               "far_future={} late={} flood={} clock_offset={} camera_restarts={} resyncs={} "
+               "submitted={} gate_rejected={}",
                c.camera_frames_decoded, c.sync.unknown_camera, backwards, duplicates, far_future,
-               late, flood, c.stream_restarts, c.submitted, c.gate_rejected);
+               late, flood, clock_offset, camera_restarts, c.stream_restarts, c.submitted,
+               c.gate_rejected);
   spdlog::info("summary: frames_released={} complete={} by_deadline={} by_bound={} missed={} "
                "queue_dropped={}",
                c.sync.frames_released, c.sync.released_complete, c.sync.released_by_deadline,

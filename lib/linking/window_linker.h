@@ -247,6 +247,8 @@ class WindowLinker {
   FloorMotion PredictedMotion(const LinkedTrack& track, FrameIndex frame) const;
   /// The frame period of the latest Link (1/30 s before the first).
   double seconds_per_frame() const { return seconds_per_frame_; }
+  /// The id the next new track gets (ids are given out in increasing order, never twice).
+  TrackId3D next_id() const { return next_id_; }
 
  private:
   TrackState StateOf(const LinkedTrack& track) const;

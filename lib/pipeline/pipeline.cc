@@ -308,6 +308,7 @@ void Pipeline::FinalizerLoop() {
           std::lock_guard<std::mutex> lock(status_mu_);
           stats_.windows_processed = finalizer_.counters().windows_processed;
           stats_.tracks_born = finalizer_.counters().tracks_born;
+          next_track_id_ = finalizer_.linker().next_id();
           if (finished.failed) {
             ++windows_failed_;
             last_failure_ = "window " + std::to_string(step->window_id) + ": " + finished.error;
@@ -376,6 +377,7 @@ PipelineStatus Pipeline::Status() const {
   }
   std::lock_guard<std::mutex> lock(status_mu_);
   s.tracker = stats_;
+  s.next_track_id = next_track_id_;
   for (std::size_t c = 0; c < s.cameras.size(); ++c) {
     s.cameras[c].frames_processed = camera_counters_[c].frames_processed;
     s.cameras[c].detections_rejected = camera_counters_[c].detections_rejected;

@@ -154,6 +154,9 @@ struct PipelineStatus {
   std::int64_t output_callback_errors = 0;  ///< exceptions thrown by the output callback
   LatencyStats window_latency;              ///< see LatencyStats
   ExecutorStats executor;                   ///< the executor's counters and queue depth
+  /// The id the next new track will get (every id below it may have been given out; the
+  /// daemon's id reservation covers it before it is published).
+  TrackId3D next_track_id = 1;
 };
 
 /// The threaded tracker; see the file comment.
@@ -299,6 +302,7 @@ class Pipeline {
   std::vector<CameraCounters> camera_counters_;
   std::int64_t windows_submitted_ = 0;
   std::int64_t windows_failed_ = 0;
+  TrackId3D next_track_id_ = 1;  // guarded by status_mu_
   std::string last_failure_;
   std::int64_t output_callback_errors_ = 0;
   LatencyStats latency_;

@@ -169,7 +169,8 @@ void ParseSync(const MapRef& root, DaemonConfig* c) {
   if (!node) return;
   const MapRef m(*node,
                  {"mode", "tolerance_us", "deadline_us", "silent_after_us", "max_future_us",
-                  "max_frame_ahead", "min_frame_interval_us", "resync_after_rejections",
+                  "max_frame_ahead", "clock_tolerance_us", "max_frame_offset",
+                  "min_frame_interval_us", "resync_after_rejections",
                   "max_pending_frames", "idle_flush_s"},
                  true);
   SyncOptions& s = c->sync;
@@ -180,6 +181,8 @@ void ParseSync(const MapRef& root, DaemonConfig* c) {
   if (auto v = m.Find("silent_after_us")) s.silent_after_us = GetInt64(*v, 1, kHour);
   if (auto v = m.Find("max_future_us")) s.max_future_us = GetInt64(*v, 1, 24 * kHour);
   if (auto v = m.Find("max_frame_ahead")) s.max_frame_ahead = GetInt64(*v, 1, INT32_MAX);
+  if (auto v = m.Find("clock_tolerance_us")) s.clock_tolerance_us = GetInt64(*v, 1, 24 * kHour);
+  if (auto v = m.Find("max_frame_offset")) s.max_frame_offset = GetInt64(*v, 1, INT32_MAX);
   if (auto v = m.Find("min_frame_interval_us")) s.min_frame_interval_us = GetInt64(*v, 0, kHour);
   if (auto v = m.Find("resync_after_rejections")) {
     s.resync_after_rejections = GetInt(*v, 1, 1000000);
@@ -210,6 +213,17 @@ void ParseThreadsAndQueues(const MapRef& root, DaemonConfig* c) {
     if (auto v = m.Find("reorder_capacity")) c->reorder_capacity = GetInt(*v, 1, 1000000);
     if (auto v = m.Find("finalizer_capacity")) c->finalizer_queue_capacity = GetInt(*v, 1, 1000000);
   }
+}
+
+void ParseState(const MapRef& root, const std::string& base_dir, DaemonConfig* c) {
+  const std::optional<NodeRef> node = root.Find("state");
+  if (!node) return;
+  const MapRef m(*node, {"directory", "id_block"}, true);
+  if (auto v = m.Find("directory")) {
+    const std::string dir = GetString(*v, /*allow_empty=*/true);
+    c->state_directory = dir.empty() ? "" : ResolvePath(base_dir, dir);
+  }
+  if (auto v = m.Find("id_block")) c->id_block = GetInt64(*v, 1, std::int64_t{1} << 40);
 }
 
 void ParseLogging(const MapRef& root, DaemonConfig* c) {
@@ -280,7 +294,7 @@ DaemonConfig ParseDaemonConfig(std::string_view text, const std::string& source_
   c.source = source_name;
   try {
     const MapRef root(root_node, {"format", "cameras", "input", "output", "sync", "threads",
-                                  "queues", "logging", "tracker"});
+                                  "queues", "state", "logging", "tracker"});
     const NodeRef format = root.Get("format");
     if (GetString(format) != kDaemonConfigFormat) {
       format.Fail("expected '" + std::string(kDaemonConfigFormat) + "', not '" +
@@ -291,6 +305,7 @@ DaemonConfig ParseDaemonConfig(std::string_view text, const std::string& source_
     ParseOutput(root, &c);
     ParseSync(root, &c);
     ParseThreadsAndQueues(root, &c);
+    ParseState(root, base_dir, &c);
     ParseLogging(root, &c);
     if (const std::optional<NodeRef> tracker = root.Find("tracker")) {
       c.tracker = config::internal::ParseTrackerOptionsNode(*tracker);
@@ -348,6 +363,8 @@ std::string DaemonConfigToYaml(const DaemonConfig& c) {
   line("  silent_after_us: " + std::to_string(c.sync.silent_after_us));
   line("  max_future_us: " + std::to_string(c.sync.max_future_us));
   line("  max_frame_ahead: " + std::to_string(c.sync.max_frame_ahead));
+  line("  clock_tolerance_us: " + std::to_string(c.sync.clock_tolerance_us));
+  line("  max_frame_offset: " + std::to_string(c.sync.max_frame_offset));
   line("  min_frame_interval_us: " + std::to_string(c.sync.min_frame_interval_us));
   line("  resync_after_rejections: " + std::to_string(c.sync.resync_after_rejections));
   line("  max_pending_frames: " + std::to_string(c.sync.max_pending_frames));
@@ -360,6 +377,9 @@ std::string DaemonConfigToYaml(const DaemonConfig& c) {
   line("  camera_overflow: " + std::string(pipeline::ToString(c.camera_overflow)));
   line("  reorder_capacity: " + std::to_string(c.reorder_capacity));
   line("  finalizer_capacity: " + std::to_string(c.finalizer_queue_capacity));
+  line("state:");
+  line("  directory: " + QuoteString(c.state_directory));
+  line("  id_block: " + std::to_string(c.id_block));
   line("logging:");
   line("  level: " + c.log_level);
   line("  repeat_interval_s: " + FormatDouble(c.log_repeat_interval_s));

@@ -71,20 +71,27 @@ struct SyncOptions {
   /// is silent: excluded (frames stop waiting for it) and flagged until it delivers again,
   /// µs, > 0.
   std::int64_t silent_after_us = 1000000;
-  /// A camera-frame whose utime is more than this ahead of the newest accepted utime is
-  /// rejected as far-future, µs, > 0.
+  /// A camera-frame whose utime is more than this ahead of the stream's time (the quorum's,
+  /// see FrameSynchronizer) is rejected as far-future, µs, > 0.
   std::int64_t max_future_us = 10000000;
-  /// kFrameIndex: a camera-frame whose frame index is more than this ahead of the newest
-  /// accepted frame index is rejected as far-future, frames, >= 1.
-  std::int64_t max_frame_ahead = 1000;
+  /// kFrameIndex: a camera-frame whose frame index is more than this ahead of the stream's
+  /// frame (the quorum's) is rejected as far-future, frames, >= 1.
+  std::int64_t max_frame_ahead = 30;
+  /// Clock model: a camera whose capture times differ from the other cameras' (the median of
+  /// its last 16 offsets to the quorum) by more than this is flagged CLOCK_OFFSET and its
+  /// camera-frames are rejected until the offset is back within half of it, µs, > 0.
+  std::int64_t clock_tolerance_us = 100000;
+  /// kFrameIndex: likewise for frame indices that disagree with the quorum's (a frame counter
+  /// running fast or reset alone), frames, >= 1.
+  std::int64_t max_frame_offset = 10;
   /// A camera-frame less than this after the camera's previous accepted one (capture time) is
   /// dropped as flooding, µs, >= 0 (0 = off).
   std::int64_t min_frame_interval_us = 0;
-  /// After this many consecutive time-order rejections (backwards, late, far-future) without
-  /// any accepted camera-frame in between, the stream is taken as restarted: pending frames
-  /// are released, the tracker ends its stream, and the next camera-frame starts a new one,
-  /// >= 1.
-  int resync_after_rejections = 100;
+  /// A camera with this many consecutive time-order rejections (backwards, late, far-future)
+  /// restarted: when more than half of the cameras with data did, the stream restarted
+  /// (pending frames are released, the tracker ends its stream, and the next camera-frame
+  /// starts a new one); a camera that restarted alone starts over alone, >= 1.
+  int resync_after_rejections = 30;
   /// At most this many synchronized frames may be pending; more release the oldest early,
   /// >= 1 (bounds memory whatever the input).
   int max_pending_frames = 64;
@@ -148,6 +155,15 @@ struct DaemonConfig {
   /// logging.repeat_interval_s: a repeated warning of one kind is logged at most once per
   /// interval (the suppressed count is reported with the next one), seconds, > 0.
   double log_repeat_interval_s = 10.0;
+
+  /// state.directory: where the daemon keeps what must survive a restart (the track id
+  /// reservation, service::IdReservation), resolved against the configuration file's
+  /// directory; "" = $STATE_DIRECTORY (systemd's StateDirectory=) when mvtrackd runs under
+  /// systemd, else nothing is kept and ids start at 1 each run.
+  std::string state_directory;
+  /// state.id_block: track ids reserved per write of the reservation, >= 1 (a crash skips at
+  /// most this many ids).
+  std::int64_t id_block = 100000;
 
   /// tracker: the algorithm options (config::ParseTrackerOptions's `tracker:` map).
   tracker::TrackerOptions tracker;

@@ -2,11 +2,43 @@
 
 #include <algorithm>
 #include <iterator>
+#include <limits>
 #include <utility>
 
 #include "core/check.h"
 
 namespace mvtrack::service {
+namespace {
+
+constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+
+// Saturating int64 arithmetic: every time and frame value comes from the wire.
+std::int64_t SatAdd(std::int64_t a, std::int64_t b) {
+  std::int64_t r = 0;
+  if (__builtin_add_overflow(a, b, &r)) return b > 0 ? kMax : kMin;
+  return r;
+}
+
+std::int64_t SatSub(std::int64_t a, std::int64_t b) {
+  std::int64_t r = 0;
+  if (__builtin_sub_overflow(a, b, &r)) return b < 0 ? kMax : kMin;
+  return r;
+}
+
+std::int64_t SatAbs(std::int64_t a) { return a == kMin ? kMax : (a < 0 ? -a : a); }
+
+// |a - b|, saturated.
+std::int64_t Distance(std::int64_t a, std::int64_t b) { return SatAbs(SatSub(a, b)); }
+
+// Lower median of `v` (not empty); reorders it.
+std::int64_t LowerMedian(std::vector<std::int64_t>* v) {
+  const auto mid = v->begin() + static_cast<std::ptrdiff_t>((v->size() - 1) / 2);
+  std::nth_element(v->begin(), mid, v->end());
+  return *mid;
+}
+
+}  // namespace
 
 const char* ToString(SyncRejection rejection) {
   switch (rejection) {
@@ -17,6 +49,7 @@ const char* ToString(SyncRejection rejection) {
     case SyncRejection::kFarFuture: return "far future";
     case SyncRejection::kLate: return "late";
     case SyncRejection::kFlood: return "flood";
+    case SyncRejection::kClockOffset: return "clock offset";
   }
   return "?";
 }
@@ -33,21 +66,96 @@ FrameSynchronizer::FrameSynchronizer(std::vector<CameraId> camera_ids, const Syn
   }
 }
 
+bool FrameSynchronizer::InQuorum(const Camera& c) const {
+  return c.status.has_data && !c.status.excluded && !c.status.clock_flagged;
+}
+
+std::optional<std::pair<Utime, FrameIndex>> FrameSynchronizer::QuorumTime(
+    int skip, std::size_t min_cameras) const {
+  std::vector<std::int64_t> utimes;
+  std::vector<std::int64_t> frames;
+  for (std::size_t i = 0; i < cameras_.size(); ++i) {
+    if (static_cast<int>(i) == skip || !InQuorum(cameras_[i])) continue;
+    utimes.push_back(cameras_[i].status.last_utime);
+    frames.push_back(cameras_[i].last_frame);
+  }
+  if (utimes.empty() || utimes.size() < min_cameras) return std::nullopt;
+  return std::make_pair(LowerMedian(&utimes), LowerMedian(&frames));
+}
+
+void FrameSynchronizer::UpdateNow() {
+  if (const auto q = QuorumTime(-1, 1)) {
+    now_utime_ = q->first;
+    now_frame_ = q->second;
+  }
+  // Without any camera in good standing the last time stays (a flagged camera cannot move it).
+}
+
+void FrameSynchronizer::UpdateClock(const core::CameraFrame& f, int index, SyncResult* result) {
+  Camera& cam = cameras_[static_cast<std::size_t>(index)];
+  // The quorum of the other cameras: at least two, so that one camera is never judged by one.
+  const auto q = QuorumTime(index, 2);
+  if (!q) return;
+  cam.offset_us[cam.next_offset] = SatSub(f.utime, q->first);
+  cam.offset_frames[cam.next_offset] = SatSub(f.frame, q->second);
+  cam.next_offset = (cam.next_offset + 1) % kOffsetSamples;
+  cam.num_offsets = std::min(cam.num_offsets + 1, kOffsetSamples);
+  if (cam.num_offsets < kMinOffsetSamples) return;
+  std::vector<std::int64_t> us(
+      cam.offset_us.begin(), cam.offset_us.begin() + static_cast<std::ptrdiff_t>(cam.num_offsets));
+  std::vector<std::int64_t> fr(
+      cam.offset_frames.begin(),
+      cam.offset_frames.begin() + static_cast<std::ptrdiff_t>(cam.num_offsets));
+  cam.status.offset_us = LowerMedian(&us);
+  const bool by_frame = options_.mode == SyncMode::kFrameIndex;
+  cam.status.offset_frames = by_frame ? LowerMedian(&fr) : 0;
+  std::int64_t period = 0;
+  if (cam.num_steps > 0) {
+    std::vector<std::int64_t> steps(cam.steps.begin(),
+                                    cam.steps.begin() + static_cast<std::ptrdiff_t>(cam.num_steps));
+    period = LowerMedian(&steps);
+  }
+  const std::int64_t du = SatAbs(cam.status.offset_us);
+  const std::int64_t df = SatAbs(cam.status.offset_frames);
+  const bool off = du > SatAdd(options_.clock_tolerance_us, period) ||
+                   (by_frame && df > options_.max_frame_offset);
+  const bool back = du <= SatAdd(options_.clock_tolerance_us / 2, period) &&
+                    (!by_frame || df <= options_.max_frame_offset / 2);
+  if (cam.status.clock_flagged ? back : off) {
+    cam.status.clock_flagged = !cam.status.clock_flagged;
+    CameraTransition t;
+    t.camera_id = cam.status.camera_id;
+    t.kind = CameraTransition::Kind::kClock;
+    t.excluded = cam.status.clock_flagged;
+    t.offset_us = cam.status.offset_us;
+    t.offset_frames = cam.status.offset_frames;
+    result->transitions.push_back(t);
+    UpdateNow();
+  }
+}
+
 SyncRejection FrameSynchronizer::Check(const core::CameraFrame& f, int camera_index,
                                        std::string* reason, std::int64_t* key) const {
   const Camera& cam = cameras_[static_cast<std::size_t>(camera_index)];
   const std::string who = "camera " + std::to_string(f.camera_id) + " frame " +
                           std::to_string(f.frame) + " utime " + std::to_string(f.utime);
   const bool by_frame = options_.mode == SyncMode::kFrameIndex;
-  if (newest_utime_ && f.utime > *newest_utime_ + options_.max_future_us) {
-    *reason = who + " is " + std::to_string(f.utime - *newest_utime_) +
-              " us ahead of the newest accepted utime (max_future_us " +
+  if (cam.status.clock_flagged) {
+    *reason = who + ": the camera's clock is " + std::to_string(cam.status.offset_us) +
+              " us (" + std::to_string(cam.status.offset_frames) +
+              " frames) off the other cameras' (clock_tolerance_us " +
+              std::to_string(options_.clock_tolerance_us) + ")";
+    return SyncRejection::kClockOffset;
+  }
+  if (now_utime_ && f.utime > SatAdd(*now_utime_, options_.max_future_us)) {
+    *reason = who + " is " + std::to_string(SatSub(f.utime, *now_utime_)) +
+              " us ahead of the stream's time (max_future_us " +
               std::to_string(options_.max_future_us) + ")";
     return SyncRejection::kFarFuture;
   }
-  if (by_frame && newest_frame_ && f.frame > *newest_frame_ + options_.max_frame_ahead) {
-    *reason = who + " is " + std::to_string(f.frame - *newest_frame_) +
-              " frames ahead of the newest accepted frame (max_frame_ahead " +
+  if (by_frame && now_frame_ && f.frame > SatAdd(*now_frame_, options_.max_frame_ahead)) {
+    *reason = who + " is " + std::to_string(SatSub(f.frame, *now_frame_)) +
+              " frames ahead of the stream's frame (max_frame_ahead " +
               std::to_string(options_.max_frame_ahead) + ")";
     return SyncRejection::kFarFuture;
   }
@@ -61,10 +169,9 @@ SyncRejection FrameSynchronizer::Check(const core::CameraFrame& f, int camera_in
       *reason = who + " repeats the camera's previous frame";
       return SyncRejection::kDuplicate;
     }
-    if (options_.min_frame_interval_us > 0 &&
-        f.utime - cam.status.last_utime < options_.min_frame_interval_us) {
-      *reason = who + " follows the camera's previous frame after " +
-                std::to_string(f.utime - cam.status.last_utime) +
+    const std::int64_t interval = SatSub(f.utime, cam.status.last_utime);
+    if (options_.min_frame_interval_us > 0 && interval < options_.min_frame_interval_us) {
+      *reason = who + " follows the camera's previous frame after " + std::to_string(interval) +
                 " us (min_frame_interval_us " + std::to_string(options_.min_frame_interval_us) +
                 ")";
       return SyncRejection::kFlood;
@@ -83,9 +190,9 @@ SyncRejection FrameSynchronizer::Check(const core::CameraFrame& f, int camera_in
   std::optional<std::int64_t> best;
   auto consider = [&](std::map<std::int64_t, Group>::const_iterator it) {
     if (it == pending_.end()) return;
-    const std::int64_t d = it->first > f.utime ? it->first - f.utime : f.utime - it->first;
+    const std::int64_t d = Distance(it->first, f.utime);
     if (d > options_.tolerance_us) return;
-    if (!best || d < (*best > f.utime ? *best - f.utime : f.utime - *best)) best = it->first;
+    if (!best || d < Distance(*best, f.utime)) best = it->first;
   };
   auto it = pending_.lower_bound(f.utime);
   consider(it);
@@ -98,13 +205,36 @@ SyncRejection FrameSynchronizer::Check(const core::CameraFrame& f, int camera_in
     *key = *best;
     return SyncRejection::kNone;
   }
-  if (last_released_key_ && f.utime <= *last_released_key_ + options_.tolerance_us) {
+  if (last_released_key_ && f.utime <= SatAdd(*last_released_key_, options_.tolerance_us)) {
     *reason = who + " belongs to a frame at or before the released frame at utime " +
               std::to_string(*last_released_key_);
     return SyncRejection::kLate;
   }
   *key = f.utime;
   return SyncRejection::kNone;
+}
+
+void FrameSynchronizer::Resync(SyncResult* result) {
+  Release(&result->actions, /*force_all=*/true);
+  SyncAction end;
+  end.kind = SyncAction::Kind::kEndStream;
+  result->actions.push_back(std::move(end));
+  for (Camera& c : cameras_) {
+    c.status.has_data = false;
+    c.status.last_utime = 0;
+    c.last_frame = 0;
+    c.order_rejections = 0;
+    c.num_offsets = 0;
+    c.next_offset = 0;
+    // Exclusion and clock flags stay: cameras are re-included as they deliver, and a clock is
+    // judged again against the new stream's quorum.
+  }
+  last_released_key_.reset();
+  now_utime_.reset();
+  now_frame_.reset();
+  stream_start_utime_.reset();
+  ++counters_.resyncs;
+  result->resynced = true;
 }
 
 SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
@@ -118,42 +248,48 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
   }
   const int index = known->second;
   Camera& cam = cameras_[static_cast<std::size_t>(index)];
+  UpdateClock(frame, index, &result);
   std::int64_t key = 0;
   SyncRejection why = Check(frame, index, &result.reason, &key);
   const bool order_rejection = why == SyncRejection::kBackwards || why == SyncRejection::kLate ||
                                why == SyncRejection::kFarFuture;
-  if (order_rejection && consecutive_order_rejections_ + 1 >= options_.resync_after_rejections) {
-    // The stream restarted (clock or frame counter reset, or a jump): release what is pending,
-    // end the tracker's stream and start over with this camera-frame.
-    Release(&result.actions, /*force_all=*/true);
-    SyncAction end;
-    end.kind = SyncAction::Kind::kEndStream;
-    result.actions.push_back(std::move(end));
-    for (Camera& c : cameras_) {
-      c.status.has_data = false;
-      c.status.last_utime = 0;
-      c.last_frame = 0;
-      // Exclusion flags stay: cameras are re-included as they deliver.
+  if (order_rejection && ++cam.order_rejections % options_.resync_after_rejections == 0) {
+    // This camera restarted (its clock or frame counter was reset, or jumped). When more than
+    // half of the cameras with data (or restarting) did, the stream restarted: release what is
+    // pending, end the tracker's stream and start over with this camera-frame. Otherwise it
+    // starts over alone.
+    int restarted = 0;
+    int pool = 0;
+    for (const Camera& c : cameras_) {
+      const bool restarting = c.order_rejections >= options_.resync_after_rejections;
+      if (!c.status.has_data && !restarting) continue;
+      ++pool;
+      if (restarting) ++restarted;
     }
-    last_released_key_.reset();
-    newest_utime_.reset();
-    newest_frame_.reset();
-    stream_start_utime_.reset();
-    consecutive_order_rejections_ = 0;
-    ++counters_.resyncs;
-    result.resynced = true;
+    if (2 * restarted > pool) {
+      Resync(&result);
+    } else {
+      cam.status.has_data = false;
+      cam.status.last_utime = 0;
+      cam.last_frame = 0;
+      ++cam.status.restarts;
+      CameraTransition t;
+      t.camera_id = cam.status.camera_id;
+      t.kind = CameraTransition::Kind::kRestart;
+      result.transitions.push_back(t);
+      UpdateNow();
+    }
     result.reason.clear();
     why = Check(frame, index, &result.reason, &key);
-    MVTRACK_CHECK(why == SyncRejection::kNone);
   }
   if (why != SyncRejection::kNone) {
-    if (order_rejection) ++consecutive_order_rejections_;
     switch (why) {
       case SyncRejection::kBackwards: ++cam.status.backwards; break;
       case SyncRejection::kDuplicate: ++cam.status.duplicates; break;
       case SyncRejection::kFarFuture: ++cam.status.far_future; break;
       case SyncRejection::kLate: ++cam.status.late; break;
       case SyncRejection::kFlood: ++cam.status.flood; break;
+      case SyncRejection::kClockOffset: ++cam.status.clock_offset; break;
       case SyncRejection::kNone:
       case SyncRejection::kUnknownCamera: break;
     }
@@ -161,7 +297,7 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
     result.rejection = why;
     return result;
   }
-  consecutive_order_rejections_ = 0;
+  cam.order_rejections = 0;
   Accept(std::move(frame), index, key, &result);
   return result;
 }
@@ -169,52 +305,71 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
 void FrameSynchronizer::Accept(core::CameraFrame frame, int camera_index, std::int64_t key,
                                SyncResult* result) {
   Camera& cam = cameras_[static_cast<std::size_t>(camera_index)];
+  if (cam.status.has_data) {
+    cam.steps[cam.next_step] = SatSub(frame.utime, cam.status.last_utime);  // > 0 (Check)
+    cam.next_step = (cam.next_step + 1) % cam.steps.size();
+    cam.num_steps = std::min(cam.num_steps + 1, cam.steps.size());
+  }
   ++cam.status.accepted;
   cam.status.has_data = true;
   cam.status.last_utime = frame.utime;
   cam.last_frame = frame.frame;
+  const auto others = QuorumTime(camera_index, 1);
+  cam.quorum_at_last = others ? others->first : frame.utime;
   if (cam.status.excluded) {
     cam.status.excluded = false;
     result->transitions.push_back(CameraTransition{cam.status.camera_id, false});
   }
-  newest_utime_ = newest_utime_ ? std::max(*newest_utime_, frame.utime) : frame.utime;
   if (!stream_start_utime_) stream_start_utime_ = frame.utime;
-  if (options_.mode == SyncMode::kFrameIndex) {
-    newest_frame_ = newest_frame_ ? std::max(*newest_frame_, frame.frame) : frame.frame;
-  }
+  UpdateNow();
   auto [it, inserted] = pending_.try_emplace(key);
   Group& g = it->second;
-  if (inserted) {
-    g.utime_min = frame.utime;
-    g.members.resize(cameras_.size());
-  }
-  g.utime_min = std::min(g.utime_min, frame.utime);
+  if (inserted) g.members.resize(cameras_.size());
+  g.reference_utime = now_utime_ ? *now_utime_ : frame.utime;
   g.members[static_cast<std::size_t>(camera_index)] = std::move(frame);
   UpdateExclusions(&result->transitions);
   Release(&result->actions, /*force_all=*/false);
 }
 
 void FrameSynchronizer::UpdateExclusions(std::vector<CameraTransition>* transitions) {
-  if (!newest_utime_ || !stream_start_utime_) return;
-  for (Camera& c : cameras_) {
+  if (!now_utime_ || !stream_start_utime_) return;
+  bool changed = false;
+  for (std::size_t i = 0; i < cameras_.size(); ++i) {
+    Camera& c = cameras_[i];
     if (c.status.excluded) continue;
-    // A camera not seen in this stream is waited for from the stream's first utime on.
-    const Utime last = c.status.has_data ? c.status.last_utime : *stream_start_utime_;
-    if (*newest_utime_ - last > options_.silent_after_us) {
+    // A camera not seen in this stream is waited for from the stream's first utime on; one
+    // seen is silent once the others' quorum moved on by silent_after_us since it delivered.
+    std::int64_t waited = SatSub(*now_utime_, *stream_start_utime_);
+    if (c.status.has_data) {
+      const auto others = QuorumTime(static_cast<int>(i), 1);
+      waited = others ? SatSub(others->first, c.quorum_at_last) : 0;
+    }
+    if (waited > options_.silent_after_us) {
       c.status.excluded = true;
       transitions->push_back(CameraTransition{c.status.camera_id, true});
+      changed = true;
     }
   }
+  if (changed) UpdateNow();
 }
 
 void FrameSynchronizer::Release(std::vector<SyncAction>* actions, bool force_all) {
   while (!pending_.empty()) {
-    const Group& g = pending_.begin()->second;
+    const auto& [key, g] = *pending_.begin();
     bool complete = true;
     for (std::size_t c = 0; c < cameras_.size(); ++c) {
-      if (!cameras_[c].status.excluded && !g.members[c].has_value()) complete = false;
+      if (!cameras_[c].status.excluded && !cameras_[c].status.clock_flagged &&
+          !g.members[c].has_value()) {
+        complete = false;
+      }
     }
-    const bool deadline = newest_utime_ && *newest_utime_ - g.utime_min >= options_.deadline_us;
+    // The deadline counts in the stream's time, and a frame ahead of the quorum's (one camera
+    // early) is never released before the quorum gets there.
+    const bool ahead = options_.mode == SyncMode::kFrameIndex
+                           ? now_frame_ && key > *now_frame_
+                           : now_utime_ && key > *now_utime_;
+    const bool deadline = now_utime_ && !ahead &&
+                          SatSub(*now_utime_, g.reference_utime) >= options_.deadline_us;
     const bool bound = pending_.size() > static_cast<std::size_t>(options_.max_pending_frames);
     if (complete) {
       ++counters_.released_complete;
@@ -240,7 +395,9 @@ void FrameSynchronizer::ReleaseOldest(std::vector<SyncAction>* actions) {
   ++counters_.frames_released;
   for (std::size_t c = 0; c < cameras_.size(); ++c) {
     if (!g.members[c].has_value()) {
-      if (!cameras_[c].status.excluded) ++cameras_[c].status.missed;
+      if (!cameras_[c].status.excluded && !cameras_[c].status.clock_flagged) {
+        ++cameras_[c].status.missed;
+      }
       continue;
     }
     SyncAction a;
@@ -254,11 +411,11 @@ void FrameSynchronizer::ReleaseOldest(std::vector<SyncAction>* actions) {
 std::vector<SyncAction> FrameSynchronizer::Flush() {
   std::vector<SyncAction> actions;
   Release(&actions, /*force_all=*/true);
-  newest_utime_.reset();
-  newest_frame_.reset();
+  now_utime_.reset();
+  now_frame_.reset();
   stream_start_utime_.reset();
   last_released_key_.reset();
-  consecutive_order_rejections_ = 0;
+  for (Camera& c : cameras_) c.order_rejections = 0;
   return actions;
 }
 

@@ -10,15 +10,29 @@
 ///
 /// Every decision depends only on the sequence of camera-frame headers (camera id, frame
 /// index, utime), never on the wall clock or on thread timing: the same input sequence always
-/// produces the same releases. "Now" is the newest accepted capture utime.
+/// produces the same releases.
+///
+/// Clock model (docs/DAEMON.md "Time"): the stream's time ("now") is the quorum's, the lower
+/// median of the newest accepted utime (and, by frame index, frame index) of the cameras in
+/// good standing (with data, not silent, clock not flagged), never one message's. Each camera's
+/// offset to the quorum of the other cameras (at least two) is sampled on every camera-frame it
+/// sends; the median of its last 16 samples (from 8 on) beyond SyncOptions::clock_tolerance_us
+/// plus its own frame period (the others' newest frame may be a frame behind) or beyond
+/// max_frame_offset frames flags its clock and rejects its camera-frames, alone, until the
+/// median is back within half the tolerance (plus the period). A camera with
+/// resync_after_rejections consecutive order rejections starts over alone; the whole stream
+/// restarts only when more than half of the cameras with data did. All time and frame arithmetic
+/// saturates.
 ///
 /// Single-owner, single-threaded object; deterministic; never throws on input. Memory is
 /// bounded by SyncOptions::max_pending_frames frames of at most one camera-frame per camera.
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/detection.h"
@@ -36,9 +50,11 @@ enum class SyncRejection {
   kFarFuture,      ///< utime (or frame index) too far ahead of the newest accepted one
   kLate,           ///< its synchronized frame was already released
   kFlood,          ///< less than min_frame_interval_us after the camera's previous frame
+  kClockOffset,    ///< the camera's clock (or frame counter) disagrees with the quorum's
 };
 
-/// "unknown camera", "time backwards", "duplicate", "far future", "late", "flood".
+/// "unknown camera", "time backwards", "duplicate", "far future", "late", "flood",
+/// "clock offset".
 const char* ToString(SyncRejection rejection);
 
 /// One thing the caller must do, in order.
@@ -51,10 +67,18 @@ struct SyncAction {
   core::CameraFrame frame;              ///< kSubmit: the camera-frame (frame index final)
 };
 
-/// A camera's exclusion state changed (for logging and flags).
+/// A camera's exclusion or clock state changed (for logging and flags).
 struct CameraTransition {
+  enum class Kind {
+    kSilence,  ///< `excluded`: became silent and is excluded; else re-included
+    kClock,    ///< `excluded`: its clock was flagged (its frames are rejected); else cleared
+    kRestart,  ///< the camera restarted alone (its own time order starts over)
+  };
   CameraId camera_id = 0;  ///< the camera
-  bool excluded = false;   ///< true: became silent and is excluded; false: re-included
+  bool excluded = false;   ///< see Kind
+  Kind kind = Kind::kSilence;
+  std::int64_t offset_us = 0;     ///< kClock: the camera's offset to the quorum, µs
+  std::int64_t offset_frames = 0;  ///< kClock, by frame index: its frame offset
 };
 
 /// The outcome of one Add().
@@ -83,6 +107,12 @@ struct SyncCameraStatus {
   std::int64_t far_future = 0;   ///< rejected: far future
   std::int64_t late = 0;         ///< rejected: frame already released
   std::int64_t flood = 0;        ///< dropped: flooding
+  std::int64_t clock_offset = 0;  ///< rejected: clock (or frame counter) off the quorum's
+  bool clock_flagged = false;     ///< its clock is flagged now (CLOCK_OFFSET)
+  /// Median offset of its capture times to the quorum's, µs (0 before 8 samples).
+  std::int64_t offset_us = 0;
+  std::int64_t offset_frames = 0;  ///< by frame index: median frame offset
+  std::int64_t restarts = 0;      ///< times it restarted alone
   std::int64_t detections_rejected = 0;  ///< detections in this camera's rejected frames
   std::int64_t missed = 0;       ///< released frames this active camera did not deliver to
 };
@@ -119,17 +149,48 @@ class FrameSynchronizer {
   const SyncOptions& options() const { return options_; }
 
  private:
+  static constexpr std::size_t kOffsetSamples = 16;
+  static constexpr std::size_t kMinOffsetSamples = 8;
   struct Camera {
     SyncCameraStatus status;
     FrameIndex last_frame = 0;
+    int order_rejections = 0;  // consecutive
+    // The other cameras' quorum utime when it last delivered (its own utime without one):
+    // silence is judged on the others' clocks, so a camera ahead cannot silence the rest and a
+    // dead one is noticed however few cameras there are.
+    Utime quorum_at_last = 0;
+    // The last kOffsetSamples offsets to the quorum (ring), µs and frames.
+    std::array<std::int64_t, kOffsetSamples> offset_us{};
+    std::array<std::int64_t, kOffsetSamples> offset_frames{};
+    std::size_t num_offsets = 0;
+    std::size_t next_offset = 0;
+    // Its last accepted utime steps (ring): the median is its frame period, the slack of its
+    // offset samples (the other cameras' newest frame may be one frame behind or ahead).
+    std::array<std::int64_t, 8> steps{};
+    std::size_t num_steps = 0;
+    std::size_t next_step = 0;
   };
   struct Group {
-    Utime utime_min = 0;
+    // The deadline counts from here: the stream's time when the frame last gained a member (the
+    // first member's utime before the stream has a time), so no camera's clock, behind or
+    // ahead, can release a frame before the others delivered to it.
+    Utime reference_utime = 0;
     std::vector<std::optional<core::CameraFrame>> members;  // by camera index
   };
 
   SyncRejection Check(const core::CameraFrame& frame, int camera_index, std::string* reason,
                       std::int64_t* key) const;
+  // Whether camera `c` counts for the quorum (with data, not silent, clock not flagged).
+  bool InQuorum(const Camera& c) const;
+  // Lower median of the newest utime / frame of the quorum's cameras other than `skip` (-1:
+  // none); nullopt with fewer than `min_cameras`.
+  std::optional<std::pair<Utime, FrameIndex>> QuorumTime(int skip, std::size_t min_cameras) const;
+  // Samples camera `index`'s offset to the others' quorum and updates its clock flag.
+  void UpdateClock(const core::CameraFrame& frame, int index, SyncResult* result);
+  // Recomputes now_utime_ / now_frame_ from the quorum.
+  void UpdateNow();
+  // The stream restarted: release everything, end the tracker's stream, forget time.
+  void Resync(SyncResult* result);
   void Accept(core::CameraFrame frame, int camera_index, std::int64_t key, SyncResult* result);
   void Release(std::vector<SyncAction>* actions, bool force_all);
   void ReleaseOldest(std::vector<SyncAction>* actions);
@@ -140,11 +201,11 @@ class FrameSynchronizer {
   std::vector<Camera> cameras_;  // by ascending id
   std::map<std::int64_t, Group> pending_;  // key: frame index, or reference utime (kUtime)
   std::optional<std::int64_t> last_released_key_;
-  std::optional<Utime> newest_utime_;
-  std::optional<FrameIndex> newest_frame_;
+  // The stream's time: the quorum's newest utime and frame (see the file comment).
+  std::optional<Utime> now_utime_;
+  std::optional<FrameIndex> now_frame_;
   std::optional<Utime> stream_start_utime_;
   FrameIndex next_frame_index_ = 0;  // kUtime numbering
-  int consecutive_order_rejections_ = 0;
   SyncStatus counters_;
 };
 

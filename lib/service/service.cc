@@ -48,6 +48,8 @@ std::vector<std::string> RestartOnlyChanges(const DaemonConfig& a, const DaemonC
   check(s.mode != t.mode || s.tolerance_us != t.tolerance_us || s.deadline_us != t.deadline_us ||
             s.silent_after_us != t.silent_after_us || s.max_future_us != t.max_future_us ||
             s.max_frame_ahead != t.max_frame_ahead ||
+            s.clock_tolerance_us != t.clock_tolerance_us ||
+            s.max_frame_offset != t.max_frame_offset ||
             s.min_frame_interval_us != t.min_frame_interval_us ||
             s.resync_after_rejections != t.resync_after_rejections ||
             s.max_pending_frames != t.max_pending_frames || s.idle_flush_s != t.idle_flush_s,
@@ -75,7 +77,20 @@ std::unique_ptr<Service> Service::Create(DaemonConfig config, ServiceHooks hooks
   s->pipeline_ = s->MakePipeline(s->config_.tracker, &reason);
   if (!s->pipeline_) {
     if (why != nullptr) *why = reason;
+    s->stopped_ = true;  // nothing to stop
     return nullptr;
+  }
+  if (!s->config_.state_directory.empty()) {
+    s->reservation_.emplace();
+    if (!s->reservation_->Open(s->config_.state_directory, s->config_.id_block, &reason)) {
+      if (why != nullptr) *why = "state: " + reason;
+      return nullptr;
+    }
+    s->id_offset_ = s->reservation_->first_id() - 1;
+    s->reserved_end_.store(s->reservation_->reserved_end());
+    spdlog::info("track ids start at {} (reserved below {} in {})",
+                 s->reservation_->first_id(), s->reservation_->reserved_end(),
+                 s->config_.state_directory);
   }
   if (!s->hooks_.record_path.empty()) {
     s->record_ = transport::LogWriter::Open(s->hooks_.record_path, &reason);
@@ -239,12 +254,34 @@ void Service::OnMessage(const std::string& channel, const std::uint8_t* data, st
       first_receive_us_.erase(first_receive_us_.begin());
     }
   }
+  // Per-camera transitions are rate limited like the warnings (a flapping camera must not fill
+  // the journal); the counters and status flags carry every one.
   for (const CameraTransition& t : r.transitions) {
-    if (t.excluded) {
-      spdlog::warn("camera {} is silent: excluded from synchronization until it returns",
-                   t.camera_id);
-    } else {
-      spdlog::info("camera {} delivers: included in synchronization", t.camera_id);
+    const std::string cam_key = std::to_string(t.camera_id);
+    switch (t.kind) {
+      case CameraTransition::Kind::kSilence:
+        Warn("sync:silence:" + cam_key,
+             t.excluded ? "camera " + cam_key +
+                              " is silent: excluded from synchronization until it returns"
+                        : "camera " + cam_key + " delivers again: included in synchronization");
+        break;
+      case CameraTransition::Kind::kClock:
+        Warn("sync:clock:" + cam_key,
+             t.excluded ? "camera " + cam_key + " clock is " + std::to_string(t.offset_us / 1000) +
+                              " ms (" + std::to_string(t.offset_frames) +
+                              " frames) off the other cameras': CLOCK_OFFSET, its camera-frames "
+                              "are rejected until it agrees again (sync.clock_tolerance_us " +
+                              std::to_string(config_.sync.clock_tolerance_us) + ")"
+                        : "camera " + cam_key + " clock agrees with the other cameras' again (" +
+                              std::to_string(t.offset_us / 1000) + " ms): included");
+        break;
+      case CameraTransition::Kind::kRestart:
+        Warn("sync:restart:" + cam_key,
+             "camera " + cam_key + " restarted alone (" +
+                 std::to_string(config_.sync.resync_after_rejections) +
+                 " consecutive out-of-order camera-frames): its time order starts over, the "
+                 "other cameras' stream goes on");
+        break;
     }
   }
   {
@@ -257,9 +294,10 @@ void Service::OnMessage(const std::string& channel, const std::uint8_t* data, st
     if (r.resynced) ++counters_.stream_restarts;
   }
   if (r.resynced) {
-    spdlog::warn("input stream restarted ({} consecutive out-of-order camera-frames): tracks "
-                 "end and a new stream starts",
-                 config_.sync.resync_after_rejections);
+    Warn("sync:stream_restart",
+         "input stream restarted (more than half of the cameras had " +
+             std::to_string(config_.sync.resync_after_rejections) +
+             " consecutive out-of-order camera-frames): tracks end and a new stream starts");
   }
   if (r.rejection != SyncRejection::kNone) {
     Warn(std::string("sync:") + ToString(r.rejection) + ":" + std::to_string(camera),
@@ -326,6 +364,15 @@ void Service::OnFrame(tracker::Frame3D frame) {
     }
     first_receive_us_.erase(first_receive_us_.begin(), first_receive_us_.upper_bound(frame.frame));
   }
+  TrackId3D frame_max_id = 0;
+  for (const tracker::Track3D& t : frame.tracks) frame_max_id = std::max(frame_max_id, t.id);
+  if (frame_max_id >= reserved_end_.load(std::memory_order_acquire)) {
+    // Never publish an id the state does not cover (the control thread extends it earlier).
+    std::string why;
+    if (!ExtendReservation(frame_max_id + 1, &why)) {
+      spdlog::error("cannot extend the track id reservation: {}", why);
+    }
+  }
   const std::vector<std::uint8_t> bytes = transport::EncodeTracks(frame, output_layout_, now, latency);
   Publish(config_.tracks_channel, bytes, now);
   if (hooks_.on_frame) hooks_.on_frame(frame, output_layout_);
@@ -342,9 +389,29 @@ void Service::OnFrame(tracker::Frame3D frame) {
   }
 }
 
+bool Service::ExtendReservation(TrackId3D next_id, std::string* why) {
+  std::lock_guard<std::mutex> lock(reservation_mu_);
+  if (!reservation_) return true;
+  const bool ok = reservation_->Extend(next_id, why);
+  if (!ok) *why += " (ids stay unique up to " + std::to_string(reservation_->reserved_end()) + ")";
+  reserved_end_.store(reservation_->reserved_end(), std::memory_order_release);
+  return ok;
+}
+
 void Service::Tick() {
   if (stopped_) return;
   const std::int64_t now = Now();
+  if (reservation_) {
+    TrackId3D offset = 0;
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      offset = id_offset_;
+    }
+    std::string why;
+    if (!ExtendReservation(offset + pipeline_->Status().next_track_id, &why)) {
+      Warn("state:ids", "cannot extend the track id reservation: " + why);
+    }
+  }
   if (now >= next_status_us_) {
     const std::vector<std::uint8_t> status = BuildStatus();
     Publish(config_.status_channel, status, now);
@@ -507,10 +574,7 @@ std::vector<std::uint8_t> Service::BuildStatus() {
       if (cs.decode_errors > in.decode_errors_at_period_start) {
         f |= mvtrack::camera_status_t::FLAG_DECODE_ERRORS;
       }
-      if (in.received > 0 &&
-          std::llabs(in.last_receive_us - in.last_utime) > config_.sync.max_future_us) {
-        f |= mvtrack::camera_status_t::FLAG_CLOCK_OFFSET;
-      }
+      if (sc.clock_flagged) f |= mvtrack::camera_status_t::FLAG_CLOCK_OFFSET;
       cs.flags = f;
       if ((f & (mvtrack::camera_status_t::FLAG_NO_DATA | mvtrack::camera_status_t::FLAG_STALE)) != 0) {
         flags |= mvtrack::tracker_status_t::FLAG_CAMERA_MISSING;

@@ -31,9 +31,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,7 @@
 #include "pipeline/pipeline.h"
 #include "service/daemon_config.h"
 #include "service/frame_synchronizer.h"
+#include "service/id_reservation.h"
 #include "service/rate_limiter.h"
 #include "tracker/types.h"
 
@@ -218,6 +221,14 @@ class Service {
 
   // Set while the control thread flushes the pipeline (read by the finalizer thread).
   std::atomic<bool> flushing_{false};
+
+  // Track ids above every earlier run's (config_.state_directory; none when empty). The
+  // finalizer thread extends it itself when a published id reaches its end (guarded by
+  // reservation_mu_; reserved_end_ mirrors reservation_.reserved_end(), max when unused).
+  std::optional<IdReservation> reservation_;
+  std::mutex reservation_mu_;
+  std::atomic<TrackId3D> reserved_end_{std::numeric_limits<TrackId3D>::max()};
+  bool ExtendReservation(TrackId3D next_id, std::string* why);
 
   // Serialises publish callbacks and record writes.
   std::mutex out_mu_;

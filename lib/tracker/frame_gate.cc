@@ -34,6 +34,11 @@ FrameAdmission FrameGate::Admit(const core::CameraFrame& frame) {
                       " detections > max_detections_per_frame " +
                       std::to_string(max_detections_per_frame_));
   }
+  if (frame.frame < 0 || frame.frame > kMaxFrameIndex) {
+    return reject(FrameRejection::kBadFrameIndex,
+                  "camera " + std::to_string(frame.camera_id) + " frame " +
+                      std::to_string(frame.frame) + " is outside [0, 2^53]");
+  }
   if (open_frame_ && frame.frame < *open_frame_) {
     return reject(FrameRejection::kStaleFrame,
                   "camera " + std::to_string(frame.camera_id) + " frame " +

@@ -9,6 +9,7 @@ const char* ToString(FrameRejection rejection) {
     case FrameRejection::kStaleFrame: return "stale_frame";
     case FrameRejection::kDuplicateCamera: return "duplicate_camera";
     case FrameRejection::kTooManyDetections: return "too_many_detections";
+    case FrameRejection::kBadFrameIndex: return "bad_frame_index";
   }
   return "?";
 }

@@ -43,7 +43,12 @@ enum class FrameRejection {
   kStaleFrame,         ///< frame index older than the frame being collected
   kDuplicateCamera,    ///< this camera already delivered this frame
   kTooManyDetections,  ///< more detections than max_detections_per_frame
+  kBadFrameIndex,      ///< frame index outside [0, kMaxFrameIndex]
 };
+
+/// Largest accepted frame index (2^53: every frame and window computation stays exact in
+/// int64 and double).
+inline constexpr FrameIndex kMaxFrameIndex = FrameIndex{1} << 53;
 
 /// Human-readable name of a rejection.
 const char* ToString(FrameRejection rejection);

@@ -1,15 +1,17 @@
 # Sourced by the tests/daemon/*_test.sh scripts: strict mode, the arguments every script gets
 # (MVTRACKD and MVTRACK binaries, WORK dir holding the fixture recordings, SRC = repository
-# root), a fresh output directory per script, a daemon config writer and small helpers.
+# root, and the clock-fault log writer), a fresh output directory per script, a daemon config
+# writer and small helpers.
 set -euo pipefail
-if [ $# -ne 4 ]; then
-  echo "usage: $0 MVTRACKD MVTRACK WORK_DIR SOURCE_DIR" >&2
+if [ $# -lt 4 ] || [ $# -gt 5 ]; then
+  echo "usage: $0 MVTRACKD MVTRACK WORK_DIR SOURCE_DIR [MAKE_CLOCK_LOG]" >&2
   exit 2
 fi
 MVTRACKD=$1
 MVTRACK=$2
 WORK=$3
 SRC=$4
+MAKE_CLOCK_LOG=${5:-}
 # shellcheck source=../support/shell_asserts.sh
 . "$SRC/tests/support/shell_asserts.sh"
 OUT=$WORK/out/$(basename "$0" _test.sh)

@@ -2,7 +2,11 @@
 // cameras, the time-order rejections, flooding, stream restarts and the pending bound.
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -210,7 +214,7 @@ TEST_CASE("synchronizer output does not depend on the camera order within a fram
   CHECK(outputs[0].size() == 18);
 }
 
-TEST_CASE("synchronizer detects a stream restart after consecutive out-of-order frames",
+TEST_CASE("synchronizer detects a stream restart when more than half of the cameras restart",
           "[unit]") {
   FrameSynchronizer sync({0, 1}, Options());  // resync_after_rejections = 3
   for (FrameIndex f = 100; f < 103; ++f) {
@@ -218,15 +222,160 @@ TEST_CASE("synchronizer detects a stream restart after consecutive out-of-order 
     sync.Add(At(1, f));
   }
   sync.Add(At(0, 103));  // pending: frame 103 waits for camera 1
-  // The cameras restart at frame 0 with an earlier clock.
+  // The cameras restart at frame 0 with an earlier clock. Camera 0's third out-of-order frame
+  // marks it restarted: one of two cameras is not more than half, so it starts over alone (its
+  // frame 2 is then late: frame 102 was released).
   CHECK(sync.Add(At(0, 0)).rejection == SyncRejection::kBackwards);
+  CHECK(sync.Add(At(0, 1)).rejection == SyncRejection::kBackwards);
+  const SyncResult alone = sync.Add(At(0, 2));
+  CHECK_FALSE(alone.resynced);
+  CHECK(alone.rejection == SyncRejection::kLate);
+  REQUIRE(alone.transitions.size() == 1);
+  CHECK(alone.transitions[0].kind == CameraTransition::Kind::kRestart);
+  CHECK(sync.Status().cameras[0].restarts == 1);
+  // Camera 1 restarts too: two of two, the stream restarts.
   CHECK(sync.Add(At(1, 0)).rejection == SyncRejection::kBackwards);
-  const SyncResult r = sync.Add(At(0, 1));
+  CHECK(sync.Add(At(1, 1)).rejection == SyncRejection::kBackwards);
+  const SyncResult r = sync.Add(At(1, 2));
   CHECK(r.resynced);
   CHECK(r.rejection == SyncRejection::kNone);
   CHECK(Released(r.actions) == Pairs{{103, 0}, {-1, -1}});
   CHECK(sync.Status().resyncs == 1);
-  CHECK(Released(sync.Add(At(1, 1)).actions) == Pairs{{1, 0}, {1, 1}});
+  CHECK(Released(sync.Add(At(0, 2)).actions) == Pairs{{2, 0}, {2, 1}});
+}
+
+// Four cameras at 25 Hz by frame index; camera 0's clock is `skew_us` off from frame `from` on.
+// Returns, per released frame, the cameras it holds.
+std::vector<std::vector<CameraId>> RunSkewed(FrameSynchronizer* sync, std::int64_t skew_us,
+                                             FrameIndex from, FrameIndex frames,
+                                             std::vector<CameraTransition>* transitions) {
+  std::vector<std::vector<CameraId>> out;
+  std::map<FrameIndex, std::vector<CameraId>> by_frame;
+  for (FrameIndex f = 0; f < frames; ++f) {
+    for (CameraId c = 0; c < 4; ++c) {
+      core::CameraFrame cf = At(c, f);
+      if (c == 0 && f >= from) cf.utime += skew_us;
+      const SyncResult r = sync->Add(cf);
+      for (const SyncAction& a : r.actions) {
+        if (a.kind == SyncAction::Kind::kSubmit) {
+          by_frame[a.frame.frame].push_back(a.frame.camera_id);
+        }
+      }
+      transitions->insert(transitions->end(), r.transitions.begin(), r.transitions.end());
+    }
+  }
+  for (auto& [f, cams] : by_frame) out.push_back(cams);
+  return out;
+}
+
+TEST_CASE("clock model: one camera's skewed clock is flagged alone, the others keep tracking",
+          "[unit]") {
+  for (const std::int64_t skew : {std::int64_t{250000}, std::int64_t{-250000},
+                                  std::int64_t{2000000}, std::int64_t{3600000000}}) {
+    INFO("skew " << skew);
+    FrameSynchronizer sync({0, 1, 2, 3}, Options());
+    std::vector<CameraTransition> transitions;
+    const auto released = RunSkewed(&sync, skew, 10, 100, &transitions);
+    // Every frame is released with the three healthy cameras (the last one or two may still
+    // pend); camera 0 is flagged within 10 of its frames and then rejected as clock offset.
+    CHECK(released.size() >= 98);
+    for (const auto& cams : released) {
+      CHECK(std::count(cams.begin(), cams.end(), 1) == 1);
+      CHECK(std::count(cams.begin(), cams.end(), 2) == 1);
+      CHECK(std::count(cams.begin(), cams.end(), 3) == 1);
+    }
+    const SyncStatus st = sync.Status();
+    CHECK(st.cameras[0].clock_flagged);
+    CHECK(st.cameras[0].clock_offset >= 80);  // flagged within 10 of its 90 skewed frames
+    CHECK(std::abs(st.cameras[0].offset_us - skew) < 2 * kPeriod);
+    for (int c = 1; c < 4; ++c) {
+      CHECK_FALSE(st.cameras[static_cast<std::size_t>(c)].clock_flagged);
+      CHECK_FALSE(st.cameras[static_cast<std::size_t>(c)].excluded);
+      CHECK(st.cameras[static_cast<std::size_t>(c)].late == 0);
+    }
+    CHECK(st.resyncs == 0);
+    // The first clock transition flags camera 0 (it may also restart alone first: a clock that
+    // jumps is out of order for a while).
+    const auto clock = std::find_if(transitions.begin(), transitions.end(), [](const auto& t) {
+      return t.kind == CameraTransition::Kind::kClock;
+    });
+    REQUIRE(clock != transitions.end());
+    CHECK(clock->camera_id == 0);
+    CHECK(clock->excluded);
+    for (const CameraTransition& t : transitions) CHECK(t.camera_id == 0);
+  }
+}
+
+TEST_CASE("clock model: a clock that comes back is included again; one message cannot move time",
+          "[unit]") {
+  FrameSynchronizer sync({0, 1, 2, 3}, Options());
+  std::vector<CameraTransition> transitions;
+  // Frames 0..39 with camera 0 two seconds ahead, then its clock is fixed (RunSkewed skews from
+  // frame 10 on; run 40 frames skewed, then 40 frames clean by a second call on later frames).
+  for (FrameIndex f = 0; f < 80; ++f) {
+    for (CameraId c = 0; c < 4; ++c) {
+      core::CameraFrame cf = At(c, f);
+      if (c == 0 && f < 40) cf.utime += 2000000;
+      const SyncResult r = sync.Add(cf);
+      transitions.insert(transitions.end(), r.transitions.begin(), r.transitions.end());
+    }
+  }
+  // Flagged, then cleared once the median of its offsets is back.
+  REQUIRE(transitions.size() >= 2);
+  CHECK(transitions[0].excluded);
+  CHECK_FALSE(transitions.back().excluded);
+  CHECK_FALSE(sync.Status().cameras[0].clock_flagged);
+  // One far-future message from a healthy camera id is rejected and does not move the time.
+  const SyncResult far = sync.Add(Frame(1, 80, At(1, 80).utime + 3600000000LL));
+  CHECK(far.rejection == SyncRejection::kFarFuture);
+  for (CameraId c = 0; c < 4; ++c) {
+    const SyncResult r = sync.Add(At(c, 81));
+    CHECK(r.rejection == SyncRejection::kNone);
+  }
+}
+
+TEST_CASE("clock model: a frame counter running fast is caught", "[unit]") {
+  FrameSynchronizer sync({0, 1, 2, 3}, Options());
+  std::size_t released_healthy = 0;
+  for (FrameIndex f = 0; f < 100; ++f) {
+    for (CameraId c = 0; c < 4; ++c) {
+      core::CameraFrame cf = At(c, f);
+      if (c == 0 && f >= 10) cf.frame = 10 + (f - 10) * 10;  // ten times fast
+      for (const SyncAction& a : sync.Add(cf).actions) {
+        if (a.kind == SyncAction::Kind::kSubmit && a.frame.camera_id != 0) ++released_healthy;
+      }
+    }
+  }
+  const SyncStatus st = sync.Status();
+  CHECK(st.cameras[0].clock_flagged);
+  CHECK(st.resyncs == 0);
+  for (int c = 1; c < 4; ++c) CHECK(st.cameras[static_cast<std::size_t>(c)].late == 0);
+  CHECK(released_healthy >= 3 * 98);
+}
+
+TEST_CASE("synchronizer arithmetic saturates on extreme times and frames", "[unit]") {
+  for (const SyncMode mode : {SyncMode::kFrameIndex, SyncMode::kUtime}) {
+    SyncOptions o = Options();
+    o.mode = mode;
+    FrameSynchronizer sync({0, 1, 2}, o);
+    const std::int64_t big = std::numeric_limits<std::int64_t>::max();
+    const std::int64_t small = std::numeric_limits<std::int64_t>::min();
+    for (FrameIndex f = 0; f < 20; ++f) {
+      for (CameraId c = 0; c < 3; ++c) sync.Add(At(c, f));
+    }
+    for (const auto& [frame, utime] : std::vector<std::pair<std::int64_t, std::int64_t>>{
+             {big, big}, {small, small}, {big, small}, {small, big}, {0, big}, {big, 0}}) {
+      sync.Add(Frame(1, frame, utime));
+      sync.Add(Frame(2, frame, utime));
+    }
+    // The healthy stream goes on.
+    std::size_t released = 0;
+    for (FrameIndex f = 20; f < 40; ++f) {
+      for (CameraId c = 0; c < 3; ++c) released += sync.Add(At(c, f)).actions.size();
+    }
+    CHECK(released > 0);
+    sync.Flush();
+  }
 }
 
 TEST_CASE("synchronizer bounds the pending frames", "[unit]") {

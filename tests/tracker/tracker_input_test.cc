@@ -88,7 +88,18 @@ TEST_CASE("unknown camera, stale frame, duplicate camera, flood: rejected and co
   r = t->Add(flood);
   CHECK(r.rejection == tracker::FrameRejection::kTooManyDetections);
 
-  CHECK(t->stats().camera_frames_rejected == 4);
+  // Frame indices outside [0, 2^53] (the window arithmetic's range) are refused.
+  for (const FrameIndex bad : {FrameIndex{-1}, std::numeric_limits<FrameIndex>::min(),
+                               tracker::kMaxFrameIndex + 1,
+                               std::numeric_limits<FrameIndex>::max()}) {
+    core::CameraFrame odd = scene.detections[10][1];
+    odd.frame = bad;
+    r = t->Add(odd);
+    CHECK(r.rejection == tracker::FrameRejection::kBadFrameIndex);
+    CHECK_THAT(r.reason, Catch::Contains("outside [0, 2^53]"));
+  }
+
+  CHECK(t->stats().camera_frames_rejected == 8);
   CHECK(t->stats().rejections.at(tracker::FrameRejection::kStaleFrame) == 1);
   // The rejected frames changed nothing: camera 1 can still deliver frame 10.
   CHECK(t->Add(scene.detections[10][1]).rejection == tracker::FrameRejection::kNone);

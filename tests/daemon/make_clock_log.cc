@@ -1,0 +1,130 @@
+// Test helper of the daemon clock-fault test: copies a clean detections log (from
+// mvtrack_make_sim_log, >= 3 cameras) with one camera's time broken (cameras sorted; "a" is the
+// first, "b" the second; frame k counts from the log's first frame):
+//
+//   make_clock_log CLEAN.lcmlog OUT.lcmlog KIND
+//
+//   skew:US       camera a's utimes shifted by US microseconds (signed) from frame 10 on
+//   first_future  camera a's message of the first frame is sent first with its utime 1 h ahead
+//   stale_future  at frame 100 camera b re-sends its 99 messages of frames 1-99, then one
+//                 message 1 h ahead, then goes on normally
+//   burst         at frame 100 camera b re-sends its 100 messages of frames 0-99 (out of order)
+//   fast_counter  camera a's frame index runs ten times fast from frame 10 on
+//   drop          camera a's messages removed (the reference: the other cameras alone)
+// Exit status 0 on success, 1 on failure, 2 on usage errors.
+
+#include <cstdint>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/detection.h"
+#include "transport/channels.h"
+#include "transport/codec.h"
+#include "transport/log_io.h"
+
+namespace {
+
+namespace transport = mvtrack::transport;
+using mvtrack::core::CameraFrame;
+
+constexpr std::int64_t kHourUs = std::int64_t{3600} * 1000000;
+
+struct Event {
+  std::string channel;
+  std::int64_t time_us = 0;
+  std::vector<std::uint8_t> data;
+  CameraFrame frame;
+  int width = 0, height = 0;
+};
+
+int Run(int argc, char** argv) {
+  if (argc != 4) {
+    std::cerr << "usage: make_clock_log CLEAN.lcmlog OUT.lcmlog "
+                 "skew:US|first_future|stale_future|burst|fast_counter|drop\n";
+    return 2;
+  }
+  const std::string kind = argv[3];
+  std::optional<std::int64_t> skew;
+  if (kind.rfind("skew:", 0) == 0) skew = std::stoll(kind.substr(5));
+  if (!skew && kind != "first_future" && kind != "stale_future" && kind != "burst" &&
+      kind != "fast_counter" && kind != "drop") {
+    std::cerr << "make_clock_log: unknown kind '" << kind << "'\n";
+    return 2;
+  }
+  std::string why;
+  std::unique_ptr<transport::LogReader> reader = transport::LogReader::Open(argv[1], &why);
+  if (!reader) throw std::runtime_error(why);
+  std::vector<Event> events;
+  std::map<mvtrack::CameraId, bool> cameras;
+  while (std::optional<transport::LogEvent> e = reader->Next()) {
+    if (!transport::IsDetectionsChannel(e->channel)) continue;
+    transport::DecodeResult d = transport::DecodeCameraDetections(e->data.data(), e->data.size());
+    if (!d.ok()) throw std::runtime_error("the clean log has a bad message: " + d.reason);
+    cameras[d.frame.camera_id] = true;
+    events.push_back(Event{e->channel, e->timestamp_us, std::move(e->data), std::move(d.frame),
+                           d.image_width_px, d.image_height_px});
+  }
+  if (events.empty() || cameras.size() < 3) throw std::runtime_error("need a log of >= 3 cameras");
+  const mvtrack::CameraId cam_a = cameras.begin()->first;
+  const mvtrack::CameraId cam_b = std::next(cameras.begin())->first;
+  const mvtrack::FrameIndex first = events.front().frame.frame;
+  std::vector<const Event*> b_history;
+
+  std::unique_ptr<transport::LogWriter> out = transport::LogWriter::Open(argv[2], &why);
+  if (!out) throw std::runtime_error(why);
+  auto write = [&](const Event& e, const CameraFrame& f) {
+    if (!out->Write(e.channel, e.time_us,
+                    transport::EncodeCameraDetections(f, e.width, e.height), &why)) {
+      throw std::runtime_error(why);
+    }
+  };
+  bool first_sent = false;
+  for (const Event& e : events) {
+    const std::int64_t k = e.frame.frame - first;
+    const mvtrack::CameraId cam = e.frame.camera_id;
+    CameraFrame f = e.frame;
+    if (kind == "first_future" && !first_sent) {
+      CameraFrame ahead = f;
+      ahead.camera_id = cam_a;
+      ahead.utime += kHourUs;
+      write(e, ahead);
+      first_sent = true;
+    }
+    if (cam == cam_b && k == 100 && (kind == "stale_future" || kind == "burst")) {
+      const std::size_t from = kind == "burst" ? 0 : 1;
+      for (std::size_t i = from; i < b_history.size() && i < 100; ++i) {
+        write(*b_history[i], b_history[i]->frame);
+      }
+      if (kind == "stale_future") {
+        CameraFrame ahead = f;
+        ahead.utime += kHourUs;
+        write(e, ahead);
+      }
+    }
+    if (cam == cam_b) b_history.push_back(&e);
+    if (cam == cam_a) {
+      if (kind == "drop") continue;
+      if (skew && k >= 10) f.utime += *skew;
+      if (kind == "fast_counter" && k >= 10) f.frame = first + 10 + (k - 10) * 10;
+    }
+    write(e, f);
+  }
+  if (!out->Flush(&why)) throw std::runtime_error(why);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "make_clock_log: " << e.what() << "\n";
+    return 1;
+  }
+}
