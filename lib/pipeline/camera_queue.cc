@@ -74,7 +74,7 @@ void CameraQueue::Close() {
 
 std::size_t CameraQueue::depth() const {
   std::lock_guard<std::mutex> lock(mu_);
-  return items_.size();
+  return items_.size() - dropped_prefix_;
 }
 
 std::int64_t CameraQueue::dropped() const {

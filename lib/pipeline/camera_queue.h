@@ -58,7 +58,8 @@ class CameraQueue {
   /// Closes the queue (idempotent).
   void Close();
 
-  /// Items waiting (dropped headers included).
+  /// Items with detections waiting (at most capacity(); dropped headers, consumed without
+  /// work, are not counted: status reports depth against capacity).
   std::size_t depth() const;
   /// Camera-frames that lost their detections to overflow so far.
   std::int64_t dropped() const;
