@@ -123,6 +123,9 @@ TEST_CASE("GetInt64 and GetInt accept decimal integers only", "[unit]") {
       {"\"3\"", "quoted string"},
       {"", "nothing (null)"},
       {"9223372036854775808", "does not fit in 64 bits"},
+      // A huge value is echoed by its first 32 characters and its length, not whole.
+      {std::string(5000, '9'),
+       "integer '" + std::string(32, '9') + "... (5000 characters)' does not fit in 64 bits"},
   };
   for (const Bad& b : bad) {
     INFO("scalar: " << b.scalar);

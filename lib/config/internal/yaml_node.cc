@@ -266,6 +266,18 @@ std::string DoubleRange::Describe() const {
   return "must be a finite number";
 }
 
+namespace {
+
+// A scalar as echoed in an error: whole when short, else its start and its length (a value of
+// thousands of digits must not flood the message).
+std::string Echo(const std::string& text) {
+  constexpr std::size_t kMax = 32;
+  if (text.size() <= kMax) return text;
+  return text.substr(0, kMax) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
+}  // namespace
+
 double GetDouble(const NodeRef& node, const DoubleRange& range) {
   RequireNumberScalar(node, "a number");
   const std::string& text = node.node().Scalar();
@@ -274,13 +286,15 @@ double GetDouble(const NodeRef& node, const DoubleRange& range) {
     case RealStatus::kOk:
       break;
     case RealStatus::kNonFinite:
-      node.Fail("non-finite number '" + text + "' (must be finite)");
+      node.Fail("non-finite number '" + Echo(text) + "' (must be finite)");
     case RealStatus::kOutOfRange:
-      node.Fail("number '" + text + "' is out of the range of a double");
+      node.Fail("number '" + Echo(text) + "' is out of the range of a double");
     case RealStatus::kNotANumber:
-      node.Fail("expected a number, got '" + text + "'");
+      node.Fail("expected a number, got '" + Echo(text) + "'");
   }
-  if (!range.Contains(value)) node.Fail("value " + text + " out of range: " + range.Describe());
+  if (!range.Contains(value)) {
+    node.Fail("value " + Echo(text) + " out of range: " + range.Describe());
+  }
   return value;
 }
 
@@ -296,22 +310,23 @@ std::int64_t GetInt64(const NodeRef& node, std::int64_t min, std::int64_t max) {
                             (digits.front() == '+' || digits.front() == '-');
   const bool well_formed = !digits.empty() && !signed_twice && ptr == end;
   if (ec == std::errc::result_out_of_range && well_formed) {
-    node.Fail("integer '" + text + "' does not fit in 64 bits");
+    node.Fail("integer '" + Echo(text) + "' does not fit in 64 bits");
   }
   if (ec != std::errc() || !well_formed) {
     double real = 0.0;
     switch (ParseReal(text, &real)) {
       case RealStatus::kOk:
       case RealStatus::kOutOfRange:
-        node.Fail("expected an integer, got '" + text + "' (no fraction or exponent allowed)");
+        node.Fail("expected an integer, got '" + Echo(text) +
+                  "' (no fraction or exponent allowed)");
       case RealStatus::kNonFinite:
-        node.Fail("expected an integer, got the non-finite number '" + text + "'");
+        node.Fail("expected an integer, got the non-finite number '" + Echo(text) + "'");
       case RealStatus::kNotANumber:
-        node.Fail("expected an integer, got '" + text + "'");
+        node.Fail("expected an integer, got '" + Echo(text) + "'");
     }
   }
   if (value < min || value > max) {
-    node.Fail("value " + text + " out of range: " + DescribeIntRange(min, max));
+    node.Fail("value " + Echo(text) + " out of range: " + DescribeIntRange(min, max));
   }
   return value;
 }
