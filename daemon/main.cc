@@ -28,6 +28,7 @@
 #include "service/daemon_config.h"
 #include "service/lcm_runner.h"
 #include "service/rate_limiter.h"
+#include "service/receive_buffer.h"
 #include "service/service.h"
 #include "transport/tracks_jsonl.h"
 
@@ -207,8 +208,9 @@ long MaxRssKb() {
 void LogSummary(const mvtrack::service::ServiceCounters& c, double seconds) {
   const auto& st = c.pipeline.tracker;
   std::int64_t late = 0, flood = 0, backwards = 0, duplicates = 0, far_future = 0, missed = 0;
-  std::int64_t clock_offset = 0, camera_restarts = 0;
+  std::int64_t clock_offset = 0, camera_restarts = 0, lost = 0;
   for (const auto& cam : c.sync.cameras) {
+    lost += cam.lost;
     clock_offset += cam.clock_offset;
     camera_restarts += cam.restarts;
     late += cam.late;
@@ -223,10 +225,10 @@ void LogSummary(const mvtrack::service::ServiceCounters& c, double seconds) {
                c.messages, c.foreign_messages, c.decode_errors, Counts(c.decode_errors_by_kind),
                c.channel_mismatches, c.image_size_mismatches);
   spdlog::info("summary: camera_frames={} unknown_camera={} backwards={} duplicates={} "
-               "far_future={} late={} flood={} clock_offset={} camera_restarts={} resyncs={} "
-               "submitted={} gate_rejected={}",
+               "far_future={} late={} flood={} clock_offset={} camera_restarts={} lost={} "
+               "resyncs={} submitted={} gate_rejected={}",
                c.camera_frames_decoded, c.sync.unknown_camera, backwards, duplicates, far_future,
-               late, flood, clock_offset, camera_restarts, c.stream_restarts, c.submitted,
+               late, flood, clock_offset, camera_restarts, lost, c.stream_restarts, c.submitted,
                c.gate_rejected);
   spdlog::info("summary: frames_released={} complete={} by_deadline={} by_bound={} missed={} "
                "queue_dropped={}",
@@ -303,6 +305,15 @@ int Run(const Options& options) {
       mvtrack::service::Service::Create(config, hooks, &why);
   if (!service) throw std::runtime_error(why);
   if (!runner->Subscribe(service.get(), &why)) throw std::runtime_error(why);
+  if (const mvtrack::service::ReceiveBufferCheck rb =
+          mvtrack::service::CheckReceiveBuffer(config.input_url);
+      rb.applies) {
+    if (rb.capped) {
+      spdlog::warn("{}", rb.message);
+    } else {
+      spdlog::info("{}", rb.message);
+    }
+  }
   spdlog::info("input {}, output {}{}", config.input_url,
                runner->has_output() ? runner->output_url() : std::string("none (no LCM output)"),
                options.record_path.empty() ? "" : ", recording to " + options.record_path);

@@ -306,7 +306,18 @@ void FrameSynchronizer::Accept(core::CameraFrame frame, int camera_index, std::i
                                SyncResult* result) {
   Camera& cam = cameras_[static_cast<std::size_t>(camera_index)];
   if (cam.status.has_data) {
-    cam.steps[cam.next_step] = SatSub(frame.utime, cam.status.last_utime);  // > 0 (Check)
+    const std::int64_t step = SatSub(frame.utime, cam.status.last_utime);  // > 0 (Check)
+    if (options_.mode == SyncMode::kFrameIndex) {
+      cam.status.lost = SatAdd(cam.status.lost, std::max<std::int64_t>(
+                                                    0, SatSub(frame.frame, cam.last_frame) - 1));
+    } else if (cam.num_steps >= cam.steps.size()) {
+      std::vector<std::int64_t> steps(cam.steps.begin(), cam.steps.end());
+      const std::int64_t period = LowerMedian(&steps);
+      if (period > 0 && step > period + period / 2) {
+        cam.status.lost = SatAdd(cam.status.lost, (step + period / 2) / period - 1);
+      }
+    }
+    cam.steps[cam.next_step] = step;
     cam.next_step = (cam.next_step + 1) % cam.steps.size();
     cam.num_steps = std::min(cam.num_steps + 1, cam.steps.size());
   }

@@ -113,6 +113,9 @@ struct SyncCameraStatus {
   std::int64_t offset_us = 0;
   std::int64_t offset_frames = 0;  ///< by frame index: median frame offset
   std::int64_t restarts = 0;      ///< times it restarted alone
+  /// Frames it never sent: gaps in its frame indices (frame_index mode), or steps of more than
+  /// 1.5 of its frame periods in its capture times (utime mode), over accepted camera-frames.
+  std::int64_t lost = 0;
   std::int64_t detections_rejected = 0;  ///< detections in this camera's rejected frames
   std::int64_t missed = 0;       ///< released frames this active camera did not deliver to
 };

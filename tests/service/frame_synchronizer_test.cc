@@ -353,6 +353,31 @@ TEST_CASE("clock model: a frame counter running fast is caught", "[unit]") {
   CHECK(released_healthy >= 3 * 98);
 }
 
+TEST_CASE("synchronizer counts the frames a camera never sent as lost", "[unit]") {
+  // Frame index: camera 1 skips frames 5, 6 and 7.
+  FrameSynchronizer by_frame({0, 1, 2}, Options());
+  for (FrameIndex f = 0; f < 12; ++f) {
+    for (CameraId c = 0; c < 3; ++c) {
+      if (c == 1 && f >= 5 && f <= 7) continue;
+      by_frame.Add(At(c, f));
+    }
+  }
+  CHECK(by_frame.Status().cameras[1].lost == 3);
+  CHECK(by_frame.Status().cameras[0].lost == 0);
+  // By utime: camera 2 misses two frames after its period is known (8 steps).
+  SyncOptions o = Options();
+  o.mode = SyncMode::kUtime;
+  FrameSynchronizer by_utime({0, 1, 2}, o);
+  for (FrameIndex f = 0; f < 20; ++f) {
+    for (CameraId c = 0; c < 3; ++c) {
+      if (c == 2 && (f == 12 || f == 13)) continue;
+      by_utime.Add(At(c, f));
+    }
+  }
+  CHECK(by_utime.Status().cameras[2].lost == 2);
+  CHECK(by_utime.Status().cameras[1].lost == 0);
+}
+
 TEST_CASE("synchronizer arithmetic saturates on extreme times and frames", "[unit]") {
   for (const SyncMode mode : {SyncMode::kFrameIndex, SyncMode::kUtime}) {
     SyncOptions o = Options();
