@@ -173,7 +173,8 @@ DaemonConfig LoadConfig(const Options& o) {
   if (o.output_url) c.output_url = *o.output_url;
   if (o.workers) c.workers = *o.workers;
   // systemd's StateDirectory= (the unit's /var/lib/mvtrackd) when the file names none.
-  if (const char* env = std::getenv("STATE_DIRECTORY"); c.state_directory.empty() && env != nullptr) {
+  const char* env = std::getenv("STATE_DIRECTORY");
+  if (c.state_directory.empty() && env != nullptr && *env != '\0') {
     const std::string dirs = env;
     c.state_directory = dirs.substr(0, dirs.find(':'));
   }

@@ -14,7 +14,8 @@ std::optional<std::string> QueryValue(const std::string& url, const std::string&
   std::size_t pos = q + 1;
   while (pos <= url.size()) {
     const std::size_t amp = url.find('&', pos);
-    const std::string item = url.substr(pos, amp == std::string::npos ? std::string::npos : amp - pos);
+    const std::string item =
+        url.substr(pos, amp == std::string::npos ? std::string::npos : amp - pos);
     if (item.compare(0, key.size() + 1, key + "=") == 0) return item.substr(key.size() + 1);
     if (amp == std::string::npos) break;
     pos = amp + 1;
