@@ -27,6 +27,8 @@
 #include "transport/codec.h"
 #include "transport/log_io.h"
 
+#include "clean_log.h"
+
 namespace {
 
 namespace transport = mvtrack::transport;
@@ -34,13 +36,7 @@ using mvtrack::core::CameraFrame;
 
 constexpr std::int64_t kHourUs = std::int64_t{3600} * 1000000;
 
-struct Event {
-  std::string channel;
-  std::int64_t time_us = 0;
-  std::vector<std::uint8_t> data;
-  CameraFrame frame;
-  int width = 0, height = 0;
-};
+using Event = mvtrack::testing::CleanEvent;
 
 int Run(int argc, char** argv) {
   if (argc != 4) {
@@ -57,21 +53,10 @@ int Run(int argc, char** argv) {
     return 2;
   }
   std::string why;
-  std::unique_ptr<transport::LogReader> reader = transport::LogReader::Open(argv[1], &why);
-  if (!reader) throw std::runtime_error(why);
-  std::vector<Event> events;
-  std::map<mvtrack::CameraId, bool> cameras;
-  while (std::optional<transport::LogEvent> e = reader->Next()) {
-    if (!transport::IsDetectionsChannel(e->channel)) continue;
-    transport::DecodeResult d = transport::DecodeCameraDetections(e->data.data(), e->data.size());
-    if (!d.ok()) throw std::runtime_error("the clean log has a bad message: " + d.reason);
-    cameras[d.frame.camera_id] = true;
-    events.push_back(Event{e->channel, e->timestamp_us, std::move(e->data), std::move(d.frame),
-                           d.image_width_px, d.image_height_px});
-  }
-  if (events.empty() || cameras.size() < 3) throw std::runtime_error("need a log of >= 3 cameras");
-  const mvtrack::CameraId cam_a = cameras.begin()->first;
-  const mvtrack::CameraId cam_b = std::next(cameras.begin())->first;
+  const mvtrack::testing::CleanLog log = mvtrack::testing::ReadCleanLog(argv[1], 3);
+  const std::vector<Event>& events = log.events;
+  const mvtrack::CameraId cam_a = log.cameras[0];
+  const mvtrack::CameraId cam_b = log.cameras[1];
   const mvtrack::FrameIndex first = events.front().frame.frame;
   std::vector<const Event*> b_history;
 

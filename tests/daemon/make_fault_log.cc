@@ -41,6 +41,8 @@
 #include "transport/codec.h"
 #include "transport/log_io.h"
 
+#include "clean_log.h"
+
 namespace {
 
 namespace transport = mvtrack::transport;
@@ -50,13 +52,7 @@ using mvtrack::core::Detection2D;
 constexpr mvtrack::CameraId kUnknownCamera = 77;
 constexpr int kOversizedDetections = 10000;
 
-struct Event {
-  std::string channel;
-  std::int64_t time_us = 0;
-  std::vector<std::uint8_t> data;
-  CameraFrame frame;
-  int width = 0, height = 0;
-};
+using Event = mvtrack::testing::CleanEvent;
 
 Detection2D Box(double x0, double y0, double x1, double y1, double score) {
   Detection2D d;
@@ -74,22 +70,9 @@ int Run(int argc, char** argv) {
     return 2;
   }
   std::string why;
-  std::unique_ptr<transport::LogReader> reader = transport::LogReader::Open(argv[1], &why);
-  if (!reader) throw std::runtime_error(why);
-  std::vector<Event> events;
-  std::map<mvtrack::CameraId, bool> cameras;
-  while (std::optional<transport::LogEvent> e = reader->Next()) {
-    if (!transport::IsDetectionsChannel(e->channel)) continue;
-    transport::DecodeResult d = transport::DecodeCameraDetections(e->data.data(), e->data.size());
-    if (!d.ok()) throw std::runtime_error("the clean log has a bad message: " + d.reason);
-    cameras[d.frame.camera_id] = true;
-    events.push_back(Event{e->channel, e->timestamp_us, std::move(e->data), std::move(d.frame),
-                           d.image_width_px, d.image_height_px});
-  }
-  if (events.empty() || cameras.size() < 3) throw std::runtime_error("need a log of >= 3 cameras");
-  std::vector<mvtrack::CameraId> ids;
-  for (const auto& [id, unused] : cameras) ids.push_back(id);
-  const mvtrack::CameraId cam_a = ids[0], cam_b = ids[1], cam_c = ids[2];
+  const mvtrack::testing::CleanLog log = mvtrack::testing::ReadCleanLog(argv[1], 3);
+  const std::vector<Event>& events = log.events;
+  const mvtrack::CameraId cam_a = log.cameras[0], cam_b = log.cameras[1], cam_c = log.cameras[2];
   const mvtrack::FrameIndex first = events.front().frame.frame;
   // Frame period from the first two distinct frames of camera a.
   std::int64_t period_us = 40000;
