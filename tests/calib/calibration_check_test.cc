@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,10 @@ bool AnyContains(const std::vector<std::string>& lines,
 std::size_t CellAt(const CoverageGrid& g, double x, double y) {
   const int col = static_cast<int>(std::floor((x - g.region.x_min_m) / g.cell_m));
   const int row = static_cast<int>(std::floor((y - g.region.y_min_m) / g.cell_m));
+  if (col < 0 || row < 0 || col >= g.cols || row >= g.rows) {
+    throw std::out_of_range("CellAt: (" + std::to_string(x) + ", " + std::to_string(y) +
+                            ") is outside the coverage grid");
+  }
   return static_cast<std::size_t>(row) * static_cast<std::size_t>(g.cols) +
          static_cast<std::size_t>(col);
 }
@@ -107,8 +112,8 @@ TEST_CASE("Cameras facing each other across the floor are not a short baseline",
   // degrees apart ...
   CHECK(r.grid.best_angle_deg[CellAt(r.grid, 0.0, 0.0)] ==
         Approx(2.0 * std::atan(0.2 / 5.0) * kDeg).margin(0.5));
-  // ... and off it larger.
-  CHECK(r.grid.best_angle_deg[CellAt(r.grid, 0.0, 2.0)] >
+  // ... and off it larger (at (0, 1, 1): 180 - acos(-23.96 / 26.04) = 23 degrees).
+  CHECK(r.grid.best_angle_deg[CellAt(r.grid, 0.0, 1.0)] >
         r.grid.best_angle_deg[CellAt(r.grid, 0.0, 0.0)]);
 }
 

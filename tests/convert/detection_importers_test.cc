@@ -182,7 +182,8 @@ TEST_CASE("COCO: visibility flags and clamping", "[unit]") {
       "[{\"image_id\": 0, \"keypoints\": " + flags + ", \"bbox\": [0, 0, 5, 5]}]";
   CocoOptions visibility;
   visibility.keypoint_score = CocoKeypointScore::kVisibility;
-  const core::Detection2D& a = ReadCocoKeypoints(text, "x", visibility).by_frame.at(0).at(0);
+  // A copy: the import result is a temporary.
+  const core::Detection2D a = ReadCocoKeypoints(text, "x", visibility).by_frame.at(0).at(0);
   CHECK(a.keypoints[0].confidence == 0.0);
   CHECK(a.keypoints[1].confidence == 1.0);
   CHECK(a.keypoints[2].confidence == 1.0);
