@@ -103,12 +103,15 @@ void FrameSynchronizer::UpdateClock(const core::CameraFrame& f, int index, SyncR
   if (cam.num_offsets < kMinOffsetSamples) return;
   std::vector<std::int64_t> us(
       cam.offset_us.begin(), cam.offset_us.begin() + static_cast<std::ptrdiff_t>(cam.num_offsets));
-  std::vector<std::int64_t> fr(
-      cam.offset_frames.begin(),
-      cam.offset_frames.begin() + static_cast<std::ptrdiff_t>(cam.num_offsets));
   cam.status.offset_us = LowerMedian(&us);
   const bool by_frame = options_.mode == SyncMode::kFrameIndex;
-  cam.status.offset_frames = by_frame ? LowerMedian(&fr) : 0;
+  cam.status.offset_frames = 0;
+  if (by_frame) {
+    std::vector<std::int64_t> fr(
+        cam.offset_frames.begin(),
+        cam.offset_frames.begin() + static_cast<std::ptrdiff_t>(cam.num_offsets));
+    cam.status.offset_frames = LowerMedian(&fr);
+  }
   std::int64_t period = 0;
   if (cam.num_steps > 0) {
     std::vector<std::int64_t> steps(cam.steps.begin(),
@@ -344,21 +347,43 @@ void FrameSynchronizer::Accept(core::CameraFrame frame, int camera_index, std::i
 
 void FrameSynchronizer::UpdateExclusions(std::vector<CameraTransition>* transitions) {
   if (!now_utime_ || !stream_start_utime_) return;
+  // The quorum's utimes, sorted once (and again after an exclusion): the lower median of the
+  // other cameras' then costs O(log n) per camera instead of a QuorumTime each.
+  std::vector<std::int64_t> sorted;
+  const auto sort_quorum = [&] {
+    sorted.clear();
+    for (const Camera& c : cameras_) {
+      if (InQuorum(c)) sorted.push_back(c.status.last_utime);
+    }
+    std::sort(sorted.begin(), sorted.end());
+  };
+  // QuorumTime(i, 1)->first: the lower median of the quorum without camera i.
+  const auto others_median = [&](const Camera& c) -> std::optional<std::int64_t> {
+    const bool member = InQuorum(c);
+    const std::size_t m = sorted.size() - (member ? 1 : 0);
+    if (m == 0) return std::nullopt;
+    const std::size_t k = (m - 1) / 2;
+    if (!member) return sorted[k];
+    const auto p = static_cast<std::size_t>(
+        std::lower_bound(sorted.begin(), sorted.end(), c.status.last_utime) - sorted.begin());
+    return p > k ? sorted[k] : sorted[k + 1];
+  };
+  sort_quorum();
   bool changed = false;
-  for (std::size_t i = 0; i < cameras_.size(); ++i) {
-    Camera& c = cameras_[i];
+  for (Camera& c : cameras_) {
     if (c.status.excluded) continue;
     // A camera not seen in this stream is waited for from the stream's first utime on; one
     // seen is silent once the others' quorum moved on by silent_after_us since it delivered.
     std::int64_t waited = SatSub(*now_utime_, *stream_start_utime_);
     if (c.status.has_data) {
-      const auto others = QuorumTime(static_cast<int>(i), 1);
-      waited = others ? SatSub(others->first, c.quorum_at_last) : 0;
+      const std::optional<std::int64_t> others = others_median(c);
+      waited = others ? SatSub(*others, c.quorum_at_last) : 0;
     }
     if (waited > options_.silent_after_us) {
       c.status.excluded = true;
       transitions->push_back(CameraTransition{c.status.camera_id, true});
       changed = true;
+      sort_quorum();
     }
   }
   if (changed) UpdateNow();
