@@ -562,6 +562,8 @@ std::vector<std::uint8_t> Service::BuildStatus() {
       cs.rejected = sc.detections_rejected +
                     (i < ps.cameras.size() ? ps.cameras[i].detections_rejected : 0);
       cs.decode_errors = in.decode_errors;
+      cs.lost = sc.lost;
+      cs.clock_offset_us = sc.offset_us;
       cs.queue_depth = static_cast<std::int32_t>(
           i < ps.cameras.size() ? std::min<std::size_t>(ps.cameras[i].queue_depth, INT32_MAX) : 0);
       cs.queue_capacity = config_.camera_queue_capacity;
@@ -575,6 +577,7 @@ std::vector<std::uint8_t> Service::BuildStatus() {
         f |= mvtrack::camera_status_t::FLAG_DECODE_ERRORS;
       }
       if (sc.clock_flagged) f |= mvtrack::camera_status_t::FLAG_CLOCK_OFFSET;
+      if (cs.lost > in.lost_at_period_start) f |= mvtrack::camera_status_t::FLAG_LOSING;
       cs.flags = f;
       if ((f & (mvtrack::camera_status_t::FLAG_NO_DATA | mvtrack::camera_status_t::FLAG_STALE)) != 0) {
         flags |= mvtrack::tracker_status_t::FLAG_CAMERA_MISSING;
@@ -588,6 +591,7 @@ std::vector<std::uint8_t> Service::BuildStatus() {
       in.dropped_at_period_start = cs.dropped;
       in.rejected_at_period_start = cs.rejected;
       in.decode_errors_at_period_start = cs.decode_errors;
+      in.lost_at_period_start = cs.lost;
       msg.cameras.push_back(cs);
     }
     msg.num_cameras = static_cast<std::int16_t>(msg.cameras.size());

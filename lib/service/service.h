@@ -164,6 +164,7 @@ class Service {
     std::int64_t dropped_at_period_start = 0;
     std::int64_t rejected_at_period_start = 0;
     std::int64_t decode_errors_at_period_start = 0;
+    std::int64_t lost_at_period_start = 0;
     std::int64_t last_receive_us = 0;
     std::int64_t last_utime = 0;
   };

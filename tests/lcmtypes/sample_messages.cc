@@ -277,6 +277,8 @@ camera_status_t MakeCameraStatus(std::uint32_t seed, std::int32_t camera_id) {
   status.dropped = gen.UniformInt64(0, 1000);
   status.rejected = gen.UniformInt64(0, 1000);
   status.decode_errors = gen.UniformInt64(0, 10);
+  status.lost = gen.UniformInt64(0, 100);
+  status.clock_offset_us = gen.UniformInt64(-300'000, 300'000);
   status.queue_capacity = 64;
   status.queue_depth = gen.UniformInt(0, 64);
   return status;
@@ -391,6 +393,8 @@ std::string Dump(const camera_status_t& msg, const std::string& prefix) {
   f.Int("dropped", msg.dropped);
   f.Int("rejected", msg.rejected);
   f.Int("decode_errors", msg.decode_errors);
+  f.Int("lost", msg.lost);
+  f.Int("clock_offset_us", msg.clock_offset_us);
   f.Int("queue_depth", msg.queue_depth);
   f.Int("queue_capacity", msg.queue_capacity);
   return f.Render();
@@ -434,6 +438,7 @@ std::vector<SampleEvent> MakeSampleEvents() {
     camera.rate_hz = 0.0f;
     camera.last_utime = camera.last_receive_utime = 0;
     camera.received = camera.late = camera.dropped = camera.rejected = camera.decode_errors = 0;
+    camera.lost = camera.clock_offset_us = 0;
     camera.queue_depth = 0;
   }
   events.push_back(MakeEvent("TEST_TRACKER_STATUS", fresh));

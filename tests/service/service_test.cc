@@ -240,6 +240,50 @@ TEST_CASE("service counts bad input and reports it in the status message", "[uni
   s->Stop();
 }
 
+TEST_CASE("service status carries each camera's lost frames and clock offset", "[unit]") {
+  pipeline::ManualClock clock(Scene().detections[0][0].utime);
+  Sink sink;
+  std::string why;
+  std::unique_ptr<Service> s = Service::Create(Config(1), sink.Hooks(&clock), &why);
+  REQUIRE(s);
+  // Camera 2 never sends frames 20, 21 and 22 and its clock runs 20 ms ahead (inside the
+  // tolerance: measured, not flagged); cameras 0 and 1 are clean.
+  constexpr Utime kAhead = 20000;
+  for (std::size_t i = 0; i < 40; ++i) {
+    for (core::CameraFrame f : Scene().detections[i]) {
+      if (f.camera_id == 2 && i >= 20 && i <= 22) continue;
+      if (f.camera_id == 2) f.utime += kAhead;
+      clock.SetMicros(f.utime + 1000);
+      const std::vector<std::uint8_t> bytes = Encode(f);
+      s->OnMessage(transport::DetectionsChannelForCamera(f.camera_id), bytes.data(), bytes.size());
+    }
+  }
+  mvtrack::tracker_status_t st;
+  const std::vector<std::uint8_t> bytes = s->BuildStatus();
+  REQUIRE(st.decode(bytes.data(), 0, static_cast<int>(bytes.size())) ==
+          static_cast<int>(bytes.size()));
+  REQUIRE(st.num_cameras == 3);
+  CHECK(st.cameras[0].lost == 0);
+  CHECK(st.cameras[1].lost == 0);
+  CHECK(st.cameras[2].lost == 3);
+  CHECK((st.cameras[0].flags & mvtrack::camera_status_t::FLAG_LOSING) == 0);
+  CHECK((st.cameras[2].flags & mvtrack::camera_status_t::FLAG_LOSING) != 0);
+  CHECK((st.cameras[2].flags & mvtrack::camera_status_t::FLAG_CLOCK_OFFSET) == 0);
+  // Each camera is compared, as its frame arrives, with the others' newest capture times: camera
+  // 2 sends last, so it meets frame i in both others; camera 0 sends first and meets frame i - 1,
+  // one frame period behind (the arrival order is in the estimate, up to one period).
+  const Utime period = Scene().detections[1][0].utime - Scene().detections[0][0].utime;
+  CHECK(st.cameras[2].clock_offset_us == kAhead);
+  CHECK(st.cameras[0].clock_offset_us == period);
+  // The next period loses nothing: the flag clears, the counter stays.
+  clock.SetMicros(clock.NowMicros() + 1000000);
+  const std::vector<std::uint8_t> next = s->BuildStatus();
+  REQUIRE(st.decode(next.data(), 0, static_cast<int>(next.size())) == static_cast<int>(next.size()));
+  CHECK(st.cameras[2].lost == 3);
+  CHECK((st.cameras[2].flags & mvtrack::camera_status_t::FLAG_LOSING) == 0);
+  s->Stop();
+}
+
 TEST_CASE("service: status period and idle flush follow the wall clock", "[unit]") {
   const Utime t0 = Scene().detections[0][0].utime;
   pipeline::ManualClock clock(t0);
