@@ -331,6 +331,22 @@ TEST_CASE("ParseDocument reports syntax errors with their line", "[unit]") {
   CHECK(two.line() == 2);
   CHECK_THAT(two.reason(), Catch::Contains("expected one YAML document, found 2"));
 
+  // Hostile nesting: yaml-cpp's recursion guard ("bad file") becomes a message that says so,
+  // at the line where the nesting went too deep.
+  const ConfigError deep = RequireConfigError([] {
+    internal::ParseDocument(
+        "a: 1\nb: " + std::string(100000, '[') + std::string(100000, ']') + "\nc: 2\n", "deep.yaml");
+  });
+  CHECK(deep.line() == 2);
+  CHECK_THAT(deep.reason(), Catch::StartsWith("YAML nested too deeply here"));
+  CHECK_THAT(deep.reason(), !Catch::Contains("bad file"));
+  std::string blocks = "a:\n";
+  for (int i = 1; i < 3000; ++i) blocks += std::string(static_cast<std::size_t>(2 * i), ' ') + "k:\n";
+  const ConfigError deep_blocks =
+      RequireConfigError([&] { internal::ParseDocument(blocks, "blocks.yaml"); });
+  CHECK(deep_blocks.line() > 100);
+  CHECK_THAT(deep_blocks.reason(), Catch::StartsWith("YAML nested too deeply here"));
+
   CHECK(internal::ParseDocument("", "x").IsNull());
   CHECK(internal::ParseDocument("# only a comment\n", "x").IsNull());
 }

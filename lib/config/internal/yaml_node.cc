@@ -8,6 +8,8 @@
 #include <sstream>
 #include <system_error>
 
+#include <yaml-cpp/depthguard.h>
+
 namespace mvtrack::config::internal {
 namespace {
 
@@ -430,6 +432,11 @@ NodeRef ParseDocument(std::string_view text, const std::string& source_name) {
   std::vector<YAML::Node> documents;
   try {
     documents = YAML::LoadAll(std::string(text));
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp reports its recursion guard as "bad file"; say what happened instead.
+    throw ConfigError(source_name, ToOneBased(e.mark.line), ToOneBased(e.mark.column), "",
+                      "YAML nested too deeply here (parser depth " + std::to_string(e.depth()) +
+                          ", yaml-cpp's limit; a configuration nests a few levels)");
   } catch (const YAML::Exception& e) {
     throw ConfigError(source_name, ToOneBased(e.mark.line), ToOneBased(e.mark.column), "",
                       "YAML syntax error: " + e.msg);
