@@ -295,7 +295,9 @@ int Run(const Options& options) {
     hooks.on_frame = [&](const mvtrack::tracker::Frame3D& frame,
                          mvtrack::core::KeypointLayoutId layout) {
       std::lock_guard<std::mutex> lock(jsonl_mu);
-      jsonl << mvtrack::transport::TracksJsonLine(frame, layout);
+      // Flushed per frame: a reader tailing the file sees each frame when it is published, and a
+      // kill -9 loses no line that was published over LCM.
+      jsonl << mvtrack::transport::TracksJsonLine(frame, layout) << std::flush;
       if (!jsonl && !jsonl_failed) {
         jsonl_failed = true;
         spdlog::error("{}: write error", options.tracks_jsonl);
