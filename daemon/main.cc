@@ -232,9 +232,10 @@ void LogSummary(const mvtrack::service::ServiceCounters& c, double seconds) {
                late, flood, clock_offset, camera_restarts, lost, c.stream_restarts, c.submitted,
                c.gate_rejected);
   spdlog::info("summary: frames_released={} complete={} by_deadline={} by_bound={} missed={} "
-               "queue_dropped={}",
+               "queue_dropped={} kernel_drops={}",
                c.sync.frames_released, c.sync.released_complete, c.sync.released_by_deadline,
-               c.sync.released_by_bound, missed, c.pipeline.camera_frames_dropped);
+               c.sync.released_by_bound, missed, c.pipeline.camera_frames_dropped,
+               c.kernel_drops);
   spdlog::info("summary: detections used={} rejected={} repaired={} filtered={}",
                st.detections_used, st.detections_rejected, st.detections_repaired,
                st.detections_filtered);
@@ -304,6 +305,9 @@ int Run(const Options& options) {
       }
     };
   }
+  if (config.input_url.rfind("udpm://", 0) == 0) {
+    hooks.kernel_drops = [] { return mvtrack::service::ProcessUdpDrops(); };
+  }
   std::unique_ptr<mvtrack::service::Service> service =
       mvtrack::service::Service::Create(config, hooks, &why);
   if (!service) throw std::runtime_error(why);
@@ -317,6 +321,9 @@ int Run(const Options& options) {
       spdlog::info("{}", rb.message);
     }
   }
+  spdlog::info("input: LCM holds up to {} message(s) per subscription while the tracker is busy "
+               "(input.lcm_queue_capacity)",
+               mvtrack::service::LcmQueueCapacity(config));
   spdlog::info("input {}, output {}{}", config.input_url,
                runner->has_output() ? runner->output_url() : std::string("none (no LCM output)"),
                options.record_path.empty() ? "" : ", recording to " + options.record_path);

@@ -126,7 +126,9 @@ void ParseCameras(const MapRef& root, const std::string& base_dir, const std::st
 void ParseInput(const MapRef& root, DaemonConfig* c) {
   const std::optional<NodeRef> node = root.Find("input");
   if (!node) return;
-  const MapRef m(*node, {"lcm_url", "channels", "max_message_bytes", "max_detections"}, true);
+  const MapRef m(*node,
+                 {"lcm_url", "channels", "max_message_bytes", "max_detections", "lcm_queue_capacity"},
+                 true);
   if (auto v = m.Find("lcm_url")) {
     c->input_url = GetString(*v);
     CheckUrl(*v, c->input_url);
@@ -136,6 +138,7 @@ void ParseInput(const MapRef& root, DaemonConfig* c) {
   }
   if (auto v = m.Find("max_message_bytes")) c->max_message_bytes = GetInt64(*v, 64, INT32_MAX);
   if (auto v = m.Find("max_detections")) c->max_detections_per_message = GetInt(*v, 1, 1000000);
+  if (auto v = m.Find("lcm_queue_capacity")) c->lcm_queue_capacity = GetInt(*v, 0, 1000000);
 }
 
 void ParseOutput(const MapRef& root, DaemonConfig* c) {
@@ -350,6 +353,7 @@ std::string DaemonConfigToYaml(const DaemonConfig& c) {
   line("  channels: " + std::string(ChannelModeName(c.channel_mode)));
   line("  max_message_bytes: " + std::to_string(c.max_message_bytes));
   line("  max_detections: " + std::to_string(c.max_detections_per_message));
+  line("  lcm_queue_capacity: " + std::to_string(c.lcm_queue_capacity));
   line("output:");
   line("  lcm_url: " + QuoteString(c.output_url));
   line("  tracks_channel: " + QuoteString(c.tracks_channel));
@@ -386,6 +390,12 @@ std::string DaemonConfigToYaml(const DaemonConfig& c) {
   line("tracker:");
   config::internal::AppendTrackerOptionsYaml(c.tracker, 2, &out);
   return out;
+}
+
+int LcmQueueCapacity(const DaemonConfig& config) {
+  if (config.lcm_queue_capacity > 0) return config.lcm_queue_capacity;
+  const std::size_t per_camera = 30 * std::max<std::size_t>(1, config.cameras.size());
+  return static_cast<int>(std::min<std::size_t>(per_camera, 1000000));
 }
 
 std::string DaemonConfigHash(const DaemonConfig& c) {

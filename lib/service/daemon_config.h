@@ -121,6 +121,9 @@ struct DaemonConfig {
   std::int64_t max_message_bytes = std::int64_t{1} << 20;
   /// input.max_detections: camera_detections_t.num_detections limit at decode time.
   int max_detections_per_message = 1000;
+  /// input.lcm_queue_capacity: messages LCM may hold per subscription while the daemon's handler
+  /// is busy (LCM drops the rest, in no counter); 0 = LcmQueueCapacity's default.
+  int lcm_queue_capacity = 0;
 
   /// output.lcm_url: where tracks and status go; "" = the input URL, except for a file://
   /// input (read-only), where "" means no LCM output (use --record or --tracks-jsonl).
@@ -199,6 +202,10 @@ bool LooksLikeDaemonConfig(std::string_view text);
 /// their shortest exact form, the calibration path as given resolved, and the tracker options
 /// in full). Equal configurations give identical text.
 std::string DaemonConfigToYaml(const DaemonConfig& config);
+
+/// The LCM subscription queue capacity in use: input.lcm_queue_capacity, or when 0, 30 messages
+/// per configured camera (one second of a 30 fps camera; LCM's own default is 30 in all).
+int LcmQueueCapacity(const DaemonConfig& config);
 
 /// 64-bit FNV-1a of DaemonConfigToYaml(config) and the canonical calibration text, as 16 hex
 /// digits: identifies the configuration in status messages and logs.

@@ -74,10 +74,14 @@ bool LcmRunner::Subscribe(Service* service, std::string* why) {
       break;
   }
   for (const std::string& channel : channels) {
-    if (input_->subscribeFunction(channel, &OnRawMessage, service) == nullptr) {
+    lcm::Subscription* sub = input_->subscribeFunction(channel, &OnRawMessage, service);
+    if (sub == nullptr) {
       if (why != nullptr) *why = "cannot subscribe to " + channel;
       return false;
     }
+    // LCM queues at most this many received messages per subscription while the handler runs
+    // and drops the rest silently (its default, 30, is one frame of 30 cameras).
+    sub->setQueueCapacity(LcmQueueCapacity(config_));
   }
   return true;
 }

@@ -40,6 +40,7 @@ std::vector<std::string> RestartOnlyChanges(const DaemonConfig& a, const DaemonC
   check(a.channel_mode != b.channel_mode, "input.channels");
   check(a.max_message_bytes != b.max_message_bytes, "input.max_message_bytes");
   check(a.max_detections_per_message != b.max_detections_per_message, "input.max_detections");
+  check(a.lcm_queue_capacity != b.lcm_queue_capacity, "input.lcm_queue_capacity");
   check(a.output_url != b.output_url, "output.lcm_url");
   check(a.tracks_channel != b.tracks_channel, "output.tracks_channel");
   check(a.status_channel != b.status_channel, "output.status_channel");
@@ -516,10 +517,22 @@ void Service::Stop() {
   }
 }
 
+std::int64_t Service::KernelDrops() const {
+  if (!hooks_.kernel_drops) return -1;
+  const std::optional<std::int64_t> now = hooks_.kernel_drops();
+  std::int64_t seen = kernel_drops_.load(std::memory_order_relaxed);
+  while (now && *now > seen &&
+         !kernel_drops_.compare_exchange_weak(seen, *now, std::memory_order_relaxed)) {
+  }
+  return kernel_drops_.load(std::memory_order_relaxed);
+}
+
 ServiceCounters Service::Counters() const {
   const pipeline::PipelineStatus ps = pipeline_->Status();
+  const std::int64_t kernel_drops = KernelDrops();
   std::lock_guard<std::mutex> lock(mu_);
   ServiceCounters c = counters_;
+  c.kernel_drops = kernel_drops;
   c.pipeline = ps;
   c.log_suppressed = limiter_.suppressed_total();
   return c;
@@ -530,6 +543,7 @@ std::vector<std::uint8_t> Service::BuildStatus() {
   const pipeline::PipelineStatus ps = pipeline_->Status();
   std::vector<std::int64_t> window_latencies = pipeline_->TakeWindowLatencies();
   const SyncStatus ss = sync_.Status();
+  const std::int64_t kernel_drops = KernelDrops();
   mvtrack::tracker_status_t msg;
   std::vector<std::int64_t> samples;
   {
@@ -604,6 +618,11 @@ std::vector<std::uint8_t> Service::BuildStatus() {
       flags |= mvtrack::tracker_status_t::FLAG_JOB_FAILURES;
     }
     jobs_failed_at_period_start_ = msg.jobs_failed;
+    msg.kernel_drops = kernel_drops;
+    if (kernel_drops > kernel_drops_at_period_start_) {
+      flags |= mvtrack::tracker_status_t::FLAG_INPUT_LOSS;
+    }
+    kernel_drops_at_period_start_ = std::max<std::int64_t>(0, kernel_drops);
     msg.num_latency_samples =
         static_cast<std::int32_t>(std::min<std::size_t>(samples.size(), INT32_MAX));
     msg.latency_max_us = samples.empty() ? 0 : *std::max_element(samples.begin(), samples.end());

@@ -71,6 +71,10 @@ struct ServiceHooks {
   std::string record_path;
   /// The daemon's version string for tracker_status_t.version.
   std::string version = "unknown";
+  /// The datagrams the kernel dropped for the input's sockets (full receive buffer), cumulative,
+  /// e.g. ProcessUdpDrops for a udpm:// input; nullopt when unknown. Called at each status and
+  /// by Counters(), never per message. Empty: not measured (tracker_status_t.kernel_drops -1).
+  std::function<std::optional<std::int64_t>()> kernel_drops;
 };
 
 /// Cumulative counters of the service (for the exit summary, tests and the status message).
@@ -102,6 +106,8 @@ struct ServiceCounters {
   /// reload, stream restart, stop) are not sampled: their wait is the input's silence.
   std::vector<std::int64_t> receive_to_publish_us;
   std::int64_t frames_published_by_flush = 0;  ///< frames published during a flush
+  /// Input datagrams the kernel dropped (ServiceHooks::kernel_drops); -1 when not measured.
+  std::int64_t kernel_drops = -1;
   SyncStatus sync;                       ///< synchronizer counters
   pipeline::PipelineStatus pipeline;     ///< pipeline counters (current pipeline)
 };
@@ -156,6 +162,9 @@ class Service {
   const std::string& config_hash() const { return config_hash_; }
 
  private:
+  // Calls hooks_.kernel_drops and keeps the largest value; -1 while not measured.
+  std::int64_t KernelDrops() const;
+
   struct CameraInput {
     std::int64_t received = 0;            // decoded messages
     std::int64_t decode_errors = 0;       // on this camera's channel
@@ -219,6 +228,10 @@ class Service {
   std::int64_t windows_before_ = 0;   // windows processed by earlier pipelines (reloads)
   std::int64_t jobs_failed_before_ = 0;
   std::int64_t jobs_failed_at_period_start_ = 0;
+  // Largest value hooks_.kernel_drops returned (it never decreases, even if a socket closed);
+  // -1 while never measured.
+  mutable std::atomic<std::int64_t> kernel_drops_{-1};
+  std::int64_t kernel_drops_at_period_start_ = 0;
 
   // Set while the control thread flushes the pipeline (read by the finalizer thread).
   std::atomic<bool> flushing_{false};

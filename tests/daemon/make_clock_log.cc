@@ -11,6 +11,9 @@
 //   burst         at frame 100 camera b re-sends its 100 messages of frames 0-99 (out of order)
 //   fast_counter  camera a's frame index runs ten times fast from frame 10 on
 //   drop          camera a's messages removed (the reference: the other cameras alone)
+//   flood         from frame 10 on, camera a sends 9 extra messages per frame, each with 10,000
+//                 box detections (~340 kB, over input.max_detections) and its utime spread over
+//                 the frame period: a misconfigured publisher flooding the group
 // Exit status 0 on success, 1 on failure, 2 on usage errors.
 
 #include <cstdint>
@@ -41,14 +44,14 @@ using Event = mvtrack::testing::CleanEvent;
 int Run(int argc, char** argv) {
   if (argc != 4) {
     std::cerr << "usage: make_clock_log CLEAN.lcmlog OUT.lcmlog "
-                 "skew:US|first_future|stale_future|burst|fast_counter|drop\n";
+                 "skew:US|first_future|stale_future|burst|fast_counter|drop|flood\n";
     return 2;
   }
   const std::string kind = argv[3];
   std::optional<std::int64_t> skew;
   if (kind.rfind("skew:", 0) == 0) skew = std::stoll(kind.substr(5));
   if (!skew && kind != "first_future" && kind != "stale_future" && kind != "burst" &&
-      kind != "fast_counter" && kind != "drop") {
+      kind != "fast_counter" && kind != "drop" && kind != "flood") {
     std::cerr << "make_clock_log: unknown kind '" << kind << "'\n";
     return 2;
   }
@@ -92,6 +95,18 @@ int Run(int argc, char** argv) {
       }
     }
     if (cam == cam_b) b_history.push_back(&e);
+    if (cam == cam_a && kind == "flood" && k >= 10) {
+      for (int copy = 1; copy <= 9; ++copy) {
+        CameraFrame big = f;
+        big.utime += copy * 3000;
+        big.detections.assign(10000, mvtrack::core::Detection2D{});
+        for (std::size_t i = 0; i < big.detections.size(); ++i) {
+          const double x = static_cast<double>(i % 100) * 10.0;
+          big.detections[i].box = {x, 100.0, x + 8.0, 120.0};
+        }
+        write(e, big);
+      }
+    }
     if (cam == cam_a) {
       if (kind == "drop") continue;
       if (skew && k >= 10) f.utime += *skew;

@@ -303,6 +303,7 @@ tracker_status_t MakeTrackerStatus(std::uint32_t seed, int num_cameras) {
   status.windows_processed = gen.UniformInt64(0, 1'000'000);
   status.jobs_failed = gen.UniformInt64(0, 10);
   status.executor_queue_depth = gen.UniformInt(0, 8);
+  status.kernel_drops = gen.UniformInt64(-1, 50);
   status.num_cameras = static_cast<std::int16_t>(num_cameras);
   for (int c = 0; c < num_cameras; ++c) {
     status.cameras.push_back(MakeCameraStatus(seed * 7u + static_cast<std::uint32_t>(c), c + 1));
@@ -418,6 +419,7 @@ std::string Dump(const tracker_status_t& msg, const std::string& prefix) {
   f.Int("windows_processed", msg.windows_processed);
   f.Int("jobs_failed", msg.jobs_failed);
   f.Int("executor_queue_depth", msg.executor_queue_depth);
+  f.Int("kernel_drops", msg.kernel_drops);
   f.Int("num_cameras", msg.num_cameras);
   f.StructArray("cameras", msg.cameras);
   return f.Render();

@@ -51,12 +51,16 @@ TEST_CASE("daemon config: the example file is valid and documents the defaults",
   CHECK(c.sync.mode == SyncMode::kFrameIndex);
   CHECK(c.camera_overflow == pipeline::OverflowPolicy::kDropOldest);
   CHECK(c.channel_mode == ChannelMode::kBoth);
+  // LCM's subscription queue: 30 messages per camera unless set.
+  CHECK(c.lcm_queue_capacity == 0);
+  CHECK(LcmQueueCapacity(c) == static_cast<int>(30 * c.cameras.size()));
 }
 
 TEST_CASE("daemon config: values are read into every section", "[unit]") {
   const DaemonConfig c = Parse(Minimal(
       "  ids: [2, 0]\n"
       "input:\n  lcm_url: \"memq://\"\n  channels: shared\n  max_detections: 50\n"
+      "  lcm_queue_capacity: 77\n"
       "output:\n  lcm_url: \"file:///tmp/x.lcmlog?mode=w\"\n  tracks_channel: T\n"
       "  status_channel: S\n  status_period_s: 0.5\n  latency_limit_us: 7\n"
       "sync:\n  mode: utime\n  tolerance_us: 100\n  deadline_us: 1000\n  idle_flush_s: 0\n"
@@ -70,6 +74,8 @@ TEST_CASE("daemon config: values are read into every section", "[unit]") {
   CHECK(c.input_url == "memq://");
   CHECK(c.channel_mode == ChannelMode::kShared);
   CHECK(c.max_detections_per_message == 50);
+  CHECK(c.lcm_queue_capacity == 77);
+  CHECK(LcmQueueCapacity(c) == 77);
   CHECK(c.output_url == "file:///tmp/x.lcmlog?mode=w");
   CHECK(c.tracks_channel == "T");
   CHECK(c.status_channel == "S");
