@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
@@ -21,6 +22,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,8 @@
 #include "service/rate_limiter.h"
 #include "service/receive_buffer.h"
 #include "service/service.h"
+#include "service/status_check.h"
+#include "transport/codec.h"
 #include "transport/tracks_jsonl.h"
 
 #ifndef MVTRACK_VERSION
@@ -38,12 +42,18 @@
 
 namespace {
 
+// Set once the daemon drains: the final status no longer replaces systemd's STATUS=draining.
+std::atomic<bool> g_stopping{false};
+// A signal taken by a thread that does not block it (see Run); 0 = none.
+std::atomic<int> g_caught_signal{0};
+
 using mvtrack::service::DaemonConfig;
 
 constexpr int kPollMs = 50;
 
 const char kUsage[] =
-    "usage: mvtrackd --config FILE [--calibration FILE] [--input-log LOG] [--output-url URL]\n"
+    "usage: mvtrackd --config FILE [--calibration FILE] [--input-log LOG [--input-speed X]]\n"
+    "                [--output-url URL]\n"
     "                [--record LOG] [--tracks-jsonl FILE] [--workers N] [--log-level LEVEL]\n"
     "       mvtrackd --version | --help\n";
 
@@ -59,6 +69,9 @@ const char kHelp[] =
     "                      fast as the tracker consumes them (input.lcm_url = file://LOG?speed=0,\n"
     "                      queues.camera_overflow = block, sync.idle_flush_s = 0), exit at the\n"
     "                      end of the log after a summary\n"
+    "  --input-speed X     with --input-log: play the log at X times its recorded pace (1 = as\n"
+    "                      recorded, live-like: LCM's ?speed=X; queues and idle flush stay as\n"
+    "                      configured); 0 (default) = as fast as the tracker consumes\n"
     "  --output-url URL    override output.lcm_url\n"
     "  --record LOG        write every received and published message to this LCM log\n"
     "                      (replayable with `mvtrack replay`)\n"
@@ -79,6 +92,7 @@ struct Options {
   std::string config_path;
   std::string calibration;
   std::optional<std::string> input_log;
+  double input_speed = 0.0;
   std::optional<std::string> output_url;
   std::string record_path;
   std::string tracks_jsonl;
@@ -124,6 +138,19 @@ std::optional<Options> ParseArgs(int argc, char** argv) {
       if (it->second->empty()) throw UsageError(arg + " needs a non-empty value");
     } else if (arg == "--input-log") {
       o.input_log = next();
+    } else if (arg == "--input-speed") {
+      const std::string v = next();
+      std::size_t used = 0;
+      double x = -1.0;
+      try {
+        x = std::stod(v, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != v.size() || !(x >= 0.0 && x <= 1000.0)) {
+        throw UsageError("--input-speed must be a number in [0, 1000], not '" + v + "'");
+      }
+      o.input_speed = x;
     } else if (arg == "--output-url") {
       o.output_url = next();
     } else if (arg == "--log-level") {
@@ -147,6 +174,7 @@ std::optional<Options> ParseArgs(int argc, char** argv) {
   }
   if (o.config_path.empty()) throw UsageError("--config is required");
   if (o.input_log && o.input_log->empty()) throw UsageError("--input-log needs a file name");
+  if (o.input_speed > 0.0 && !o.input_log) throw UsageError("--input-speed needs --input-log");
   if (o.log_level && spdlog::level::from_str(*o.log_level) == spdlog::level::off &&
       *o.log_level != "off") {
     throw UsageError("--log-level: unknown level '" + *o.log_level + "'");
@@ -166,9 +194,15 @@ DaemonConfig LoadConfig(const Options& o) {
       throw std::runtime_error("--input-log " + *o.input_log + ": the log is empty");
     }
     const std::string abs = std::filesystem::absolute(*o.input_log, ec).lexically_normal().string();
-    c.input_url = "file://" + abs + "?speed=0";
-    c.camera_overflow = mvtrack::pipeline::OverflowPolicy::kBlock;
-    c.sync.idle_flush_s = 0.0;
+    if (o.input_speed > 0.0) {
+      std::ostringstream url;
+      url << "file://" << abs << "?speed=" << o.input_speed;
+      c.input_url = url.str();
+    } else {
+      c.input_url = "file://" + abs + "?speed=0";
+      c.camera_overflow = mvtrack::pipeline::OverflowPolicy::kBlock;
+      c.sync.idle_flush_s = 0.0;
+    }
   }
   if (o.output_url) c.output_url = *o.output_url;
   if (o.workers) c.workers = *o.workers;
@@ -271,6 +305,13 @@ int Run(const Options& options) {
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  // A thread started before this point (a sanitizer's runtime has one) still takes these
+  // signals: a handler records them for the control loop instead of the default action
+  // (terminating the process), so a SIGHUP can never kill the daemon.
+  struct sigaction record {};
+  record.sa_handler = [](int sig) { g_caught_signal.store(sig); };
+  sigemptyset(&record.sa_mask);
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &record, nullptr);
   signal(SIGPIPE, SIG_IGN);
 
   std::string why;
@@ -289,8 +330,22 @@ int Run(const Options& options) {
   hooks.version = MVTRACK_VERSION;
   hooks.record_path = options.record_path;
   mvtrack::service::LcmRunner* runner_ptr = runner.get();
-  hooks.publish = [runner_ptr](const std::string& channel, const std::vector<std::uint8_t>& data) {
+  const std::string status_channel = config.status_channel;
+  const bool notify = std::getenv("NOTIFY_SOCKET") != nullptr;
+  auto frame_rate = std::make_shared<mvtrack::service::FrameRateMeter>();
+  hooks.publish = [runner_ptr, status_channel, notify, frame_rate](
+                      const std::string& channel, const std::vector<std::uint8_t>& data) {
     if (!runner_ptr->Publish(channel, data)) spdlog::error("LCM publish on {} failed", channel);
+    // `systemctl status` shows the latest status in words (cameras, rate, tracks, worst flag).
+    if (notify && channel == status_channel && !g_stopping.load()) {
+      const mvtrack::transport::StatusDecodeResult st =
+          mvtrack::transport::DecodeTrackerStatus(data.data(), data.size());
+      if (st.ok()) {
+        const std::string line =
+            "STATUS=" + mvtrack::service::NotifyStatusLine(st.message, frame_rate->Add(st.message));
+        sd_notify(0, line.c_str());
+      }
+    }
   };
   if (jsonl.is_open()) {
     hooks.on_frame = [&](const mvtrack::tracker::Frame3D& frame,
@@ -352,7 +407,8 @@ int Run(const Options& options) {
     service->Tick();
     const timespec zero{0, 0};
     int sig = 0;
-    while ((sig = sigtimedwait(&signals, nullptr, &zero)) > 0) {
+    while ((sig = sigtimedwait(&signals, nullptr, &zero)) > 0 ||
+           (sig = g_caught_signal.exchange(0)) > 0) {
       if (sig == SIGHUP) {
         sd_notify(0, "RELOADING=1");
         try {
@@ -368,7 +424,7 @@ int Run(const Options& options) {
         } catch (const std::exception& e) {
           spdlog::error("reload failed, keeping the running configuration: {}", e.what());
         }
-        sd_notify(0, "READY=1\nSTATUS=tracking");
+        sd_notify(0, "READY=1");
       } else {
         spdlog::info("{} received: draining", sig == SIGINT ? "SIGINT" : "SIGTERM");
         stop = true;
@@ -379,6 +435,7 @@ int Run(const Options& options) {
       next_watchdog = SteadyClock::now() + watchdog_period;
     }
   }
+  g_stopping.store(true);
   sd_notify(0, "STOPPING=1\nSTATUS=draining");
   service->Stop();
   const double seconds = std::chrono::duration<double>(SteadyClock::now() - start).count();

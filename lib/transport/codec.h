@@ -178,4 +178,76 @@ std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
                                        Utime publish_utime,
                                        std::int64_t latency_us);
 
+/// One camera of a decoded tracker_status_t (the fields of camera_status_t,
+/// lcmtypes/camera_status_t.lcm, with the same units and meaning).
+struct CameraStatus {
+  CameraId camera_id = 0;
+  std::int64_t flags = 0;  ///< camera_status_t::FLAG_* bits (CameraFlagNames spells them)
+  float rate_hz = 0.0f;
+  std::int64_t last_utime = 0;
+  std::int64_t last_receive_utime = 0;
+  std::int64_t received = 0;
+  std::int64_t late = 0;
+  std::int64_t dropped = 0;
+  std::int64_t rejected = 0;
+  std::int64_t decode_errors = 0;
+  std::int64_t lost = 0;
+  std::int64_t clock_offset_us = 0;
+  std::int32_t queue_depth = 0;
+  std::int32_t queue_capacity = 0;
+};
+
+/// A decoded tracker_status_t (lcmtypes/tracker_status_t.lcm; same fields, units, meaning).
+struct TrackerStatus {
+  std::int64_t utime = 0;
+  std::int64_t period_us = 0;
+  std::int64_t uptime_us = 0;
+  std::string version;
+  std::string config_hash;
+  std::int64_t flags = 0;  ///< tracker_status_t::FLAG_* bits (TrackerFlagNames spells them)
+  std::int64_t last_frame = -1;
+  std::int32_t active_tracks = 0;
+  std::int32_t confirmed_tracks = 0;
+  std::int32_t num_latency_samples = 0;
+  std::int64_t latency_p50_us = 0;
+  std::int64_t latency_p99_us = 0;
+  std::int64_t latency_max_us = 0;
+  std::int64_t windows_processed = 0;
+  std::int64_t jobs_failed = 0;
+  std::int32_t executor_queue_depth = 0;
+  std::int64_t kernel_drops = -1;
+  std::vector<CameraStatus> cameras;  ///< as in the message (the daemon sorts by camera id)
+};
+
+/// Result of DecodeTrackerStatus().
+struct StatusDecodeResult {
+  DecodeStatus status = DecodeStatus::kMalformed;
+  std::string reason;     ///< empty when kOk; otherwise what, where, why
+  TrackerStatus message;  ///< valid only when kOk
+
+  /// status == kOk.
+  bool ok() const { return status == DecodeStatus::kOk; }
+};
+
+/// Decodes a tracker_status_t from untrusted bytes (same guarantees as
+/// DecodeCameraDetections(); num_cameras is bounded by limits.max_cameras, the strings by
+/// limits.max_string).
+StatusDecodeResult DecodeTrackerStatus(const void* data,
+                                       std::size_t size,
+                                       const DecodeLimits& limits = {});
+
+/// Encodes `status` as a tracker_status_t (num_cameras from the vector's size).
+/// @pre at most INT16_MAX cameras (checked; aborts otherwise).
+std::vector<std::uint8_t> EncodeTrackerStatus(const TrackerStatus& status);
+
+/// The names of the camera_status_t::FLAG_* bits set in `flags` ("NO_DATA", "STALE", "LATE",
+/// "DROPPING", "REJECTING", "DECODE_ERRORS", "CLOCK_OFFSET", "LOSING"), in bit order; an
+/// unknown bit n is named "BIT<n>".
+std::vector<std::string> CameraFlagNames(std::int64_t flags);
+
+/// The names of the tracker_status_t::FLAG_* bits set in `flags` ("CAMERA_MISSING",
+/// "INPUT_LOSS", "BACKLOG", "LATENCY_HIGH", "JOB_FAILURES"), in bit order; unknown bits as
+/// CameraFlagNames does.
+std::vector<std::string> TrackerFlagNames(std::int64_t flags);
+
 }  // namespace mvtrack::transport

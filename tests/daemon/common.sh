@@ -52,12 +52,3 @@ count_value() {
   grep "^$2=" "$1" | sed 's/.*=//'
 }
 
-# expect_eq ACTUAL EXPECTED MESSAGE
-expect_eq() {
-  [ "$1" = "$2" ] || fail "$3: got '$1', expected '$2'"
-}
-
-# expect_ge ACTUAL MIN MESSAGE
-expect_ge() {
-  [ "$1" -ge "$2" ] || fail "$3: got $1, expected >= $2"
-}

@@ -26,3 +26,13 @@ expect_grep() {
     fail "no line matching '$1' in $2"
   fi
 }
+
+# expect_eq ACTUAL EXPECTED MESSAGE
+expect_eq() {
+  [ "$1" = "$2" ] || fail "$3: got '$1', expected '$2'"
+}
+
+# expect_ge ACTUAL MIN MESSAGE
+expect_ge() {
+  [ "$1" -ge "$2" ] || fail "$3: got $1, expected >= $2"
+}

@@ -12,12 +12,14 @@ packages=(
   # mvtrack view and calib check pictures (PNG, MP4) and OpenCV FileStorage calibrations
   libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-videoio-dev
   libyaml-cpp-dev libspdlog-dev libsystemd-dev
+  # mvtrack web: HTTP server and JSON
+  libcpp-httplib-dev nlohmann-json3-dev
   # LCM: C/C++ library, lcm-gen and the logger, Java bindings; lcm.pc needs glib
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev
   # Java types jar and lcm-spy (jchart2d draws its plots)
   default-jdk-headless libjchart2d-java
-  # tests
-  catch2 python3
+  # tests (chromium: mvtrack web's page in a real browser, headless)
+  catch2 python3 chromium curl python3-websocket
   # Python examples: a virtualenv with PyPI's lcm (tests/python)
   python3-venv
   # Debian package: cpack -G DEB runs dpkg-shlibdeps (tools/cmake/packaging.cmake)

@@ -89,5 +89,9 @@ int RunBench(int argc, char** argv);
 int RunView(int argc, char** argv);
 /// `mvtrack calib`: import calibrations from other formats, check a calibration (calib.cc).
 int RunCalib(int argc, char** argv);
+/// `mvtrack web`: live floor view, /events, /metrics, /healthz over HTTP (web.cc, lib/web).
+int RunWeb(int argc, char** argv);
+/// `mvtrack status`: one status message for a person, monitoring-plugin exit code (status.cc).
+int RunStatus(int argc, char** argv);
 
 }  // namespace mvtrack::cli

@@ -32,6 +32,10 @@ constexpr Command kCommands[] = {
      mvtrack::cli::RunView},
     {"calib", "import a calibration from other formats; check a calibration",
      mvtrack::cli::RunCalib},
+    {"web", "serve a live floor view, JSON events, metrics and health over HTTP",
+     mvtrack::cli::RunWeb},
+    {"status", "print the tracker's latest status; exit 0/1/2/3 (OK/WARNING/CRITICAL/UNKNOWN)",
+     mvtrack::cli::RunStatus},
 };
 
 void PrintUsage(std::ostream& os) {

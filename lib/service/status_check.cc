@@ -1,0 +1,120 @@
+#include "service/status_check.h"
+
+#include <cstdio>
+#include <string>
+
+namespace mvtrack::service {
+namespace {
+
+constexpr std::int64_t kCameraNoData = 1, kCameraStale = 2, kCameraClockOffset = 64;
+constexpr std::int64_t kTrackerBacklog = 4, kTrackerJobFailures = 16;
+
+std::string Join(const std::vector<std::string>& words, const char* sep) {
+  std::string out;
+  for (const std::string& w : words) out += (out.empty() ? "" : sep) + w;
+  return out;
+}
+
+bool Delivers(const transport::CameraStatus& c) {
+  return c.received > 0 && (c.flags & (kCameraNoData | kCameraStale | kCameraClockOffset)) == 0;
+}
+
+}  // namespace
+
+const char* ToString(Health health) {
+  switch (health) {
+    case Health::kOk:
+      return "OK";
+    case Health::kWarning:
+      return "WARNING";
+    case Health::kCritical:
+      return "CRITICAL";
+    case Health::kUnknown:
+      return "UNKNOWN";
+  }
+  return "UNKNOWN";
+}
+
+int CamerasDelivering(const transport::TrackerStatus& status) {
+  int n = 0;
+  for (const transport::CameraStatus& c : status.cameras) n += Delivers(c) ? 1 : 0;
+  return n;
+}
+
+double FramesPerSecond(const transport::TrackerStatus& status) {
+  if (status.period_us <= 0) return 0.0;
+  return static_cast<double>(status.num_latency_samples) * 1e6 /
+         static_cast<double>(status.period_us);
+}
+
+HealthReport AssessStatus(const transport::TrackerStatus& status) {
+  HealthReport r;
+  std::vector<std::string> critical;
+  std::vector<std::string> warning;
+  const int delivering = CamerasDelivering(status);
+  if (delivering < 2) {
+    critical.push_back(std::to_string(delivering) + " of " +
+                       std::to_string(status.cameras.size()) +
+                       " cameras deliver (2 are needed to triangulate)");
+  }
+  if ((status.flags & kTrackerBacklog) != 0) {
+    critical.push_back("BACKLOG: windows are processed behind real time");
+  }
+  if ((status.flags & kTrackerJobFailures) != 0) {
+    critical.push_back("JOB_FAILURES: " + std::to_string(status.jobs_failed) +
+                       " window jobs failed since start");
+  }
+  for (const std::string& f : transport::TrackerFlagNames(
+           status.flags & ~(kTrackerBacklog | kTrackerJobFailures))) {
+    warning.push_back(f);
+  }
+  for (const transport::CameraStatus& c : status.cameras) {
+    const std::vector<std::string> names = transport::CameraFlagNames(c.flags);
+    if (!names.empty()) {
+      warning.push_back("camera " + std::to_string(c.camera_id) + " " + Join(names, ","));
+    }
+  }
+  r.health = !critical.empty() ? Health::kCritical
+             : !warning.empty() ? Health::kWarning
+                                : Health::kOk;
+  r.reasons = critical;
+  r.reasons.insert(r.reasons.end(), warning.begin(), warning.end());
+  return r;
+}
+
+double FrameRateMeter::Add(const transport::TrackerStatus& status) {
+  if (!history_.empty() && (status.utime <= history_.back().first ||
+                            status.last_frame < history_.back().second)) {
+    history_.clear();  // a restart, or a clock step: start over
+  }
+  if (status.last_frame < 0) return FramesPerSecond(status);  // no output yet
+  history_.emplace_back(status.utime, status.last_frame);
+  // Keep the newest sample older than the horizon as the base, drop those before it.
+  std::size_t base = 0;
+  while (base + 1 < history_.size() &&
+         static_cast<double>(status.utime) - static_cast<double>(history_[base + 1].first) >=
+             static_cast<double>(horizon_us_)) {
+    ++base;
+  }
+  history_.erase(history_.begin(), history_.begin() + static_cast<std::ptrdiff_t>(base));
+  const double dt =
+      static_cast<double>(status.utime) - static_cast<double>(history_.front().first);
+  if (dt < 1e6) return FramesPerSecond(status);
+  return (static_cast<double>(status.last_frame) - static_cast<double>(history_.front().second)) *
+         1e6 / dt;
+}
+
+std::string NotifyStatusLine(const transport::TrackerStatus& status, double frames_per_second) {
+  const HealthReport h = AssessStatus(status);
+  char fps[32];
+  std::snprintf(fps, sizeof(fps), "%.1f", frames_per_second);
+  std::string line = "tracking: " + std::to_string(CamerasDelivering(status)) + "/" +
+                     std::to_string(status.cameras.size()) + " cameras, " + fps + " fps, " +
+                     std::to_string(status.active_tracks) + " tracks (" +
+                     std::to_string(status.confirmed_tracks) + " confirmed), " +
+                     ToString(h.health);
+  if (!h.reasons.empty()) line += ": " + Join(h.reasons, "; ");
+  return line;
+}
+
+}  // namespace mvtrack::service

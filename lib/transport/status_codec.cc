@@ -1,0 +1,147 @@
+// tracker_status_t <-> transport::TrackerStatus, and the names of the status flags.
+
+#include <climits>
+#include <cstdint>
+#include <mvtrack/camera_status_t.hpp>
+#include <mvtrack/tracker_status_t.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/check.h"
+#include "transport/codec.h"
+#include "transport/internal/wire_walker.h"
+
+namespace mvtrack::transport {
+namespace {
+
+using internal::kFloatBytes;
+using internal::kInt16Bytes;
+using internal::kInt32Bytes;
+using internal::kInt64Bytes;
+using internal::WireWalker;
+
+// camera_status_t: camera_id, flags, rate_hz, 2 utimes, 7 counters, 2 queue fields.
+constexpr std::size_t kCameraStatusBytes =
+    kInt32Bytes + kInt64Bytes + kFloatBytes + 2 * kInt64Bytes + 7 * kInt64Bytes + 2 * kInt32Bytes;
+
+bool WalkStatus(WireWalker* w, const DecodeLimits& limits) {
+  if (!internal::WalkFingerprint(w, mvtrack::tracker_status_t::getHash(),
+                                 mvtrack::tracker_status_t::getTypeName())) {
+    return false;
+  }
+  w->Skip("utime, period_us, uptime_us", 3 * kInt64Bytes);
+  std::string_view text;
+  if (!w->ReadString("version", limits.max_string, &text)) return false;
+  if (!w->ReadString("config_hash", limits.max_string, &text)) return false;
+  w->Skip("flags, last_frame", 2 * kInt64Bytes);
+  w->Skip("active_tracks, confirmed_tracks, num_latency_samples", 3 * kInt32Bytes);
+  w->Skip("latency, windows, jobs", 5 * kInt64Bytes);
+  w->Skip("executor_queue_depth", kInt32Bytes);
+  w->Skip("kernel_drops", kInt64Bytes);
+  std::int32_t num_cameras = 0;
+  if (!w->ReadCount16("num_cameras", limits.max_cameras, kCameraStatusBytes, &num_cameras)) {
+    return false;
+  }
+  w->Skip("cameras", static_cast<std::size_t>(num_cameras) * kCameraStatusBytes);
+  if (w->ok() && w->remaining() > 0) {
+    return w->Fail(DecodeStatus::kMalformed,
+                   std::to_string(w->remaining()) + " trailing bytes after the message",
+                   w->position());
+  }
+  return w->ok();
+}
+
+std::vector<std::string> FlagNames(std::int64_t flags, const std::vector<std::string_view>& names) {
+  std::vector<std::string> out;
+  for (int bit = 0; bit < 64; ++bit) {
+    if ((static_cast<std::uint64_t>(flags) >> bit & 1u) == 0) continue;
+    out.emplace_back(static_cast<std::size_t>(bit) < names.size()
+                         ? std::string(names[static_cast<std::size_t>(bit)])
+                         : "BIT" + std::to_string(bit));
+  }
+  return out;
+}
+
+// The fields camera_status_t and CameraStatus share by name, copied in either direction.
+template <typename From, typename To>
+void CopyCameraFields(const From& c, To* cs) {
+  cs->camera_id = c.camera_id;
+  cs->flags = c.flags;
+  cs->rate_hz = c.rate_hz;
+  cs->last_utime = c.last_utime;
+  cs->last_receive_utime = c.last_receive_utime;
+  cs->received = c.received;
+  cs->late = c.late;
+  cs->dropped = c.dropped;
+  cs->rejected = c.rejected;
+  cs->decode_errors = c.decode_errors;
+  cs->lost = c.lost;
+  cs->clock_offset_us = c.clock_offset_us;
+  cs->queue_depth = c.queue_depth;
+  cs->queue_capacity = c.queue_capacity;
+}
+
+// The fields tracker_status_t and TrackerStatus share by name (all but the cameras).
+template <typename From, typename To>
+void CopyStatusFields(const From& msg, To* out) {
+  out->utime = msg.utime;
+  out->period_us = msg.period_us;
+  out->uptime_us = msg.uptime_us;
+  out->version = msg.version;
+  out->config_hash = msg.config_hash;
+  out->flags = msg.flags;
+  out->last_frame = msg.last_frame;
+  out->active_tracks = msg.active_tracks;
+  out->confirmed_tracks = msg.confirmed_tracks;
+  out->num_latency_samples = msg.num_latency_samples;
+  out->latency_p50_us = msg.latency_p50_us;
+  out->latency_p99_us = msg.latency_p99_us;
+  out->latency_max_us = msg.latency_max_us;
+  out->windows_processed = msg.windows_processed;
+  out->jobs_failed = msg.jobs_failed;
+  out->executor_queue_depth = msg.executor_queue_depth;
+  out->kernel_drops = msg.kernel_drops;
+}
+
+}  // namespace
+
+StatusDecodeResult DecodeTrackerStatus(const void* data, std::size_t size,
+                                       const DecodeLimits& limits) {
+  StatusDecodeResult result;
+  const auto convert = [&](const mvtrack::tracker_status_t& msg) {
+    CopyStatusFields(msg, &result.message);
+    result.message.cameras.resize(msg.cameras.size());
+    for (std::size_t i = 0; i < msg.cameras.size(); ++i) {
+      CopyCameraFields(msg.cameras[i], &result.message.cameras[i]);
+    }
+  };
+  internal::CheckedDecode<mvtrack::tracker_status_t>(data, size, limits, WalkStatus, convert,
+                                                     &result.status, &result.reason);
+  return result;
+}
+
+std::vector<std::uint8_t> EncodeTrackerStatus(const TrackerStatus& s) {
+  MVTRACK_CHECK(s.cameras.size() <= static_cast<std::size_t>(INT16_MAX));
+  mvtrack::tracker_status_t msg;
+  CopyStatusFields(s, &msg);
+  msg.cameras.resize(s.cameras.size());
+  for (std::size_t i = 0; i < s.cameras.size(); ++i) CopyCameraFields(s.cameras[i], &msg.cameras[i]);
+  msg.num_cameras = static_cast<std::int16_t>(msg.cameras.size());
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
+  const int written = msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  MVTRACK_CHECK(written == static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+std::vector<std::string> CameraFlagNames(std::int64_t flags) {
+  return FlagNames(flags, {"NO_DATA", "STALE", "LATE", "DROPPING", "REJECTING", "DECODE_ERRORS",
+                           "CLOCK_OFFSET", "LOSING"});
+}
+
+std::vector<std::string> TrackerFlagNames(std::int64_t flags) {
+  return FlagNames(flags, {"CAMERA_MISSING", "INPUT_LOSS", "BACKLOG", "LATENCY_HIGH",
+                           "JOB_FAILURES"});
+}
+
+}  // namespace mvtrack::transport

@@ -1,0 +1,159 @@
+#include "web/metrics.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "service/status_check.h"
+
+namespace mvtrack::web {
+namespace {
+
+// Appends one metric family: HELP and TYPE, then the samples added by `samples`.
+class Exposition {
+ public:
+  void Family(const char* name, const char* type, const char* help) {
+    name_ = name;
+    text_ += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " " + type + "\n";
+  }
+  void Sample(double value, const std::string& labels = "") {
+    char buf[64];
+    if (std::isnan(value)) {
+      std::snprintf(buf, sizeof(buf), "NaN");
+    } else if (std::isinf(value)) {
+      std::snprintf(buf, sizeof(buf), value > 0 ? "+Inf" : "-Inf");
+    } else if (value == std::floor(value) && std::fabs(value) < 1e15) {
+      std::snprintf(buf, sizeof(buf), "%.0f", value);
+    } else {
+      std::snprintf(buf, sizeof(buf), "%.9g", value);
+    }
+    text_ += name_ + (labels.empty() ? "" : "{" + labels + "}") + " " + buf + "\n";
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  std::string name_;
+  std::string text_;
+};
+
+std::string CameraLabel(const transport::CameraStatus& c) {
+  return "camera=\"" + std::to_string(c.camera_id) + "\"";
+}
+
+double D(std::int64_t v) { return static_cast<double>(v); }
+
+}  // namespace
+
+std::string PrometheusText(const std::optional<transport::TrackerStatus>& status,
+                           double status_age_s, const WebCounters& web) {
+  Exposition e;
+  e.Family("mvtrack_up", "gauge", "1 when a tracker status message has been received");
+  e.Sample(status ? 1.0 : 0.0);
+  e.Family("mvtrack_web_tracks_messages_total", "counter", "tracks messages received");
+  e.Sample(D(web.tracks_messages));
+  e.Family("mvtrack_web_status_messages_total", "counter", "status messages received");
+  e.Sample(D(web.status_messages));
+  e.Family("mvtrack_web_decode_errors_total", "counter", "messages that failed to decode");
+  e.Sample(D(web.decode_errors));
+  e.Family("mvtrack_web_clients", "gauge", "/events clients connected");
+  e.Sample(D(web.clients));
+  e.Family("mvtrack_web_clients_dropped_total", "counter",
+           "/events clients disconnected because they did not keep up");
+  e.Sample(D(web.clients_dropped));
+  e.Family("mvtrack_web_events_sent_total", "counter", "events written to /events clients");
+  e.Sample(D(web.events_sent));
+  if (!status) return e.text();
+  const transport::TrackerStatus& s = *status;
+  const service::HealthReport health = service::AssessStatus(s);
+  e.Family("mvtrack_status_age_seconds", "gauge", "time since the latest status message");
+  e.Sample(status_age_s);
+  e.Family("mvtrack_health", "gauge",
+           "0 OK, 1 WARNING, 2 CRITICAL (monitoring-plugin levels; mvtrack status)");
+  e.Sample(static_cast<double>(static_cast<int>(health.health)));
+  e.Family("mvtrack_uptime_seconds", "gauge", "tracker uptime");
+  e.Sample(D(s.uptime_us) / 1e6);
+  e.Family("mvtrack_last_frame", "gauge", "frame index of the latest published tracks");
+  e.Sample(D(s.last_frame));
+  e.Family("mvtrack_frames_per_second", "gauge", "tracks messages per second in the period");
+  e.Sample(service::FramesPerSecond(s));
+  e.Family("mvtrack_active_tracks", "gauge", "tracks in the latest output, not ended");
+  e.Sample(s.active_tracks);
+  e.Family("mvtrack_confirmed_tracks", "gauge", "confirmed or lost tracks in the latest output");
+  e.Sample(s.confirmed_tracks);
+  e.Family("mvtrack_latency_seconds", "gauge", "processing latency of the period's outputs");
+  e.Sample(D(s.latency_p50_us) / 1e6, "quantile=\"0.5\"");
+  e.Sample(D(s.latency_p99_us) / 1e6, "quantile=\"0.99\"");
+  e.Sample(D(s.latency_max_us) / 1e6, "quantile=\"1\"");
+  e.Family("mvtrack_windows_processed_total", "counter", "sliding windows processed");
+  e.Sample(D(s.windows_processed));
+  e.Family("mvtrack_jobs_failed_total", "counter", "window jobs that failed");
+  e.Sample(D(s.jobs_failed));
+  e.Family("mvtrack_executor_queue_depth", "gauge", "window jobs waiting");
+  e.Sample(s.executor_queue_depth);
+  e.Family("mvtrack_kernel_drops_total", "counter",
+           "input datagrams the kernel dropped (receive buffer full); -1 not measured");
+  e.Sample(D(s.kernel_drops));
+  e.Family("mvtrack_tracker_flag", "gauge", "1 when the tracker flag is set this period");
+  for (const char* f : {"CAMERA_MISSING", "INPUT_LOSS", "BACKLOG", "LATENCY_HIGH",
+                        "JOB_FAILURES"}) {
+    bool set = false;
+    for (const std::string& n : transport::TrackerFlagNames(s.flags)) set = set || n == f;
+    e.Sample(set ? 1.0 : 0.0, std::string("flag=\"") + f + "\"");
+  }
+  e.Family("mvtrack_cameras", "gauge", "configured cameras");
+  e.Sample(D(static_cast<std::int64_t>(s.cameras.size())));
+  e.Family("mvtrack_cameras_delivering", "gauge", "cameras whose input is used for tracking");
+  e.Sample(service::CamerasDelivering(s));
+  struct Counter {
+    const char* name;
+    const char* help;
+    std::int64_t transport::CameraStatus::*field;
+  };
+  const std::vector<Counter> counters = {
+      {"mvtrack_camera_received_total", "messages received and decoded",
+       &transport::CameraStatus::received},
+      {"mvtrack_camera_late_total", "camera-frames discarded as late",
+       &transport::CameraStatus::late},
+      {"mvtrack_camera_dropped_total", "camera-frames dropped (queue overflow, flooding)",
+       &transport::CameraStatus::dropped},
+      {"mvtrack_camera_rejected_total", "detections rejected by validation",
+       &transport::CameraStatus::rejected},
+      {"mvtrack_camera_decode_errors_total", "messages on the camera's channel that failed",
+       &transport::CameraStatus::decode_errors},
+      {"mvtrack_camera_lost_total", "frames the camera never delivered",
+       &transport::CameraStatus::lost},
+  };
+  for (const Counter& c : counters) {
+    e.Family(c.name, "counter", c.help);
+    for (const transport::CameraStatus& cam : s.cameras) e.Sample(D(cam.*c.field), CameraLabel(cam));
+  }
+  e.Family("mvtrack_camera_rate_hz", "gauge", "messages per second in the period");
+  for (const transport::CameraStatus& cam : s.cameras) e.Sample(cam.rate_hz, CameraLabel(cam));
+  e.Family("mvtrack_camera_clock_offset_seconds", "gauge",
+           "the clock model's offset of the camera to the others");
+  for (const transport::CameraStatus& cam : s.cameras) {
+    e.Sample(D(cam.clock_offset_us) / 1e6, CameraLabel(cam));
+  }
+  e.Family("mvtrack_camera_queue_depth", "gauge", "camera-frames waiting for the camera thread");
+  for (const transport::CameraStatus& cam : s.cameras) e.Sample(cam.queue_depth, CameraLabel(cam));
+  e.Family("mvtrack_camera_last_receive_age_seconds", "gauge",
+           "time from the camera's latest message to the status");
+  for (const transport::CameraStatus& cam : s.cameras) {
+    e.Sample(cam.last_receive_utime > 0 ? (D(s.utime) - D(cam.last_receive_utime)) / 1e6 : NAN,
+             CameraLabel(cam));
+  }
+  e.Family("mvtrack_camera_flag", "gauge", "1 when the camera flag is set this period");
+  for (const transport::CameraStatus& cam : s.cameras) {
+    const std::vector<std::string> set = transport::CameraFlagNames(cam.flags);
+    for (const char* f : {"NO_DATA", "STALE", "LATE", "DROPPING", "REJECTING", "DECODE_ERRORS",
+                          "CLOCK_OFFSET", "LOSING"}) {
+      bool on = false;
+      for (const std::string& n : set) on = on || n == f;
+      e.Sample(on ? 1.0 : 0.0, CameraLabel(cam) + ",flag=\"" + f + "\"");
+    }
+  }
+  return e.text();
+}
+
+}  // namespace mvtrack::web

@@ -1,0 +1,231 @@
+// The live floor view served at / by mvtrack web (docs/OPERATING.md). One self-contained page:
+// no script, style or font from elsewhere (a store network may have no internet access). It
+// reads /floor.json and /layouts.json once, then the /events stream (EventSource reconnects by
+// itself when the server restarts), and keeps a DOM table of the latest tracks (ids and
+// positions, read by the browser test) next to the canvas drawing.
+
+#include <string>
+
+#include "web/web_server.h"
+
+namespace mvtrack::web {
+
+const std::string& IndexPage() {
+  static const std::string page = R"HTML(<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>mvtrack live</title>
+<style>
+  body { font: 14px system-ui, sans-serif; margin: 0; background: #f4f4f4; color: #222; }
+  header { display: flex; gap: 1.5em; align-items: baseline; padding: 0.5em 1em; background: #223; color: #eee; flex-wrap: wrap; }
+  header h1 { font-size: 1.1em; margin: 0; }
+  #health { font-weight: bold; padding: 0.1em 0.5em; border-radius: 3px; }
+  .OK { background: #2a7; color: #fff; } .WARNING { background: #e90; color: #000; }
+  .CRITICAL, .UNKNOWN { background: #c33; color: #fff; }
+  main { display: flex; gap: 1em; padding: 1em; flex-wrap: wrap; }
+  #floor { background: #fff; border: 1px solid #ccc; }
+  table { border-collapse: collapse; background: #fff; font-size: 12px; }
+  th, td { border: 1px solid #ddd; padding: 2px 6px; text-align: right; }
+  th { background: #eee; } td.flags { text-align: left; color: #a30; }
+  section h2 { font-size: 1em; margin: 0 0 0.3em 0; }
+  #reasons { color: #fdd; }
+</style>
+</head>
+<body>
+<header>
+  <h1>mvtrack live</h1>
+  <span id="health" class="UNKNOWN">UNKNOWN</span>
+  <span>frame <b id="frame">-</b></span>
+  <span><b id="track-count">0</b> tracks</span>
+  <span><b id="fps">-</b> fps</span>
+  <span>tracker latency p99 <b id="latency-p99-ms">-</b> ms</span>
+  <span>page latency p50 <b id="web-latency-p50-ms">-</b> / max <b id="web-latency-max-ms">-</b> ms
+    over <b id="web-latency-count">0</b></span>
+  <span>messages <b id="tracks-messages">0</b></span>
+  <span id="connection">connecting</span>
+  <span id="reasons"></span>
+</header>
+<main>
+  <canvas id="floor" width="640" height="560"></canvas>
+  <div>
+    <section>
+      <h2>Cameras</h2>
+      <table id="cameras"><thead><tr><th>camera</th><th>rate Hz</th><th>last msg s</th>
+        <th>clock offset ms</th><th>late</th><th>dropped</th><th>lost</th><th>rejected</th>
+        <th>flags</th></tr></thead><tbody></tbody></table>
+    </section>
+    <section>
+      <h2>Tracks</h2>
+      <table id="tracks"><thead><tr><th>id</th><th>state</th><th>x m</th><th>y m</th>
+        <th>cameras</th></tr></thead><tbody></tbody></table>
+    </section>
+  </div>
+</main>
+<script>
+"use strict";
+const canvas = document.getElementById("floor");
+const ctx = canvas.getContext("2d");
+let floor = { cameras: [], bounds: null };
+let layouts = {};
+let latest = null;            // the latest tracks event
+const trails = new Map();     // id -> [[x, y, t_ms], ...]
+const TRAIL_MS = 5000;
+const latencies = [];         // page latency samples, ms (publish -> shown)
+let messages = 0;
+const arrivals = [];          // [t_ms, frame] of the last tracks messages
+let drawPending = false;
+
+function text(id, v) { document.getElementById(id).textContent = v; }
+
+function bounds() {
+  let b = floor.bounds ? floor.bounds.slice() : null;
+  const grow = (x, y) => {
+    if (!b) { b = [x, y, x, y]; return; }
+    b[0] = Math.min(b[0], x); b[1] = Math.min(b[1], y);
+    b[2] = Math.max(b[2], x); b[3] = Math.max(b[3], y);
+  };
+  if (latest) for (const t of latest.tracks) if (t.position[0] !== null) grow(t.position[0], t.position[1]);
+  if (!b) b = [-5, -5, 5, 5];
+  const pad = 0.5;
+  return [b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad];
+}
+
+function draw() {
+  drawPending = false;
+  const [x0, y0, x1, y1] = bounds();
+  const s = Math.min(canvas.width / (x1 - x0), canvas.height / (y1 - y0));
+  const px = (x) => (x - x0) * s;
+  const py = (y) => canvas.height - (y - y0) * s;   // +y up
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  // metre grid
+  ctx.strokeStyle = "#eee"; ctx.lineWidth = 1;
+  for (let x = Math.ceil(x0); x <= x1; x++) { ctx.beginPath(); ctx.moveTo(px(x), 0); ctx.lineTo(px(x), canvas.height); ctx.stroke(); }
+  for (let y = Math.ceil(y0); y <= y1; y++) { ctx.beginPath(); ctx.moveTo(0, py(y)); ctx.lineTo(canvas.width, py(y)); ctx.stroke(); }
+  // cameras and their fields of view on the floor
+  for (const c of floor.cameras) {
+    if (c.fov.length > 2) {
+      ctx.fillStyle = "rgba(80, 120, 200, 0.06)"; ctx.strokeStyle = "rgba(80, 120, 200, 0.35)";
+      ctx.beginPath(); ctx.moveTo(px(c.fov[0][0]), py(c.fov[0][1]));
+      for (const p of c.fov) ctx.lineTo(px(p[0]), py(p[1]));
+      ctx.closePath(); ctx.fill(); ctx.stroke();
+    }
+    ctx.fillStyle = "#35a"; ctx.fillRect(px(c.position[0]) - 5, py(c.position[1]) - 5, 10, 10);
+    ctx.fillText("cam " + c.id, px(c.position[0]) + 7, py(c.position[1]) - 7);
+  }
+  const now = performance.now();
+  // trails, fading with age
+  for (const [id, pts] of trails) {
+    for (let i = 1; i < pts.length; i++) {
+      const a = 1 - (now - pts[i][2]) / TRAIL_MS;
+      if (a <= 0) continue;
+      ctx.strokeStyle = "rgba(200, 60, 40, " + (0.6 * a).toFixed(3) + ")"; ctx.lineWidth = 2;
+      ctx.beginPath(); ctx.moveTo(px(pts[i - 1][0]), py(pts[i - 1][1])); ctx.lineTo(px(pts[i][0]), py(pts[i][1])); ctx.stroke();
+    }
+  }
+  if (!latest) return;
+  const bones = (layouts[latest.layout] || { bones: [] }).bones;
+  for (const t of latest.tracks) {
+    if (t.position[0] === null) continue;
+    // skeleton seen from above
+    ctx.strokeStyle = "#777"; ctx.lineWidth = 1;
+    for (const [a, b] of bones) {
+      const ja = t.joints[a], jb = t.joints[b];
+      if (!ja || !jb || ja[0] === null || jb[0] === null) continue;
+      ctx.beginPath(); ctx.moveTo(px(ja[0]), py(ja[1])); ctx.lineTo(px(jb[0]), py(jb[1])); ctx.stroke();
+    }
+    ctx.fillStyle = t.state === "confirmed" ? "#c33" : "#e90";
+    ctx.beginPath(); ctx.arc(px(t.position[0]), py(t.position[1]), 6, 0, 2 * Math.PI); ctx.fill();
+    ctx.fillStyle = "#000"; ctx.fillText(String(t.id), px(t.position[0]) + 8, py(t.position[1]) + 4);
+  }
+}
+
+function scheduleDraw() { if (!drawPending) { drawPending = true; requestAnimationFrame(draw); } }
+
+function onTracks(e) {
+  latest = e;
+  messages++;
+  const now = performance.now();
+  const seen = new Set();
+  for (const t of e.tracks) {
+    seen.add(t.id);
+    if (t.position[0] === null) continue;
+    let pts = trails.get(t.id);
+    if (!pts) { pts = []; trails.set(t.id, pts); }
+    pts.push([t.position[0], t.position[1], now]);
+    while (pts.length && now - pts[0][2] > TRAIL_MS) pts.shift();
+  }
+  for (const [id, pts] of trails) {
+    while (pts.length && now - pts[0][2] > TRAIL_MS) pts.shift();
+    if (!pts.length) trails.delete(id);
+  }
+  const rows = [];
+  for (const t of e.tracks) {
+    const x = t.position[0] === null ? "" : t.position[0].toFixed(3);
+    const y = t.position[1] === null ? "" : t.position[1].toFixed(3);
+    rows.push('<tr data-id="' + t.id + '" data-x="' + x + '" data-y="' + y + '"><td>' + t.id +
+              "</td><td>" + t.state + "</td><td>" + x + "</td><td>" + y + "</td><td>" +
+              t.cameras.join(" ") + "</td></tr>");
+  }
+  document.querySelector("#tracks tbody").innerHTML = rows.join("");
+  text("frame", e.frame);
+  text("track-count", e.tracks.length);
+  text("tracks-messages", messages);
+  document.body.dataset.frame = e.frame;
+  // output frames per second over the last 3 s (the output comes in bursts of a window step)
+  if (arrivals.length && arrivals[arrivals.length - 1][1] > e.frame) arrivals.length = 0;  // a new daemon
+  arrivals.push([now, e.frame]);
+  while (arrivals.length > 2 && now - arrivals[0][0] > 3000) arrivals.shift();
+  const span = now - arrivals[0][0];
+  if (span >= 1000) text("fps", ((e.frame - arrivals[0][1]) * 1000 / span).toFixed(1));
+  // publish (daemon host clock) -> in the DOM (this host's clock): one host in the tests
+  const ms = Date.now() - e.publish_utime / 1000;
+  latencies.push(ms);
+  if (latencies.length > 5000) latencies.shift();
+  const sorted = latencies.slice().sort((a, b) => a - b);
+  text("web-latency-p50-ms", sorted[Math.floor((sorted.length - 1) / 2)].toFixed(1));
+  text("web-latency-max-ms", sorted[sorted.length - 1].toFixed(1));
+  text("web-latency-count", latencies.length);
+  scheduleDraw();
+}
+
+function onStatus(s) {
+  const h = document.getElementById("health");
+  h.textContent = s.health; h.className = s.health;
+  text("reasons", s.reasons.join("; "));
+  text("latency-p99-ms", (s.latency_p99_us / 1000).toFixed(1));
+  const rows = [];
+  for (const c of s.cameras) {
+    const age = c.last_receive_utime > 0 ? ((s.utime - c.last_receive_utime) / 1e6).toFixed(1) : "never";
+    rows.push('<tr data-camera="' + c.camera_id + '"><td>' + c.camera_id + "</td><td>" + c.rate_hz.toFixed(1) +
+              "</td><td>" + age + "</td><td>" + (c.clock_offset_us / 1000).toFixed(1) + "</td><td>" + c.late +
+              "</td><td>" + c.dropped + "</td><td>" + c.lost + "</td><td>" + c.rejected +
+              '</td><td class="flags">' + (c.flags.length ? c.flags.join(" ") : "ok") + "</td></tr>");
+  }
+  document.querySelector("#cameras tbody").innerHTML = rows.join("");
+}
+
+function connect() {
+  const es = new EventSource("/events");
+  es.onopen = () => text("connection", "live");
+  es.onerror = () => text("connection", "reconnecting");
+  es.onmessage = (m) => {
+    const e = JSON.parse(m.data);
+    if (e.type === "tracks") onTracks(e); else if (e.type === "status") onStatus(e);
+  };
+}
+
+Promise.all([fetch("/floor.json").then((r) => r.json()), fetch("/layouts.json").then((r) => r.json())])
+  .then(([f, l]) => { floor = f; layouts = l; scheduleDraw(); })
+  .catch(() => {})
+  .finally(connect);
+setInterval(scheduleDraw, 250);   // trails fade even without messages
+</script>
+</body>
+</html>
+)HTML";
+  return page;
+}
+
+}  // namespace mvtrack::web

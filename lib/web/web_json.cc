@@ -1,0 +1,162 @@
+#include "web/web_json.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+namespace mvtrack::web {
+namespace {
+
+using nlohmann::json;
+
+json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json Point(const Vec3& p) { return json::array({Number(p.x()), Number(p.y()), Number(p.z())}); }
+
+const char* StateName(transport::WireTrackState s) {
+  switch (s) {
+    case transport::WireTrackState::kTentative:
+      return "tentative";
+    case transport::WireTrackState::kConfirmed:
+      return "confirmed";
+    case transport::WireTrackState::kLost:
+      return "lost";
+    case transport::WireTrackState::kEnded:
+      return "ended";
+  }
+  return "lost";
+}
+
+json Names(const std::vector<std::string>& names) {
+  json a = json::array();
+  for (const std::string& n : names) a.push_back(n);
+  return a;
+}
+
+}  // namespace
+
+std::string TracksEventJson(const transport::TracksMessage& message) {
+  json tracks = json::array();
+  for (std::size_t i = 0; i < message.frame.tracks.size(); ++i) {
+    const tracker::Track3D& t = message.frame.tracks[i];
+    json joints = json::array();
+    for (const std::optional<Vec3>& j : t.joints) joints.push_back(j ? Point(*j) : json(nullptr));
+    tracks.push_back({{"id", t.id},
+                      {"state", i < message.info.size() ? StateName(message.info[i].state)
+                                                        : "confirmed"},
+                      {"position", Point(t.position)},
+                      {"confidence", Number(t.confidence)},
+                      {"age_frames", t.age_frames},
+                      {"cameras", t.cameras},
+                      {"joints", std::move(joints)}});
+  }
+  const json o = {{"type", "tracks"},
+                  {"frame", message.frame.frame},
+                  {"utime", message.frame.utime},
+                  {"publish_utime", message.publish_utime},
+                  {"latency_us", message.latency_us},
+                  {"layout", message.layout == core::KeypointLayoutId::kNone
+                                 ? std::string()
+                                 : core::GetKeypointLayout(message.layout).name},
+                  {"tracks", std::move(tracks)}};
+  return o.dump(-1, ' ', true, json::error_handler_t::replace);
+}
+
+std::string StatusEventJson(const transport::TrackerStatus& s) {
+  const service::HealthReport health = service::AssessStatus(s);
+  json cameras = json::array();
+  for (const transport::CameraStatus& c : s.cameras) {
+    cameras.push_back({{"camera_id", c.camera_id},
+                       {"flags", Names(transport::CameraFlagNames(c.flags))},
+                       {"rate_hz", Number(c.rate_hz)},
+                       {"last_utime", c.last_utime},
+                       {"last_receive_utime", c.last_receive_utime},
+                       {"received", c.received},
+                       {"late", c.late},
+                       {"dropped", c.dropped},
+                       {"rejected", c.rejected},
+                       {"decode_errors", c.decode_errors},
+                       {"lost", c.lost},
+                       {"clock_offset_us", c.clock_offset_us},
+                       {"queue_depth", c.queue_depth},
+                       {"queue_capacity", c.queue_capacity}});
+  }
+  const json o = {{"type", "status"},
+                  {"utime", s.utime},
+                  {"period_us", s.period_us},
+                  {"uptime_us", s.uptime_us},
+                  {"version", s.version},
+                  {"config_hash", s.config_hash},
+                  {"flags", Names(transport::TrackerFlagNames(s.flags))},
+                  {"health", service::ToString(health.health)},
+                  {"reasons", health.reasons},
+                  {"cameras_delivering", service::CamerasDelivering(s)},
+                  {"fps", Number(service::FramesPerSecond(s))},
+                  {"last_frame", s.last_frame},
+                  {"active_tracks", s.active_tracks},
+                  {"confirmed_tracks", s.confirmed_tracks},
+                  {"num_latency_samples", s.num_latency_samples},
+                  {"latency_p50_us", s.latency_p50_us},
+                  {"latency_p99_us", s.latency_p99_us},
+                  {"latency_max_us", s.latency_max_us},
+                  {"windows_processed", s.windows_processed},
+                  {"jobs_failed", s.jobs_failed},
+                  {"executor_queue_depth", s.executor_queue_depth},
+                  {"kernel_drops", s.kernel_drops},
+                  {"cameras", std::move(cameras)}};
+  return o.dump(-1, ' ', true, json::error_handler_t::replace);
+}
+
+std::string FloorJson(const std::vector<geometry::CameraModel>& cameras) {
+  constexpr double kMaxRange = 25.0;
+  constexpr int kPerEdge = 8;
+  json out_cameras = json::array();
+  double bx0 = INFINITY, by0 = INFINITY, bx1 = -INFINITY, by1 = -INFINITY;
+  auto grow = [&](double x, double y) {
+    bx0 = std::min(bx0, x);
+    by0 = std::min(by0, y);
+    bx1 = std::max(bx1, x);
+    by1 = std::max(by1, y);
+  };
+  for (const geometry::CameraModel& cam : cameras) {
+    const Vec3 c = cam.CenterInWorld();
+    const Mat3 k_inv = cam.K.inverse();
+    const Mat3 world_from_cam = cam.cam_from_world.rotation.transpose();
+    json fov = json::array();
+    const double w = cam.width_px, h = cam.height_px;
+    // The image border, clockwise from the top-left corner.
+    const double corners[5][2] = {{0, 0}, {w, 0}, {w, h}, {0, h}, {0, 0}};
+    for (int e = 0; e < 4; ++e) {
+      for (int s = 0; s < kPerEdge; ++s) {
+        const double a = static_cast<double>(s) / kPerEdge;
+        const double u = corners[e][0] + a * (corners[e + 1][0] - corners[e][0]);
+        const double v = corners[e][1] + a * (corners[e + 1][1] - corners[e][1]);
+        const Vec3 d = world_from_cam * (k_inv * Vec3(u, v, 1.0));
+        Vec3 p;
+        const double horizontal = std::hypot(d.x(), d.y());
+        if (d.z() < -1e-9 && -c.z() / d.z() * horizontal <= kMaxRange) {
+          p = c + d * (-c.z() / d.z());
+        } else if (horizontal > 1e-9) {
+          p = c + Vec3(d.x(), d.y(), 0.0) * (kMaxRange / horizontal);
+        } else {
+          continue;
+        }
+        fov.push_back(json::array({Number(p.x()), Number(p.y())}));
+          }
+    }
+    if (std::isfinite(c.x()) && std::isfinite(c.y())) grow(c.x(), c.y());
+    out_cameras.push_back({{"id", cam.id}, {"position", Point(c)}, {"fov", std::move(fov)}});
+  }
+  // The cameras' positions with a margin of a quarter of their spread (at least 2 m): where the
+  // people are; the fields of view reach far beyond and are clipped by the view.
+  json bounds = nullptr;
+  if (bx0 <= bx1) {
+    const double m = std::max(2.0, 0.25 * std::max(bx1 - bx0, by1 - by0));
+    bounds = json::array({bx0 - m, by0 - m, bx1 + m, by1 + m});
+  }
+  const json o = {{"cameras", std::move(out_cameras)}, {"bounds", std::move(bounds)}};
+  return o.dump(-1, ' ', true, json::error_handler_t::replace);
+}
+
+}  // namespace mvtrack::web

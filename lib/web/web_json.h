@@ -1,0 +1,34 @@
+#pragma once
+/// @file
+/// The JSON of `mvtrack web` (docs/FORMATS.md "Live events"): one object per tracks message and
+/// per status message (the /events stream, for clients that do not speak LCM), and the floor
+/// the page draws (cameras and their fields of view on the floor, from the calibration).
+/// Written with nlohmann-json; numbers that are not finite become null.
+
+#include <string>
+#include <vector>
+
+#include "geometry/camera_model.h"
+#include "service/status_check.h"
+#include "transport/codec.h"
+
+namespace mvtrack::web {
+
+/// {"type":"tracks", "frame", "utime", "publish_utime", "latency_us", "layout", "tracks":[{"id",
+/// "state", "position":[x,y,z], "confidence", "age_frames", "cameras":[...], "joints":[[x,y,z]
+/// or null, ...]}]} on one line. `state` is "tentative", "confirmed", "lost" or "ended".
+std::string TracksEventJson(const transport::TracksMessage& message);
+
+/// {"type":"status", every tracker_status_t field, "flags":[names], "health", "reasons":[...],
+/// "cameras_delivering", "fps", "cameras":[{every camera_status_t field, "flags":[names]}]} on
+/// one line (`health` and `reasons` from service::AssessStatus).
+std::string StatusEventJson(const transport::TrackerStatus& status);
+
+/// {"cameras":[{"id", "position":[x,y,z], "fov":[[x,y], ...]}], "bounds":[x_min, y_min, x_max,
+/// y_max]}: each camera's centre and the polygon its image covers on the floor z = 0 (the rays
+/// through the image border, cut at 25 m from the camera where they do not reach the floor);
+/// bounds: the cameras' positions with a margin of a quarter of their spread, at least 2 m.
+/// Empty cameras: {"cameras":[], "bounds":null}.
+std::string FloorJson(const std::vector<geometry::CameraModel>& cameras);
+
+}  // namespace mvtrack::web

@@ -1,0 +1,134 @@
+// tracker_status_t decoding from untrusted bytes (DecodeTrackerStatus), its encoder, and the
+// flag names.
+
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "transport/codec.h"
+
+namespace mvtrack::transport {
+namespace {
+
+TrackerStatus Sample() {
+  TrackerStatus s;
+  s.utime = 1'700'000'000'000'000;
+  s.period_us = 1'000'000;
+  s.uptime_us = 12'000'000;
+  s.version = "0.2.0";
+  s.config_hash = "abc123";
+  s.flags = 2 | 8;
+  s.last_frame = 345;
+  s.active_tracks = 4;
+  s.confirmed_tracks = 3;
+  s.num_latency_samples = 30;
+  s.latency_p50_us = 10'000;
+  s.latency_p99_us = 20'000;
+  s.latency_max_us = 30'000;
+  s.windows_processed = 17;
+  s.jobs_failed = 1;
+  s.executor_queue_depth = 2;
+  s.kernel_drops = 5;
+  for (int i = 0; i < 3; ++i) {
+    CameraStatus c;
+    c.camera_id = 10 + i;
+    c.flags = i == 2 ? 64 | 128 : 0;
+    c.rate_hz = 29.5f;
+    c.last_utime = s.utime - 40'000;
+    c.last_receive_utime = s.utime - 30'000;
+    c.received = 1000 + i;
+    c.late = i;
+    c.dropped = 2 * i;
+    c.rejected = 3 * i;
+    c.decode_errors = 4 * i;
+    c.lost = 5 * i;
+    c.clock_offset_us = i == 2 ? 250'000 : 0;
+    c.queue_depth = i;
+    c.queue_capacity = 8;
+    s.cameras.push_back(c);
+  }
+  return s;
+}
+
+TEST_CASE("status round trip keeps every field", "[unit]") {
+  const TrackerStatus s = Sample();
+  const std::vector<std::uint8_t> bytes = EncodeTrackerStatus(s);
+  const StatusDecodeResult d = DecodeTrackerStatus(bytes.data(), bytes.size());
+  REQUIRE(d.ok());
+  const TrackerStatus& r = d.message;
+  CHECK(r.utime == s.utime);
+  CHECK(r.version == "0.2.0");
+  CHECK(r.config_hash == "abc123");
+  CHECK(r.flags == s.flags);
+  CHECK(r.last_frame == 345);
+  CHECK(r.kernel_drops == 5);
+  CHECK(r.executor_queue_depth == 2);
+  REQUIRE(r.cameras.size() == 3);
+  CHECK(r.cameras[2].camera_id == 12);
+  CHECK(r.cameras[2].lost == 10);
+  CHECK(r.cameras[2].clock_offset_us == 250'000);
+  CHECK(r.cameras[2].queue_capacity == 8);
+  CHECK(r.cameras[1].decode_errors == 4);
+  CHECK(r.cameras[0].rate_hz == 29.5f);
+  // 96 bytes per camera (lcmtypes/README.md).
+  TrackerStatus one = s;
+  one.cameras.resize(1);
+  CHECK(bytes.size() - EncodeTrackerStatus(one).size() == 2 * 96);
+}
+
+TEST_CASE("status truncations, other types and hostile counts are rejected", "[unit]") {
+  const std::vector<std::uint8_t> bytes = EncodeTrackerStatus(Sample());
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    INFO("prefix of " << n << " bytes");
+    CHECK_FALSE(DecodeTrackerStatus(bytes.data(), n).ok());
+  }
+  std::vector<std::uint8_t> longer = bytes;
+  longer.push_back(0);
+  const StatusDecodeResult trailing = DecodeTrackerStatus(longer.data(), longer.size());
+  CHECK(trailing.status == DecodeStatus::kMalformed);
+  CHECK_THAT(trailing.reason, Catch::Contains("trailing"));
+  std::vector<std::uint8_t> other = bytes;
+  other[0] ^= 0xff;
+  CHECK(DecodeTrackerStatus(other.data(), other.size()).status == DecodeStatus::kBadFingerprint);
+  // num_cameras is the int16 just before the cameras: make it negative and huge.
+  const std::size_t count_at = bytes.size() - 3 * 96 - 2;
+  std::vector<std::uint8_t> negative = bytes;
+  negative[count_at] = 0xff;
+  negative[count_at + 1] = 0xff;
+  CHECK_FALSE(DecodeTrackerStatus(negative.data(), negative.size()).ok());
+  std::vector<std::uint8_t> huge = bytes;
+  huge[count_at] = 0x7f;
+  CHECK_FALSE(DecodeTrackerStatus(huge.data(), huge.size()).ok());
+  DecodeLimits few;
+  few.max_cameras = 2;
+  CHECK(DecodeTrackerStatus(bytes.data(), bytes.size(), few).status ==
+        DecodeStatus::kLimitExceeded);
+}
+
+TEST_CASE("5000 random mutations of a status message never crash", "[unit]") {
+  const std::vector<std::uint8_t> bytes = EncodeTrackerStatus(Sample());
+  std::mt19937 rng(7);
+  int accepted = 0;
+  for (int i = 0; i < 5000; ++i) {
+    std::vector<std::uint8_t> m = bytes;
+    const int flips = 1 + static_cast<int>(rng() % 4);
+    for (int k = 0; k < flips; ++k) m[rng() % m.size()] = static_cast<std::uint8_t>(rng());
+    accepted += DecodeTrackerStatus(m.data(), m.size()).ok() ? 1 : 0;
+  }
+  CHECK(accepted > 0);  // most flips hit plain numbers, which are valid
+  CHECK(accepted < 5000);
+}
+
+TEST_CASE("flag names spell the documented bits", "[unit]") {
+  CHECK(CameraFlagNames(0).empty());
+  CHECK(CameraFlagNames(1 | 64 | 128) ==
+        std::vector<std::string>{"NO_DATA", "CLOCK_OFFSET", "LOSING"});
+  CHECK(CameraFlagNames(std::int64_t{1} << 40) == std::vector<std::string>{"BIT40"});
+  CHECK(TrackerFlagNames(2 | 16) == std::vector<std::string>{"INPUT_LOSS", "JOB_FAILURES"});
+  CHECK(TrackerFlagNames(-1).size() == 64);
+}
+
+}  // namespace
+}  // namespace mvtrack::transport

@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""Drives a headless Chromium through the DevTools protocol (python3-websocket): opens URL once,
+then for each MESSAGES_i in turn waits until the page has shown that many tracks messages,
+prints one JSON line with what the page's DOM shows (frame, tracks as id/x/y from the track
+table's data attributes, messages, the page's latency figures, health, connection, camera rows)
+and creates the file PHASE_PREFIX.i (so a test can act between phases, e.g. restart the daemon
+while the same page stays open). A PNG screenshot is saved after the first phase.
+
+Usage: page_probe.py DEVTOOLS_PORT URL TIMEOUT_S SCREENSHOT.png PHASE_PREFIX MESSAGES_1 [...]
+Exit status 0 when every phase was reached within TIMEOUT_S (each), 1 otherwise."""
+import base64
+import json
+import sys
+import time
+import urllib.request
+
+import websocket
+
+port, url, timeout_s, shot, phase_prefix = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4], sys.argv[5]
+phases = [int(n) for n in sys.argv[6:]]
+
+deadline = time.time() + timeout_s
+targets = None
+while time.time() < deadline:
+    try:
+        targets = json.load(urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list", timeout=2))
+        if any(t.get("type") == "page" for t in targets):
+            break
+    except OSError:
+        pass
+    time.sleep(0.1)
+page = next(t for t in targets if t.get("type") == "page")
+ws = websocket.create_connection(page["webSocketDebuggerUrl"], timeout=10, suppress_origin=True)
+next_id = 0
+
+
+def call(method, **params):
+    global next_id
+    next_id += 1
+    ws.send(json.dumps({"id": next_id, "method": method, "params": params}))
+    while True:
+        reply = json.loads(ws.recv())
+        if reply.get("id") == next_id:
+            if "error" in reply:
+                raise RuntimeError(f"{method}: {reply['error']}")
+            return reply["result"]
+
+
+PROBE = """JSON.stringify({
+  frame: Number(document.body.dataset.frame === undefined ? -1 : document.body.dataset.frame),
+  messages: Number(document.getElementById('tracks-messages').textContent),
+  tracks: [...document.querySelectorAll('#tracks tbody tr')].map(r => ({
+    id: Number(r.dataset.id), x: Number(r.dataset.x), y: Number(r.dataset.y)})),
+  latency_p50_ms: Number(document.getElementById('web-latency-p50-ms').textContent),
+  latency_max_ms: Number(document.getElementById('web-latency-max-ms').textContent),
+  latency_count: Number(document.getElementById('web-latency-count').textContent),
+  health: document.getElementById('health').textContent,
+  connection: document.getElementById('connection').textContent,
+  cameras: [...document.querySelectorAll('#cameras tbody tr')].map(r => r.dataset.camera)
+})"""
+
+call("Page.enable")
+call("Page.navigate", url=url)
+ok = True
+for i, wanted in enumerate(phases, start=1):
+    deadline = time.time() + timeout_s
+    state = {}
+    while time.time() < deadline:
+        result = call("Runtime.evaluate", expression=PROBE, returnByValue=True)["result"]
+        if "value" in result:  # else the page is still loading (its elements do not exist yet)
+            state = json.loads(result["value"])
+            if state["messages"] >= wanted:
+                break
+        time.sleep(0.05)
+    reached = state.get("messages", 0) >= wanted
+    ok = ok and reached
+    if i == 1:
+        with open(shot, "wb") as f:
+            f.write(base64.b64decode(call("Page.captureScreenshot", format="png")["data"]))
+    print(json.dumps(state), flush=True)
+    open(f"{phase_prefix}.{i}", "w").close()
+    if not reached:
+        break
+sys.exit(0 if ok else 1)

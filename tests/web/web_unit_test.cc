@@ -1,0 +1,208 @@
+// lib/web and service::AssessStatus without a network: the events' JSON (parsed back with
+// nlohmann-json), the floor, the Prometheus text, the health verdicts and the systemd line.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "service/status_check.h"
+#include "web/metrics.h"
+#include "web/web_json.h"
+
+namespace mvtrack::web {
+namespace {
+
+using nlohmann::json;
+
+transport::TrackerStatus Healthy() {
+  transport::TrackerStatus s;
+  s.utime = 2'000'000;
+  s.period_us = 1'000'000;
+  s.version = "0.2.0";
+  s.num_latency_samples = 30;
+  s.active_tracks = 5;
+  s.confirmed_tracks = 4;
+  for (int i = 0; i < 3; ++i) {
+    transport::CameraStatus c;
+    c.camera_id = i;
+    c.received = 100;
+    c.rate_hz = 30.0f;
+    c.last_receive_utime = 1'900'000;
+    s.cameras.push_back(c);
+  }
+  return s;
+}
+
+TEST_CASE("health: OK, WARNING with the flags named, CRITICAL below two cameras", "[unit]") {
+  transport::TrackerStatus s = Healthy();
+  service::HealthReport h = service::AssessStatus(s);
+  CHECK(h.health == service::Health::kOk);
+  CHECK(h.reasons.empty());
+  CHECK(service::NotifyStatusLine(s, 30.0) ==
+        "tracking: 3/3 cameras, 30.0 fps, 5 tracks (4 confirmed), OK");
+
+  s.cameras[1].flags = 64;  // CLOCK_OFFSET: excluded, still two deliver
+  s.flags = 8;              // LATENCY_HIGH
+  h = service::AssessStatus(s);
+  CHECK(h.health == service::Health::kWarning);
+  CHECK(h.reasons == std::vector<std::string>{"LATENCY_HIGH", "camera 1 CLOCK_OFFSET"});
+  CHECK(service::CamerasDelivering(s) == 2);
+  CHECK(service::NotifyStatusLine(s, 29.96) ==
+        "tracking: 2/3 cameras, 30.0 fps, 5 tracks (4 confirmed), WARNING: LATENCY_HIGH; "
+        "camera 1 CLOCK_OFFSET");
+
+  s.cameras[2].flags = 2;  // STALE
+  h = service::AssessStatus(s);
+  CHECK(h.health == service::Health::kCritical);
+  CHECK(h.reasons.front() == "1 of 3 cameras deliver (2 are needed to triangulate)");
+
+  transport::TrackerStatus backlog = Healthy();
+  backlog.flags = 4;
+  CHECK(service::AssessStatus(backlog).health == service::Health::kCritical);
+  transport::TrackerStatus never = Healthy();
+  for (auto& c : never.cameras) c.received = 0;
+  CHECK(service::AssessStatus(never).health == service::Health::kCritical);
+}
+
+TEST_CASE("frame rate over a horizon, not one bursty status period", "[unit]") {
+  service::FrameRateMeter meter(5'000'000);
+  transport::TrackerStatus s = Healthy();
+  // The output advances 20 frames every 0.667 s (a window step at 30 fps), statuses every 0.2 s.
+  double rate = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    s.utime = 1'000'000 + i * 200'000;
+    s.last_frame = (i * 200'000 / 666'667) * 20;
+    rate = meter.Add(s);
+  }
+  CHECK(rate == Approx(30.0).margin(4.0));
+  s.utime += 200'000;
+  s.last_frame = 3;  // a new daemon: starts over
+  s.num_latency_samples = 4;
+  CHECK(meter.Add(s) == Approx(service::FramesPerSecond(s)));
+}
+
+TEST_CASE("tracks event: the documented fields, states, joints as null or [x,y,z]", "[unit]") {
+  transport::TracksMessage m;
+  m.frame.frame = 42;
+  m.frame.utime = 1000;
+  m.publish_utime = 2000;
+  m.latency_us = 7;
+  m.layout = core::KeypointLayoutId::kCoco17;
+  tracker::Track3D t;
+  t.id = 9;
+  t.position = Vec3(1.5, -2.25, 0.0);
+  t.confidence = 0.5;
+  t.age_frames = 3;
+  t.cameras = {0, 2};
+  t.joints.assign(17, std::nullopt);
+  t.joints[0] = Vec3(1.0, 2.0, 1.7);
+  m.frame.tracks.push_back(t);
+  t.id = 10;
+  t.position = Vec3(std::nan(""), 0.0, 0.0);
+  m.frame.tracks.push_back(t);
+  m.info.resize(2);
+  m.info[1].state = transport::WireTrackState::kLost;
+  const json e = json::parse(TracksEventJson(m));
+  CHECK(e["type"] == "tracks");
+  CHECK(e["frame"] == 42);
+  CHECK(e["publish_utime"] == 2000);
+  CHECK(e["layout"] == "coco17");
+  REQUIRE(e["tracks"].size() == 2);
+  const json& a = e["tracks"][0];
+  CHECK(a["id"] == 9);
+  CHECK(a["state"] == "confirmed");
+  CHECK(a["position"][1] == -2.25);
+  CHECK(a["cameras"] == json::array({0, 2}));
+  CHECK(a["joints"].size() == 17);
+  CHECK(a["joints"][0][2] == 1.7);
+  CHECK(a["joints"][1].is_null());
+  CHECK(e["tracks"][1]["state"] == "lost");
+  CHECK(e["tracks"][1]["position"][0].is_null());  // not finite -> null, still valid JSON
+}
+
+TEST_CASE("status event: health, flag names and every camera field", "[unit]") {
+  transport::TrackerStatus s = Healthy();
+  s.cameras[0].flags = 128;
+  s.cameras[0].lost = 4;
+  s.kernel_drops = 12;
+  const json e = json::parse(StatusEventJson(s));
+  CHECK(e["type"] == "status");
+  CHECK(e["health"] == "WARNING");
+  CHECK(e["reasons"] == json::array({"camera 0 LOSING"}));
+  CHECK(e["fps"] == 30.0);
+  CHECK(e["kernel_drops"] == 12);
+  CHECK(e["cameras_delivering"] == 3);
+  REQUIRE(e["cameras"].size() == 3);
+  CHECK(e["cameras"][0]["flags"] == json::array({"LOSING"}));
+  CHECK(e["cameras"][0]["lost"] == 4);
+  for (const char* key : {"camera_id", "rate_hz", "last_utime", "last_receive_utime", "received",
+                          "late", "dropped", "rejected", "decode_errors", "clock_offset_us",
+                          "queue_depth", "queue_capacity"}) {
+    CHECK(e["cameras"][1].contains(key));
+  }
+}
+
+TEST_CASE("floor: a camera looking down covers the floor around it", "[unit]") {
+  geometry::CameraModel cam;
+  cam.id = 4;
+  cam.width_px = 640;
+  cam.height_px = 480;
+  cam.K << 500, 0, 320, 0, 500, 240, 0, 0, 1;
+  // Camera at (1, 2, 3) looking straight down: camera z = world -z, camera x = world x.
+  cam.cam_from_world.rotation << 1, 0, 0, 0, -1, 0, 0, 0, -1;
+  cam.cam_from_world.translation = -(cam.cam_from_world.rotation * Vec3(1, 2, 3));
+  const json f = json::parse(FloorJson({cam}));
+  REQUIRE(f["cameras"].size() == 1);
+  CHECK(f["cameras"][0]["id"] == 4);
+  CHECK(f["cameras"][0]["position"][2].get<double>() == Approx(3.0));
+  const json& fov = f["cameras"][0]["fov"];
+  REQUIRE(fov.size() == 32);
+  // The top-left image corner (u, v) = (0, 0) hits the floor at x = 1 - 320/500 * 3.
+  CHECK(fov[0][0].get<double>() == Approx(1.0 - 0.64 * 3.0));
+  CHECK(fov[0][1].get<double>() == Approx(2.0 + 0.48 * 3.0));
+  CHECK(f["bounds"][0].get<double>() == Approx(-1.0));  // the centre with the 2 m margin
+  CHECK(json::parse(FloorJson({}))["bounds"].is_null());
+}
+
+TEST_CASE("metrics: Prometheus text of the status, per camera, and the web counters", "[unit]") {
+  WebCounters w;
+  w.tracks_messages = 7;
+  w.clients_dropped = 1;
+  const std::string none = PrometheusText(std::nullopt, 0.0, w);
+  CHECK_THAT(none, Catch::Contains("\nmvtrack_up 0\n") || Catch::StartsWith("# HELP mvtrack_up"));
+  CHECK_THAT(none, Catch::Contains("mvtrack_web_tracks_messages_total 7\n"));
+  CHECK_THAT(none, !Catch::Contains("mvtrack_camera_"));
+  transport::TrackerStatus s = Healthy();
+  s.cameras[2].flags = 64;
+  s.cameras[2].clock_offset_us = 250000;
+  s.latency_p99_us = 25000;
+  const std::string text = PrometheusText(s, 0.5, w);
+  CHECK_THAT(text, Catch::Contains("mvtrack_up 1\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_status_age_seconds 0.5\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_health 1\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_latency_seconds{quantile=\"0.99\"} 0.025\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_camera_received_total{camera=\"1\"} 100\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_camera_clock_offset_seconds{camera=\"2\"} 0.25\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_camera_flag{camera=\"2\",flag=\"CLOCK_OFFSET\"} 1\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_camera_flag{camera=\"0\",flag=\"CLOCK_OFFSET\"} 0\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_web_clients_dropped_total 1\n"));
+  // Every sample line belongs to a family declared with HELP and TYPE before it.
+  std::string family;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    const std::size_t end = text.find('\n', pos);
+    const std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
+    if (line.rfind("# TYPE ", 0) == 0) {
+      family = line.substr(7, line.find(' ', 7) - 7);
+    } else if (line.rfind("#", 0) != 0) {
+      INFO(line);
+      CHECK(line.rfind(family, 0) == 0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mvtrack::web
