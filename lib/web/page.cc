@@ -28,7 +28,7 @@ const std::string& IndexPage() {
   #floor { background: #fff; border: 1px solid #ccc; }
   table { border-collapse: collapse; background: #fff; font-size: 12px; }
   th, td { border: 1px solid #ddd; padding: 2px 6px; text-align: right; }
-  th { background: #eee; } td.flags { text-align: left; color: #a30; }
+  th { background: #eee; } td.flags { text-align: left; color: #a30; } td.ok { color: #2a7; }
   section h2 { font-size: 1em; margin: 0 0 0.3em 0; }
   #reasons { color: #fdd; }
 </style>
@@ -53,7 +53,7 @@ const std::string& IndexPage() {
     <section>
       <h2>Cameras</h2>
       <table id="cameras"><thead><tr><th>camera</th><th>rate Hz</th><th>last msg s</th>
-        <th>clock offset ms</th><th>late</th><th>dropped</th><th>lost</th><th>rejected</th>
+        <th>latency ms</th><th>clock offset ms</th><th>late</th><th>dropped</th><th>lost</th><th>rejected</th>
         <th>flags</th></tr></thead><tbody></tbody></table>
     </section>
     <section>
@@ -198,10 +198,13 @@ function onStatus(s) {
   const rows = [];
   for (const c of s.cameras) {
     const age = c.last_receive_utime > 0 ? ((s.utime - c.last_receive_utime) / 1e6).toFixed(1) : "never";
+    // capture (camera clock) to receive (tracker clock); beyond an hour the clocks are not comparable
+    const lat_us = c.last_receive_utime - c.last_utime;
+    const latency = c.last_receive_utime <= 0 ? "-" : Math.abs(lat_us) > 3.6e9 ? "n/a" : (lat_us / 1000).toFixed(1);
     rows.push('<tr data-camera="' + c.camera_id + '"><td>' + c.camera_id + "</td><td>" + c.rate_hz.toFixed(1) +
-              "</td><td>" + age + "</td><td>" + (c.clock_offset_us / 1000).toFixed(1) + "</td><td>" + c.late +
+              "</td><td>" + age + "</td><td>" + latency + "</td><td>" + (c.clock_offset_us / 1000).toFixed(1) + "</td><td>" + c.late +
               "</td><td>" + c.dropped + "</td><td>" + c.lost + "</td><td>" + c.rejected +
-              '</td><td class="flags">' + (c.flags.length ? c.flags.join(" ") : "ok") + "</td></tr>");
+              '</td><td class="flags' + (c.flags.length ? '">' + c.flags.join(" ") : ' ok">ok') + "</td></tr>");
   }
   document.querySelector("#cameras tbody").innerHTML = rows.join("");
 }
