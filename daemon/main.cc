@@ -24,6 +24,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "config/config_error.h"
@@ -105,6 +106,32 @@ struct UsageError : std::runtime_error {
 };
 
 // Parses argv; returns nullopt after printing --help or --version.
+// `text` as a number of type T in [lo, hi], the whole of it; otherwise a UsageError naming
+// `flag` and the range.
+template <typename T>
+T NumberIn(const std::string& flag, const std::string& text, T lo, T hi) {
+  std::size_t used = 0;
+  T x = lo;
+  bool ok = false;
+  try {
+    if constexpr (std::is_integral_v<T>) {
+      x = static_cast<T>(std::stoi(text, &used));
+    } else {
+      x = static_cast<T>(std::stod(text, &used));
+    }
+    ok = used == text.size() && x >= lo && x <= hi;
+  } catch (const std::exception&) {
+    ok = false;
+  }
+  if (!ok) {
+    std::ostringstream msg;
+    msg << flag << " must be " << (std::is_integral_v<T> ? "an integer" : "a number") << " in ["
+        << lo << ", " << hi << "], not '" << text << "'";
+    throw UsageError(msg.str());
+  }
+  return x;
+}
+
 std::optional<Options> ParseArgs(int argc, char** argv) {
   Options o;
   std::map<std::string, std::string*> values = {{"--config", &o.config_path},
@@ -139,35 +166,13 @@ std::optional<Options> ParseArgs(int argc, char** argv) {
     } else if (arg == "--input-log") {
       o.input_log = next();
     } else if (arg == "--input-speed") {
-      const std::string v = next();
-      std::size_t used = 0;
-      double x = -1.0;
-      try {
-        x = std::stod(v, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != v.size() || !(x >= 0.0 && x <= 1000.0)) {
-        throw UsageError("--input-speed must be a number in [0, 1000], not '" + v + "'");
-      }
-      o.input_speed = x;
+      o.input_speed = NumberIn<double>(arg, next(), 0.0, 1000.0);
     } else if (arg == "--output-url") {
       o.output_url = next();
     } else if (arg == "--log-level") {
       o.log_level = next();
     } else if (arg == "--workers") {
-      const std::string v = next();
-      std::size_t used = 0;
-      int n = -1;
-      try {
-        n = std::stoi(v, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != v.size() || n < 0 || n > 256) {
-        throw UsageError("--workers must be an integer in [0, 256], not '" + v + "'");
-      }
-      o.workers = n;
+      o.workers = NumberIn<int>(arg, next(), 0, 256);
     } else {
       throw UsageError("unknown argument '" + arg + "'");
     }
