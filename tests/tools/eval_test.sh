@@ -81,6 +81,9 @@ expect_grep "\-\-actors applies to PCP only" "$OUT/u2"
 expect_exit 2 "$OUT/u3" "$MVTRACK" eval --gt "$GT" --pred "$OUT/tracks.jsonl" --distance iou
 expect_exit 2 "$OUT/u4" "$MVTRACK" eval --gt "$GT" --pred "$OUT/tracks.jsonl" --threshold 0
 expect_exit 2 "$OUT/u5" "$MVTRACK" eval --gt "$GT" --pred "$OUT/tracks.jsonl" "$OUT/tracks.jsonl"
+# A detections log given as the predictions: an error saying so, not MOTA 0.
+expect_exit 1 "$OUT/r0" "$MVTRACK" eval --gt "$P/gt.jsonl" --pred "$P/detections.lcmlog"
+expect_grep "a detections log \([0-9]+ camera_detections_t events, no MVTRACK_TRACKS\), not tracks" "$OUT/r0"
 expect_exit 1 "$OUT/r1" "$MVTRACK" eval --gt "$OUT/nope.jsonl" --pred "$OUT/tracks.jsonl"
 expect_grep "nope.jsonl: file does not exist" "$OUT/r1"
 { head -n 3 "$GT"; echo '{"frame": 3, "layout": "coco17", "trakcs": [], "utime": 0}'; } >"$OUT/badgt.jsonl"

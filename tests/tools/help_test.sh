@@ -14,6 +14,11 @@ done
 for cmd in replay eval diff check-config; do
   expect_grep "Exit status" "$OUT/$cmd.help"
 done
+# A mistyped option or command gets the closest one suggested.
+expect_exit 2 "$OUT/typo_option" "$MVTRACK" replay --calibraton x.yaml in.lcmlog
+expect_grep "unknown option --calibraton \(did you mean --calibration\?\)" "$OUT/typo_option"
+expect_exit 2 "$OUT/typo_command" "$MVTRACK" replya
+expect_grep "unknown command 'replya' \(did you mean 'replay'\?\)" "$OUT/typo_command"
 
 expect_exit 0 "$OUT/top.help" "$MVTRACK" --help
 for cmd in replay eval diff check-config; do

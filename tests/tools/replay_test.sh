@@ -61,13 +61,23 @@ expect_grep "image size differs from calibration: 720" "$OUT/sizes.log"
 expect_grep "camera-frames: 720 accepted" "$OUT/sizes.log"
 expect_grep "warning: .*image size 1280x720 differs from the calibration's 1920x1080" "$OUT/sizes.err"
 
-# An empty log is an empty input: no frames, exit 0.
+# Runs that cannot do their job fail, saying why (exit 1): an empty log, a tracks log, a log
+# whose camera ids the calibration does not have.
 : >"$OUT/empty.lcmlog"
-expect_exit 0 "$OUT/empty.log" "$MVTRACK" replay --quiet --calibration "$P/calibration.yaml" \
+expect_exit 1 "$OUT/empty.log" "$MVTRACK" replay --quiet --calibration "$P/calibration.yaml" \
   --jsonl "$OUT/empty.jsonl" "$OUT/empty.lcmlog"
 expect_grep "0 event\(s\), 0 on detections channels; log end of log" "$OUT/empty.log"
-expect_grep "output: 0 frame\(s\)" "$OUT/empty.log"
+expect_grep "replay: error: nothing to track: the log is empty" "$OUT/empty.log"
 [ ! -s "$OUT/empty.jsonl" ] || fail "frames out of an empty log"
+expect_exit 1 "$OUT/tracks_in.log" "$MVTRACK" replay --quiet --calibration "$P/calibration.yaml" \
+  "$OUT/run1.lcmlog"
+expect_grep "nothing to track: no event is on a detections channel \(it holds MVTRACK_TRACKS: a tracks log" \
+  "$OUT/tracks_in.log"
+sed -E 's/^(\s*-?\s*id:\s*)([0-9]+)/\15\2/' "$P/calibration.yaml" > "$OUT/other_ids.yaml"
+expect_exit 1 "$OUT/other_ids.log" "$MVTRACK" replay --quiet --calibration "$OUT/other_ids.yaml" \
+  "$P/detections.lcmlog"
+expect_grep "replay: error: no camera-frame was accepted \(unknown_camera [0-9]+\); the log's cameras: 0, 1, 2, the calibration's: 50, 51, 52" \
+  "$OUT/other_ids.log"
 
 # Usage errors (exit 2) and failures (exit 1), each naming the problem.
 expect_exit 2 "$OUT/e1" "$MVTRACK" replay "$P/detections.lcmlog"
@@ -89,4 +99,14 @@ expect_grep "gt.jsonl" "$OUT/e8"
 printf 'tracker:\n  window_stpe: 10\n' >"$OUT/typo.yaml"
 expect_exit 1 "$OUT/e9" "$MVTRACK" replay --calibration "$P/calibration.yaml" --config "$OUT/typo.yaml" "$P/detections.lcmlog"
 expect_grep "typo.yaml:2:.*tracker.window_stpe: unknown key" "$OUT/e9"
+
+# A pose recording replayed in box mode, or with another layout, runs with a warning saying how.
+expect_exit 0 "$OUT/as_boxes.log" "$MVTRACK" replay --quiet --calibration "$P/calibration.yaml" \
+  --mode boxes "$P/detections.lcmlog"
+expect_grep "warning: the log's detections carry keypoints \(coco17 [0-9]+\) but the tracker runs in box mode: --mode poses --layout coco17" \
+  "$OUT/as_boxes.log"
+expect_exit 0 "$OUT/as_body25.log" "$MVTRACK" replay --quiet --calibration "$P/calibration.yaml" \
+  --mode poses --layout body25 "$P/detections.lcmlog"
+expect_grep "warning: the log's keypoints are coco17 [0-9]+, the tracker's layout is body25" \
+  "$OUT/as_body25.log"
 echo "ok"

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "core/suggest.h"
 #include "mvtrack/cli.h"
 
 namespace mvtrack::cli {
@@ -67,7 +68,13 @@ bool Args::Parse(int argc, char** argv, const std::string& usage_line,
         name = name.substr(0, eq);
       }
       auto it = options_.find(name);
-      if (it == options_.end()) throw UsageError("unknown option --" + name + " (see --help)");
+      if (it == options_.end()) {
+        std::vector<std::string> names;
+        for (const auto& [known, spec] : options_) names.push_back(known);
+        const std::optional<std::string> close = core::SuggestClosest(name, names);
+        throw UsageError("unknown option --" + name +
+                         (close ? " (did you mean --" + *close + "?)" : " (see --help)"));
+      }
       if (it->second.is_flag) {
         if (value) throw UsageError("--" + name + " takes no value");
         given_[name] = true;

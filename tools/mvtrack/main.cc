@@ -3,8 +3,11 @@
 #include <cstring>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "core/suggest.h"
 #include "mvtrack/cli.h"
 
 namespace {
@@ -70,7 +73,11 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  std::cerr << "mvtrack: unknown command '" << argv[1] << "'\n\n";
+  std::vector<std::string> names;
+  for (const Command& c : kCommands) names.emplace_back(c.name);
+  const std::optional<std::string> close = mvtrack::core::SuggestClosest(argv[1], names);
+  std::cerr << "mvtrack: unknown command '" << argv[1] << "'"
+            << (close ? " (did you mean '" + *close + "'?)" : std::string()) << "\n\n";
   PrintUsage(std::cerr);
   return 2;
 }

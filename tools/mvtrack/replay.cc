@@ -213,8 +213,13 @@ int RunReplay(int argc, char** argv) {
                   "The decoded detections are held in memory while tracking, so the reported speed\n"
                   "measures tracking only (from the first camera-frame submitted to the end of the\n"
                   "final flush; reading, decoding and writing excluded).\n\n"
+                  "A log whose detections carry keypoints replayed in box mode, or with another\n"
+                  "--layout than the log's, gets a warning (both run: box mode from pose detections\n"
+                  "and mapping between layouts are features).\n\n"
                   "Exit status: 0 done (also when messages were skipped), 1 failure (unreadable\n"
-                  "input, calibration or options error, output not writable), 2 usage error.")) {
+                  "input, calibration or options error, output not writable, or nothing to track:\n"
+                  "no detections message in the log, or not one camera-frame accepted, e.g. camera\n"
+                  "ids the calibration does not have), 2 usage error.")) {
     return 0;
   }
   const std::string input_path = args.Get("INPUT.lcmlog");
@@ -288,6 +293,31 @@ int RunReplay(int argc, char** argv) {
   if (in.end == transport::LogEnd::kIoError) {
     progress.Finish();
     throw std::runtime_error(in.end_error);
+  }
+  // What the log says about the mode and layout it was recorded for.
+  std::map<std::string, std::int64_t> log_layouts;  // keypoint layout name -> detections
+  std::set<CameraId> log_cameras;
+  for (const core::CameraFrame& f : in.frames) {
+    log_cameras.insert(f.camera_id);
+    for (const core::Detection2D& d : f.detections) {
+      if (d.layout != core::KeypointLayoutId::kNone) {
+        ++log_layouts[core::GetKeypointLayout(d.layout).name];
+      }
+    }
+  }
+  if (!log_layouts.empty() && options.mode == tracker::InputMode::kBoxes) {
+    progress.Finish();
+    std::cerr << "replay: warning: the log's detections carry keypoints ("
+              << CountsText(log_layouts) << ") but the tracker runs in box mode: --mode poses "
+              << "--layout " << log_layouts.rbegin()->first << " tracks the poses\n";
+  }
+  if (options.mode == tracker::InputMode::kPoses && !log_layouts.empty() &&
+      log_layouts.count(core::GetKeypointLayout(options.layout).name) == 0) {
+    progress.Finish();
+    std::cerr << "replay: warning: the log's keypoints are " << CountsText(log_layouts)
+              << ", the tracker's layout is " << core::GetKeypointLayout(options.layout).name
+              << ": joints are mapped by name, and joints the log's layout lacks stay empty "
+              << "(--layout " << log_layouts.rbegin()->first << " tracks them as recorded)\n";
   }
 
   // Tracking: the pipeline with lossless camera queues; frames are collected in memory.
@@ -422,6 +452,29 @@ int RunReplay(int argc, char** argv) {
     report << "  wrote " << jsonl_path << " (JSONL, " << frames.size() << " line(s))\n";
   }
   if (status.windows_failed > 0 || status.output_callback_errors > 0) return 1;
+  // A run that could not do its job fails (exit 1), saying why.
+  if (in.detection_events == 0) {
+    std::string hint = in.events == 0 ? "the log is empty" : "no event is on a detections channel";
+    if (in.foreign_channels.count(transport::kTracksChannel) > 0) {
+      hint += " (it holds " + std::string(transport::kTracksChannel) +
+              ": a tracks log, which `mvtrack eval`, `diff` and `view` read)";
+    }
+    std::cerr << "replay: error: nothing to track: " << hint << "\n";
+    return 1;
+  }
+  if (st.camera_frames_accepted == 0) {
+    std::string ids;
+    for (const CameraId id : log_cameras) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+    std::string calibration_ids;
+    for (const geometry::CameraModel& c : rig.cameras()) {
+      calibration_ids += (calibration_ids.empty() ? "" : ", ") + std::to_string(c.id);
+    }
+    std::cerr << "replay: error: no camera-frame was accepted"
+              << (st.camera_frames_rejected > 0 ? " (" + CountsText(rejections) + ")" : "")
+              << "; the log's cameras: " << (ids.empty() ? "none" : ids)
+              << ", the calibration's: " << calibration_ids << "\n";
+    return 1;
+  }
   return 0;
 }
 

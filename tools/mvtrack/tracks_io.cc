@@ -186,6 +186,16 @@ TrackFile ReadTrackFile(const std::string& path) {
   file.format = StartsWithLcmSyncWord(path) ? TrackFileFormat::kLcmLog : TrackFileFormat::kJsonl;
   if (file.format == TrackFileFormat::kLcmLog) {
     ReadLcmLog(&file);
+    // A detections log is not a track output: say so instead of scoring nothing.
+    std::int64_t detections = 0;
+    for (const auto& [channel, count] : file.ignored_channels) {
+      if (transport::IsDetectionsChannel(channel)) detections += count;
+    }
+    if (file.frames.empty() && detections > 0) {
+      throw TrackFileError(path + ": a detections log (" + std::to_string(detections) +
+                           " camera_detections_t events, no " + transport::kTracksChannel +
+                           "), not tracks: track it first (mvtrack replay --out or --jsonl)");
+    }
   } else {
     ReadJsonl(&file);
   }

@@ -12,6 +12,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "core/suggest.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
@@ -171,13 +173,9 @@ Enum GetEnum(const NodeRef& node, FromName from_name, const std::vector<std::str
 std::vector<NodeRef> GetSequence(const NodeRef& node,
                                  std::optional<std::size_t> expected_size = std::nullopt);
 
-/// Edit distance by optimal string alignment: insertions, deletions, substitutions and
-/// transpositions of adjacent characters each cost 1 (byte-wise; no substring is edited twice).
-std::size_t EditDistance(std::string_view a, std::string_view b);
-/// The candidate closest to `word` when it is close enough to be a likely typo (distance at
-/// most max(1, min(3, (|candidate| + 1) / 3))); ties go to the earlier candidate.
-std::optional<std::string> SuggestClosest(std::string_view word,
-                                          const std::vector<std::string>& candidates);
+/// See core/suggest.h (kept here under these names for lib/config's callers).
+using core::EditDistance;
+using core::SuggestClosest;
 
 /// Parses one YAML document (JSON is valid YAML). A syntax error is a ConfigError with the line
 /// and column of the problem; so is a stream with more than one document. An empty document
