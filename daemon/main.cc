@@ -27,6 +27,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "config/calibration.h"
 #include "config/config_error.h"
 #include "service/daemon_config.h"
 #include "service/lcm_runner.h"
@@ -301,6 +302,9 @@ int Run(const Options& options) {
                config.cameras.size(), config.EffectiveWorkers());
   spdlog::info("effective configuration (hash {}):\n{}", mvtrack::service::DaemonConfigHash(config),
                mvtrack::service::DaemonConfigToYaml(config));
+  if (const auto w = mvtrack::config::CalibrationScaleWarning(config.cameras)) {
+    spdlog::warn("{}: {}", config.calibration_path, *w);
+  }
 
   // Signals are taken synchronously by the control loop (sigtimedwait): block them before any
   // thread starts so every thread inherits the mask.

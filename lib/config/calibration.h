@@ -10,6 +10,7 @@
 /// naming the file, the line and the key path. Stateless functions; thread-compatible.
 
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,5 +62,11 @@ std::string CalibrationToYaml(const std::vector<geometry::CameraModel>& cameras,
 void SaveCalibration(const std::string& path,
                      const std::vector<geometry::CameraModel>& cameras,
                      const std::map<CameraId, std::string>& names = {});
+
+/// A warning when the cameras' centres lie implausibly far apart for metres (more than 500
+/// units: a calibration written in millimetres puts a 5 m room's cameras 5000 "m" apart, and
+/// then no ray pair of one person meets within the association's tolerances: 0 tracks), naming
+/// the spread; nullopt otherwise. Camera translations in mvtrack.calibration/1 are metres.
+std::optional<std::string> CalibrationScaleWarning(const std::vector<geometry::CameraModel>& cameras);
 
 }  // namespace mvtrack::config

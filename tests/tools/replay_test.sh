@@ -109,4 +109,12 @@ expect_exit 0 "$OUT/as_body25.log" "$MVTRACK" replay --quiet --calibration "$P/c
   --mode poses --layout body25 "$P/detections.lcmlog"
 expect_grep "warning: the log's keypoints are coco17 [0-9]+, the tracker's layout is body25" \
   "$OUT/as_body25.log"
+
+# A calibration in millimetres is named as the likely cause (the run itself tracks nobody).
+awk '{ if ($1 == "t:") { gsub(/[\[\],]/, " "); printf "    t: [%.1f, %.1f, %.1f]\n", $2 * 1000, $3 * 1000, $4 * 1000 } else print }' \
+  "$P/calibration.yaml" > "$OUT/mm.yaml"
+expect_exit 0 "$OUT/mm.log" "$MVTRACK" replay --quiet --calibration "$OUT/mm.yaml" --mode poses \
+  "$P/detections.lcmlog"
+expect_grep "warning: .*mm.yaml: the cameras' centres lie up to [0-9]+ m apart: translations must be metres" \
+  "$OUT/mm.log"
 echo "ok"

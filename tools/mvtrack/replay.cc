@@ -267,6 +267,9 @@ int RunReplay(int argc, char** argv) {
       options.mode == tracker::InputMode::kPoses ? options.layout : core::KeypointLayoutId::kNone;
 
   std::vector<geometry::CameraModel> cameras = config::LoadCalibration(args.Get("calibration"));
+  if (const std::optional<std::string> w = config::CalibrationScaleWarning(cameras)) {
+    std::cerr << "replay: warning: " << args.Get("calibration") << ": " << *w << "\n";
+  }
   geometry::CameraRig rig(std::move(cameras), &why);
   if (!rig.ok()) throw std::runtime_error(args.Get("calibration") + ": " + why);
 
