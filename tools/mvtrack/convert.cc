@@ -758,13 +758,21 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
     sink.WriteFrame(std::move(batch));
     pending.clear();
   };
-  std::int64_t next_report = 100000;
+  // Progress once a second: lines and the share of the file read.
+  std::error_code size_error;
+  const auto total_bytes = std::filesystem::file_size(detections_path, size_error);
+  auto next_report = std::chrono::steady_clock::now() + std::chrono::seconds(1);
   while (std::optional<JsonlCameraFrame> f = reader.Next()) {
     if (!pending.empty() && f->frame.frame != pending.front().frame.frame) flush();
     pending.push_back(std::move(*f));
-    if (reader.lines_read() >= next_report) {
-      Progress(c, std::to_string(reader.lines_read()) + " lines read");
-      next_report += 100000;
+    if (std::chrono::steady_clock::now() >= next_report) {
+      std::string share;
+      if (!size_error && total_bytes > 0) {
+        share = " (" + std::to_string(100 * reader.bytes_read() /
+                                      static_cast<std::int64_t>(total_bytes)) + " %)";
+      }
+      Progress(c, std::to_string(reader.lines_read()) + " lines read" + share);
+      next_report = std::chrono::steady_clock::now() + std::chrono::seconds(1);
     }
   }
   if (!pending.empty()) flush();

@@ -233,6 +233,7 @@ std::optional<JsonlCameraFrame> JsonlDetectionsReader::Next() {
   std::string line;
   while (std::getline(*in_, line)) {
     ++lines_read_;
+    bytes_read_ += static_cast<std::int64_t>(line.size()) + 1;
     LineError error;
     std::optional<ParsedLine> parsed = ParseLine(line, &error);
     if (parsed.has_value()) {

@@ -120,6 +120,8 @@ class JsonlDetectionsReader {
 
   /// Lines read so far (good and bad).
   std::int64_t lines_read() const { return lines_read_; }
+  /// Bytes of input consumed so far (lines and their newlines).
+  std::int64_t bytes_read() const { return bytes_read_; }
   /// Bad lines skipped so far.
   std::int64_t bad_lines() const { return bad_lines_; }
   /// The first max_kept_bad_lines bad lines, in input order.
@@ -130,6 +132,7 @@ class JsonlDetectionsReader {
   std::string source_name_;
   JsonlReaderOptions options_;
   std::int64_t lines_read_ = 0;
+  std::int64_t bytes_read_ = 0;
   std::int64_t bad_lines_ = 0;
   std::vector<JsonlBadLine> first_bad_lines_;
   // Cross-line state of the good lines so far.
