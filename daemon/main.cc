@@ -460,6 +460,16 @@ int Run(const Options& options) {
     }
   }
   if (counters.record_errors > 0) exit_code = 1;
+  // A log that gave the tracker nothing: the run could not do its job (a live daemon waits).
+  if (options.input_log && counters.submitted == 0) {
+    std::string ids;
+    for (const auto& cam : config.cameras) ids += (ids.empty() ? "" : ", ") + std::to_string(cam.id);
+    spdlog::error("{}: no camera-frame was tracked ({} message(s), {} of unknown cameras, {} "
+                  "undecodable; the calibration's cameras: {})",
+                  *options.input_log, counters.messages, counters.sync.unknown_camera,
+                  counters.decode_errors, ids);
+    exit_code = 1;
+  }
   spdlog::info("mvtrackd stopped (exit {})", exit_code);
   return exit_code;
 }

@@ -52,4 +52,12 @@ expect_grep "invalid: .*typo.yaml:[0-9]+:[0-9]+: sync.deadline_usec: unknown key
 sed 's/mvtrack.daemon\/1/mvtrack.daemon\/9/' "$OUT/range.yaml" > "$OUT/version.yaml"
 expect_exit 1 "$OUT/check_version.log" "$MVTRACK" check-config "$OUT/version.yaml"
 expect_grep "format: expected 'mvtrack.daemon/1'" "$OUT/check_version.log"
+
+# A log none of whose cameras is in the calibration: exit 1 naming the calibration's cameras.
+sed -E 's/^(\s*-?\s*id:\s*)([0-9]+)/\17\2/' "$P/calibration.yaml" > "$OUT/other_ids.yaml"
+write_config "$OUT/plain.yaml"
+expect_exit 1 "$OUT/other_ids.log" "$MVTRACKD" --config "$OUT/plain.yaml" \
+  --calibration "$OUT/other_ids.yaml" --input-log "$P/detections.lcmlog"
+expect_grep "no camera-frame was tracked \([0-9]+ message\(s\), [0-9]+ of unknown cameras, 0 undecodable; the calibration's cameras: 70, 71, 72\)" \
+  "$OUT/other_ids.log"
 echo "ok"
