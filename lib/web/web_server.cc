@@ -29,10 +29,15 @@ class EventHub {
  public:
   struct Client {
     std::deque<std::shared_ptr<const std::string>> queue;
+    std::size_t queued_bytes = 0;
     bool dropped = false;
   };
 
-  explicit EventHub(std::size_t capacity) : capacity_(capacity) {}
+  // At most `capacity` events and `max_bytes` of them per client (events are shared between
+  // clients, so this also bounds the hub's memory: a hostile 4 MiB tracks message makes a
+  // large event).
+  EventHub(std::size_t capacity, std::size_t max_bytes)
+      : capacity_(capacity), max_bytes_(max_bytes) {}
 
   // A new client, or nullptr when `max_clients` are connected. It first gets the latest status
   // and tracks events, so a page shows something at once.
@@ -40,8 +45,11 @@ class EventHub {
     std::lock_guard<std::mutex> lock(mu_);
     if (closed_ || static_cast<int>(clients_.size()) >= max_clients) return nullptr;
     auto c = std::make_shared<Client>();
-    if (last_status_) c->queue.push_back(last_status_);
-    if (last_tracks_) c->queue.push_back(last_tracks_);
+    for (const auto& e : {last_status_, last_tracks_}) {
+      if (!e) continue;
+      c->queue.push_back(e);
+      c->queued_bytes += e->size();
+    }
     clients_.push_back(c);
     return c;
   }
@@ -58,13 +66,15 @@ class EventHub {
       (is_status ? last_status_ : last_tracks_) = e;
       for (const std::shared_ptr<Client>& c : clients_) {
         if (c->dropped) continue;
-        if (c->queue.size() >= capacity_) {
+        if (c->queue.size() >= capacity_ || c->queued_bytes + e->size() > max_bytes_) {
           c->dropped = true;  // it does not keep up: disconnect it, never wait for it
           c->queue.clear();
+          c->queued_bytes = 0;
           ++dropped_;
           continue;
         }
         c->queue.push_back(e);
+        c->queued_bytes += e->size();
       }
     }
     cv_.notify_all();
@@ -81,6 +91,7 @@ class EventHub {
     if (!c->queue.empty()) {
       *event = c->queue.front();
       c->queue.pop_front();
+      c->queued_bytes -= (*event)->size();
     }
     return true;
   }
@@ -108,6 +119,7 @@ class EventHub {
 
  private:
   const std::size_t capacity_;
+  const std::size_t max_bytes_;
   mutable std::mutex mu_;
   std::condition_variable cv_;
   std::vector<std::shared_ptr<Client>> clients_;
@@ -134,7 +146,7 @@ class WebServer::Impl {
  public:
   explicit Impl(WebOptions options)
       : options_(std::move(options)),
-        hub_(options_.client_queue_events),
+        hub_(options_.client_queue_events, options_.client_queue_bytes),
         floor_json_(FloorJson(options_.cameras)),
         layouts_json_(LayoutsJson()) {}
 
@@ -347,7 +359,8 @@ WebServer::~WebServer() = default;
 
 std::unique_ptr<WebServer> WebServer::Create(WebOptions options, std::string* why) {
   std::string reason;
-  if (options.client_queue_events < 1 || options.max_clients < 1 || options.port < 0 ||
+  if (options.client_queue_events < 1 || options.client_queue_bytes < 1 ||
+      options.max_clients < 1 || options.port < 0 ||
       options.port > 65535 || !(options.stale_after_s > 0.0)) {
     if (why != nullptr) *why = "invalid web options";
     return nullptr;

@@ -11,7 +11,7 @@
 ///   /floor.json   the cameras and their fields of view on the floor (from the calibration),
 ///   /layouts.json keypoint layouts (joint names and bones) for drawing skeletons,
 ///   /status.json, /tracks.json  the latest status and tracks event.
-/// Each /events client has a bounded queue of events: a client that does not keep up is
+/// Each /events client has a queue bounded in events and bytes: a client that does not keep up is
 /// disconnected and counted (clients_dropped); neither LCM nor the other clients ever wait for
 /// it. At most max_clients /events clients at once (more get 503).
 
@@ -35,6 +35,9 @@ struct WebOptions {
   std::string status_channel = "MVTRACK_STATUS";
   std::vector<geometry::CameraModel> cameras;  ///< the floor view's cameras (may be empty)
   std::size_t client_queue_events = 256;       ///< per-client queue bound, events (>= 1)
+  /// Per-client queue bound, bytes of JSON (>= 1): also bounds the server's memory, as the
+  /// events are shared between clients.
+  std::size_t client_queue_bytes = std::size_t{32} << 20;
   int max_clients = 8;                         ///< concurrent /events clients (>= 1)
   double stale_after_s = 5.0;                  ///< /healthz: a status older than this is 503
 };
