@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# mvtrack replay --threads N: the output (JSONL and LCM log) is byte-identical for inline window
-# jobs (0) and for pools of 1, 2 and 8 workers.
+# mvtrack replay --threads N: the output (JSONL and LCM log) is byte-identical for the inline
+# stages (0: tracker::Tracker on the main thread, no thread at all) and for the threaded
+# pipeline with pools of 1, 2 and 8 workers.
 source "$(dirname "$0")/common.sh"
 P=$WORK/poses
 for n in 0 1 2 8; do
@@ -9,7 +10,7 @@ for n in 0 1 2 8; do
     --out "$OUT/t$n.lcmlog" --jsonl "$OUT/t$n.jsonl" "$P/detections.lcmlog"
   expect_grep "output: 240 frame\(s\)" "$OUT/t$n.log"
 done
-expect_grep "inline window jobs" "$OUT/t0.log"
+expect_grep "inline, no threads" "$OUT/t0.log"
 expect_grep "8 worker thread" "$OUT/t8.log"
 for n in 1 2 8; do
   cmp "$OUT/t0.jsonl" "$OUT/t$n.jsonl" || fail "--threads $n JSONL differs from --threads 0"

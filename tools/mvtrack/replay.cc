@@ -323,62 +323,87 @@ int RunReplay(int argc, char** argv) {
               << "(--layout " << log_layouts.rbegin()->first << " tracks them as recorded)\n";
   }
 
-  // Tracking: the pipeline with lossless camera queues; frames are collected in memory.
-  pipeline::PipelineOptions pipeline_options;
-  pipeline_options.camera_overflow = pipeline::OverflowPolicy::kBlock;
-  std::unique_ptr<pipeline::Executor> executor;
-  if (threads == 0) {
-    executor = std::make_unique<pipeline::InlineExecutor>();
-  } else {
-    pipeline::ThreadPoolOptions pool;
-    pool.num_workers = static_cast<int>(threads);
-    executor = std::make_unique<pipeline::ThreadPoolExecutor>(pool);
-  }
-  pipeline::ManualClock clock(in.event_times_us.empty() ? 0 : in.event_times_us.front());
+  // Tracking. --threads 0: the stages inline on this thread (tracker::Tracker, no thread at
+  // all); N: the threaded pipeline with lossless camera queues and N window-job workers. The
+  // output is identical (tools/replay_threads, service tests). Frames are collected in memory.
   std::mutex frames_mu;
-  std::vector<tracker::Frame3D> frames;  // guarded by frames_mu (written on the finalizer thread)
+  std::vector<tracker::Frame3D> frames;  // guarded by frames_mu (the pipeline's finalizer writes)
   std::atomic<std::int64_t> frames_out{0};
-  std::unique_ptr<pipeline::Pipeline> pipeline = pipeline::Pipeline::Create(
-      rig, options, pipeline_options, std::move(executor), clock,
-      [&](tracker::Frame3D frame) {
-        std::lock_guard<std::mutex> lock(frames_mu);
-        frames.push_back(std::move(frame));
-        frames_out.fetch_add(1, std::memory_order_relaxed);
-      },
-      &why);
-  if (!pipeline) throw std::runtime_error("pipeline: " + why);
-
-  const std::size_t num_camera_frames = in.frames.size();
   std::int64_t printed_rejections = 0;
-  const auto track_start = Clock::now();
-  for (std::size_t i = 0; i < num_camera_frames; ++i) {
+  auto rejected = [&](CameraId camera, FrameIndex frame, tracker::FrameRejection rejection,
+                      const std::string& reason) {
+    if (printed_rejections < kMaxPrintedPerKind) {
+      progress.Finish();
+      std::cerr << "replay: rejected camera-frame (camera " << camera << ", frame " << frame
+                << "): " << tracker::ToString(rejection) << ": " << reason << "\n";
+    } else if (printed_rejections == kMaxPrintedPerKind) {
+      std::cerr << "replay: (further rejected camera-frames are counted, not printed)\n";
+    }
+    ++printed_rejections;
+  };
+  const std::size_t num_camera_frames = in.frames.size();
+  auto report_progress = [&](std::size_t i) {
     if (progress.Due()) {
       progress.Print("tracking: " + std::to_string(i) + "/" + std::to_string(num_camera_frames) +
                      " camera-frames, " + std::to_string(frames_out.load()) + " frames out");
     }
-    clock.SetMicros(in.event_times_us[i]);
-    const CameraId camera = in.frames[i].camera_id;
-    const FrameIndex frame = in.frames[i].frame;
-    const pipeline::SubmitResult r = pipeline->Submit(std::move(in.frames[i]));
-    if (r.status == pipeline::SubmitStatus::kStopped) {
-      throw std::runtime_error("pipeline stopped unexpectedly");
-    }
-    if (r.status == pipeline::SubmitStatus::kRejected) {
-      if (printed_rejections < kMaxPrintedPerKind) {
-        progress.Finish();
-        std::cerr << "replay: rejected camera-frame (camera " << camera << ", frame " << frame
-                  << "): " << tracker::ToString(r.rejection) << ": " << r.reason << "\n";
-      } else if (printed_rejections == kMaxPrintedPerKind) {
-        std::cerr << "replay: (further rejected camera-frames are counted, not printed)\n";
+  };
+  pipeline::PipelineStatus status;
+  const auto track_start = Clock::now();
+  if (threads == 0) {
+    std::unique_ptr<tracker::Tracker> inline_tracker = tracker::Tracker::Create(rig, options, &why);
+    if (!inline_tracker) throw std::runtime_error("tracker: " + why);
+    auto take = [&](std::vector<tracker::Frame3D>* finalized) {
+      frames_out.fetch_add(static_cast<std::int64_t>(finalized->size()));
+      for (tracker::Frame3D& f : *finalized) frames.push_back(std::move(f));
+    };
+    for (std::size_t i = 0; i < num_camera_frames; ++i) {
+      report_progress(i);
+      const CameraId camera = in.frames[i].camera_id;
+      const FrameIndex frame = in.frames[i].frame;
+      tracker::AddResult r = inline_tracker->Add(in.frames[i]);
+      if (r.rejection != tracker::FrameRejection::kNone) {
+        rejected(camera, frame, r.rejection, r.reason);
       }
-      ++printed_rejections;
+      take(&r.finalized);
     }
+    std::vector<tracker::Frame3D> rest = inline_tracker->Flush();
+    take(&rest);
+    status.tracker = inline_tracker->stats();
+  } else {
+    pipeline::PipelineOptions pipeline_options;
+    pipeline_options.camera_overflow = pipeline::OverflowPolicy::kBlock;
+    pipeline::ThreadPoolOptions pool;
+    pool.num_workers = static_cast<int>(threads);
+    pipeline::ManualClock clock(in.event_times_us.empty() ? 0 : in.event_times_us.front());
+    std::unique_ptr<pipeline::Pipeline> pipeline = pipeline::Pipeline::Create(
+        rig, options, pipeline_options, std::make_unique<pipeline::ThreadPoolExecutor>(pool),
+        clock,
+        [&](tracker::Frame3D frame) {
+          std::lock_guard<std::mutex> lock(frames_mu);
+          frames.push_back(std::move(frame));
+          frames_out.fetch_add(1, std::memory_order_relaxed);
+        },
+        &why);
+    if (!pipeline) throw std::runtime_error("pipeline: " + why);
+    for (std::size_t i = 0; i < num_camera_frames; ++i) {
+      report_progress(i);
+      clock.SetMicros(in.event_times_us[i]);
+      const CameraId camera = in.frames[i].camera_id;
+      const FrameIndex frame = in.frames[i].frame;
+      const pipeline::SubmitResult r = pipeline->Submit(std::move(in.frames[i]));
+      if (r.status == pipeline::SubmitStatus::kStopped) {
+        throw std::runtime_error("pipeline stopped unexpectedly");
+      }
+      if (r.status == pipeline::SubmitStatus::kRejected) {
+        rejected(camera, frame, r.rejection, r.reason);
+      }
+    }
+    if (!pipeline->Flush()) throw std::runtime_error("pipeline stopped before the final flush");
+    pipeline->Stop();
+    status = pipeline->Status();
   }
-  if (!pipeline->Flush()) throw std::runtime_error("pipeline stopped before the final flush");
-  pipeline->Stop();
   const double track_seconds = SecondsSince(track_start);
-  const pipeline::PipelineStatus status = pipeline->Status();
-  pipeline.reset();
   in.frames.clear();
   progress.Finish();
 
@@ -444,9 +469,9 @@ int RunReplay(int argc, char** argv) {
   char speed[160];
   const double fps = track_seconds > 0.0 ? static_cast<double>(frames.size()) / track_seconds : 0.0;
   std::snprintf(speed, sizeof(speed), "%.3f s = %.0f frames/s", track_seconds, fps);
-  report << "  tracking: " << frames.size() << " frame(s) in " << speed << " (pipeline, "
-         << (threads == 0 ? std::string("inline window jobs")
-                          : std::to_string(threads) + " worker thread(s)")
+  report << "  tracking: " << frames.size() << " frame(s) in " << speed << " ("
+         << (threads == 0 ? std::string("inline, no threads")
+                          : "pipeline, " + std::to_string(threads) + " worker thread(s)")
          << "; timed from the first submit to the end of the flush; reading "
          << static_cast<long long>(read_seconds * 1000.0 + 0.5) << " ms and writing "
          << static_cast<long long>(write_seconds * 1000.0 + 0.5) << " ms not included)\n";
