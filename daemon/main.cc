@@ -27,7 +27,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "config/calibration.h"
+#include "config/calibration_check.h"
 #include "config/config_error.h"
 #include "service/daemon_config.h"
 #include "service/lcm_runner.h"
@@ -302,8 +302,8 @@ int Run(const Options& options) {
                config.cameras.size(), config.EffectiveWorkers());
   spdlog::info("effective configuration (hash {}):\n{}", mvtrack::service::DaemonConfigHash(config),
                mvtrack::service::DaemonConfigToYaml(config));
-  if (const auto w = mvtrack::config::CalibrationScaleWarning(config.cameras)) {
-    spdlog::warn("{}: {}", config.calibration_path, *w);
+  for (const std::string& w : mvtrack::config::CalibrationLoadWarnings(config.cameras)) {
+    spdlog::warn("{}: {}", config.calibration_path, w);
   }
 
   // Signals are taken synchronously by the control loop (sigtimedwait): block them before any

@@ -282,24 +282,3 @@ void SaveCalibration(const std::string& path,
 }
 
 }  // namespace mvtrack::config
-
-namespace mvtrack::config {
-
-std::optional<std::string> CalibrationScaleWarning(
-    const std::vector<geometry::CameraModel>& cameras) {
-  constexpr double kMaxSpread = 500.0;
-  double spread = 0.0;
-  for (std::size_t i = 0; i < cameras.size(); ++i) {
-    for (std::size_t j = i + 1; j < cameras.size(); ++j) {
-      spread = std::max(spread, (cameras[i].CenterInWorld() - cameras[j].CenterInWorld()).norm());
-    }
-  }
-  if (!(spread > kMaxSpread)) return std::nullopt;
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.0f", spread);
-  return std::string("the cameras' centres lie up to ") + buf +
-         " m apart: translations must be metres (a calibration in millimetres tracks nobody; "
-         "mvtrack calib check shows the rig)";
-}
-
-}  // namespace mvtrack::config

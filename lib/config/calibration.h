@@ -63,10 +63,4 @@ void SaveCalibration(const std::string& path,
                      const std::vector<geometry::CameraModel>& cameras,
                      const std::map<CameraId, std::string>& names = {});
 
-/// A warning when the cameras' centres lie implausibly far apart for metres (more than 500
-/// units: a calibration written in millimetres puts a 5 m room's cameras 5000 "m" apart, and
-/// then no ray pair of one person meets within the association's tolerances: 0 tracks), naming
-/// the spread; nullopt otherwise. Camera translations in mvtrack.calibration/1 are metres.
-std::optional<std::string> CalibrationScaleWarning(const std::vector<geometry::CameraModel>& cameras);
-
 }  // namespace mvtrack::config

@@ -278,6 +278,7 @@ CalibrationReport CheckCalibration(const std::vector<geometry::CameraModel>& cam
       if (pc.baseline_m < kDuplicateCenterM) {
         report.warnings.push_back(CameraName(pc.a) + " and " + CameraName(pc.b) +
                                   " have the same centre (duplicated camera?)");
+        report.load_warnings.push_back(report.warnings.back());
       }
       report.pairs.push_back(pc);
     }
@@ -302,6 +303,21 @@ CalibrationReport CheckCalibration(const std::vector<geometry::CameraModel>& cam
                "position can be triangulated there",
                report.area_single_view_m2));
   }
+  // A camera that shares no floor with any other camera cannot triangulate anything it sees.
+  if (n >= 2) {
+    for (const CameraCheck& cc : report.cameras) {
+      double shared = 0.0;
+      for (const PairCheck& pc : report.pairs) {
+        if (pc.a == cc.id || pc.b == cc.id) shared += pc.common_area_m2;
+      }
+      if (shared <= 0.0 && cc.seen_area_m2 > 0.0) {
+        report.warnings.push_back(CameraName(cc.id) +
+                                  " shares no floor with any other camera: nothing it sees can "
+                                  "be triangulated (wrong pose, or the wrong camera's file?)");
+        report.load_warnings.push_back(report.warnings.back());
+      }
+    }
+  }
   // Low cameras may look up at people (Panoptic's dome); most cameras looking up suggests a
   // world whose z axis points down.
   std::size_t looking_up = 0;
@@ -309,6 +325,7 @@ CalibrationReport CheckCalibration(const std::vector<geometry::CameraModel>& cam
   if (2 * looking_up > n) {
     report.warnings.push_back(std::to_string(looking_up) + " of " + std::to_string(n) +
                               " cameras look upwards: does the world z axis point down?");
+    report.load_warnings.push_back(report.warnings.back());
   }
   double spread = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -320,8 +337,23 @@ CalibrationReport CheckCalibration(const std::vector<geometry::CameraModel>& cam
         Format("camera centres are up to %.0f m apart: are the extrinsics "
                "in millimetres or centimetres instead of metres?",
                spread));
+    report.load_warnings.push_back(report.warnings.back());
   }
   return report;
+}
+
+std::vector<std::string> CalibrationLoadWarnings(
+    const std::vector<geometry::CameraModel>& cameras) {
+  CalibrationCheckOptions options;
+  options.cell_m = 0.5;
+  const CalibrationReport report = CheckCalibration(cameras, options);
+  std::vector<std::string> warnings = report.load_warnings;
+  for (const CameraCheck& c : report.cameras) {
+    for (const std::string& w : c.warnings) {
+      warnings.push_back("camera " + std::to_string(c.id) + ": " + w);
+    }
+  }
+  return warnings;
 }
 
 }  // namespace mvtrack::config

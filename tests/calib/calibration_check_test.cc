@@ -191,6 +191,25 @@ TEST_CASE("Per-camera sanity warnings", "[unit]") {
   }
 }
 
+TEST_CASE("A camera sharing no floor with the others is a load warning; normal rigs have none",
+          "[unit]") {
+  // Two cameras over one spot, a third far away over another.
+  const std::vector<mvtrack::geometry::CameraModel> cams = {
+      LookAtCamera(0, Vec3(0, 0, 3), Vec3(0, 0, 0), 500.0, 1000, 1000),
+      LookAtCamera(1, Vec3(1, 0, 3), Vec3(1, 0, 0), 500.0, 1000, 1000),
+      LookAtCamera(7, Vec3(40, 0, 3), Vec3(40, 0, 0), 500.0, 1000, 1000)};
+  const CalibrationReport report = CheckCalibration(cams);
+  REQUIRE(report.load_warnings.size() == 1);
+  CHECK_THAT(report.load_warnings[0], Catch::StartsWith("camera 7 shares no floor"));
+  const std::vector<std::string> at_load = CalibrationLoadWarnings(cams);
+  REQUIRE(at_load.size() == 1);
+  CHECK(at_load[0] == report.load_warnings[0]);
+  // The first two alone: a single-view border is a warning of calib check, not at load.
+  const std::vector<mvtrack::geometry::CameraModel> pair(cams.begin(), cams.begin() + 2);
+  CHECK_FALSE(CheckCalibration(pair).warnings.empty());
+  CHECK(CalibrationLoadWarnings(pair).empty());
+}
+
 TEST_CASE("SeesPoint and option validation", "[unit]") {
   const geometry::CameraModel cam =
       LookAtCamera(0, Vec3(0, -5, 2), Vec3(0, 0, 1), 800.0, 1280, 720);

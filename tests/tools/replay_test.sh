@@ -115,6 +115,6 @@ awk '{ if ($1 == "t:") { gsub(/[\[\],]/, " "); printf "    t: [%.1f, %.1f, %.1f]
   "$P/calibration.yaml" > "$OUT/mm.yaml"
 expect_exit 0 "$OUT/mm.log" "$MVTRACK" replay --quiet --calibration "$OUT/mm.yaml" --mode poses \
   "$P/detections.lcmlog"
-expect_grep "warning: .*mm.yaml: the cameras' centres lie up to [0-9]+ m apart: translations must be metres" \
+expect_grep "warning: .*mm.yaml: camera centres are up to [0-9]+ m apart: are the extrinsics in millimetres" \
   "$OUT/mm.log"
 echo "ok"

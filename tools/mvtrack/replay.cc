@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "config/calibration.h"
+#include "config/calibration_check.h"
 #include "config/tracker_options.h"
 #include "core/keypoint_layout.h"
 #include "geometry/camera_rig.h"
@@ -267,8 +268,8 @@ int RunReplay(int argc, char** argv) {
       options.mode == tracker::InputMode::kPoses ? options.layout : core::KeypointLayoutId::kNone;
 
   std::vector<geometry::CameraModel> cameras = config::LoadCalibration(args.Get("calibration"));
-  if (const std::optional<std::string> w = config::CalibrationScaleWarning(cameras)) {
-    std::cerr << "replay: warning: " << args.Get("calibration") << ": " << *w << "\n";
+  for (const std::string& w : config::CalibrationLoadWarnings(cameras)) {
+    std::cerr << "replay: warning: " << args.Get("calibration") << ": " << w << "\n";
   }
   geometry::CameraRig rig(std::move(cameras), &why);
   if (!rig.ok()) throw std::runtime_error(args.Get("calibration") + ": " + why);
