@@ -177,4 +177,17 @@ std::vector<eval::FrameRange> ParseFrameRanges(const std::string& text, const st
   return ranges;
 }
 
+int RunSubcommand(const char* program, const char* name, int (*run)(int, char**), int argc,
+                  char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const UsageError& e) {
+    std::cerr << program << " " << name << ": " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << program << " " << name << ": error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
 }  // namespace mvtrack::cli

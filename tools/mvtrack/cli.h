@@ -65,6 +65,12 @@ std::vector<std::string_view> SplitCommas(std::string_view text);
 /// @throws UsageError naming `option` on a malformed or reversed range.
 std::vector<eval::FrameRange> ParseFrameRanges(const std::string& text, const std::string& option);
 
+/// Runs one subcommand: `run(argc, argv)` with the exit codes of every subcommand (a
+/// UsageError prints "<program> <name>: <message>" and gives 2, another exception "... error:"
+/// and 1) (args.cc; shared by `mvtrack` and `mvtrack-pictures`).
+int RunSubcommand(const char* program, const char* name, int (*run)(int, char**), int argc,
+                  char** argv);
+
 /// `mvtrack demo`: simulate a scene, track it, print tracks and accuracy (demo.cc).
 int RunDemo(int argc, char** argv);
 /// `mvtrack replay`: track a recorded detections log deterministically (replay.cc).

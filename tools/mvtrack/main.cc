@@ -1,7 +1,11 @@
 // mvtrack: the command-line program. A thin dispatcher: one file per subcommand.
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -12,11 +16,22 @@
 
 namespace {
 
+// A subcommand; run == nullptr: it lives in the mvtrack-pictures executable (it draws with
+// OpenCV, which the other commands then never load).
 struct Command {
   const char* name;
   const char* summary;
   int (*run)(int, char**);
 };
+
+// The pictures helper next to this executable (build tree and install alike), or "".
+std::string PicturesHelper() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return "";
+  const std::filesystem::path helper = self.parent_path() / "mvtrack-pictures";
+  return std::filesystem::exists(helper, ec) ? helper.string() : "";
+}
 
 constexpr Command kCommands[] = {
     {"demo", "simulate a small scene, track it, print tracks and accuracy", mvtrack::cli::RunDemo},
@@ -30,11 +45,11 @@ constexpr Command kCommands[] = {
     {"sim", "write a simulated recording (detections log, calibration, ground truth)",
      mvtrack::cli::RunSim},
     {"bench", "measure speed, latency and memory on simulated scenes (with accuracy)",
-     mvtrack::cli::RunBench},
+     nullptr},
     {"view", "render tracks over the floor and the cameras (PNG, contact sheet, MP4)",
-     mvtrack::cli::RunView},
+     nullptr},
     {"calib", "import a calibration from other formats; check a calibration",
-     mvtrack::cli::RunCalib},
+     nullptr},
     {"web", "serve a live floor view, JSON events, metrics and health over HTTP",
      mvtrack::cli::RunWeb},
     {"status", "print the tracker's latest status; exit 0/1/2/3 (OK/WARNING/CRITICAL/UNKNOWN)",
@@ -63,15 +78,20 @@ int main(int argc, char** argv) {
   }
   for (const Command& c : kCommands) {
     if (std::strcmp(argv[1], c.name) != 0) continue;
-    try {
-      return c.run(argc - 1, argv + 1);
-    } catch (const mvtrack::cli::UsageError& e) {
-      std::cerr << "mvtrack " << c.name << ": " << e.what() << "\n";
-      return 2;
-    } catch (const std::exception& e) {
-      std::cerr << "mvtrack " << c.name << ": error: " << e.what() << "\n";
+    if (c.run != nullptr) return mvtrack::cli::RunSubcommand("mvtrack", c.name, c.run, argc - 1, argv + 1);
+    const std::string helper = PicturesHelper();
+    if (helper.empty()) {
+      std::cerr << "mvtrack " << c.name << ": error: the helper mvtrack-pictures is not installed "
+                   "next to mvtrack\n";
       return 1;
     }
+    std::vector<char*> args(argv, argv + argc);
+    args[0] = const_cast<char*>("mvtrack-pictures");
+    args.push_back(nullptr);
+    execv(helper.c_str(), args.data());
+    std::cerr << "mvtrack " << c.name << ": error: cannot run " << helper << ": "
+              << std::strerror(errno) << "\n";
+    return 1;
   }
   std::vector<std::string> names;
   for (const Command& c : kCommands) names.emplace_back(c.name);
