@@ -104,16 +104,20 @@ double FrameRateMeter::Add(const transport::TrackerStatus& status) {
          1e6 / dt;
 }
 
+std::string HealthLine(const HealthReport& report) {
+  std::string line = ToString(report.health);
+  if (!report.reasons.empty()) line += ": " + Join(report.reasons, "; ");
+  return line;
+}
+
 std::string NotifyStatusLine(const transport::TrackerStatus& status, double frames_per_second) {
-  const HealthReport h = AssessStatus(status);
   char fps[32];
   std::snprintf(fps, sizeof(fps), "%.1f", frames_per_second);
   std::string line = "tracking: " + std::to_string(CamerasDelivering(status)) + "/" +
                      std::to_string(status.cameras.size()) + " cameras, " + fps + " fps, " +
                      std::to_string(status.active_tracks) + " tracks (" +
                      std::to_string(status.confirmed_tracks) + " confirmed), " +
-                     ToString(h.health);
-  if (!h.reasons.empty()) line += ": " + Join(h.reasons, "; ");
+                     HealthLine(AssessStatus(status));
   return line;
 }
 

@@ -26,6 +26,9 @@ struct HealthReport {
   std::vector<std::string> reasons;  ///< empty when OK
 };
 
+/// "OK", or the level and its reasons: "WARNING: camera 2 CLOCK_OFFSET; LATENCY_HIGH".
+std::string HealthLine(const HealthReport& report);
+
 /// CRITICAL when fewer than two configured cameras deliver (a camera delivers when it has data
 /// and is not flagged NO_DATA, STALE or CLOCK_OFFSET: excluded from tracking), or the tracker
 /// reports BACKLOG or JOB_FAILURES; WARNING when any camera or the tracker has another flag set

@@ -43,6 +43,17 @@ std::string CameraLabel(const transport::CameraStatus& c) {
 
 double D(std::int64_t v) { return static_cast<double>(v); }
 
+// One 0/1 sample per documented flag bit, named as transport names it (`names` of a single bit;
+// the first undocumented bit is named "BIT<n>" and ends the list), labelled `labels` + flag.
+void FlagSamples(Exposition* e, std::int64_t flags,
+                 std::vector<std::string> (*names)(std::int64_t), const std::string& labels) {
+  for (int bit = 0; bit < 63; ++bit) {
+    const std::string name = names(std::int64_t{1} << bit).front();
+    if (name.rfind("BIT", 0) == 0) break;
+    e->Sample((flags >> bit & 1) != 0 ? 1.0 : 0.0, labels + "flag=\"" + name + "\"");
+  }
+}
+
 }  // namespace
 
 std::string PrometheusText(const std::optional<transport::TrackerStatus>& status,
@@ -95,12 +106,7 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
            "input datagrams the kernel dropped (receive buffer full); -1 not measured");
   e.Sample(D(s.kernel_drops));
   e.Family("mvtrack_tracker_flag", "gauge", "1 when the tracker flag is set this period");
-  for (const char* f : {"CAMERA_MISSING", "INPUT_LOSS", "BACKLOG", "LATENCY_HIGH",
-                        "JOB_FAILURES"}) {
-    bool set = false;
-    for (const std::string& n : transport::TrackerFlagNames(s.flags)) set = set || n == f;
-    e.Sample(set ? 1.0 : 0.0, std::string("flag=\"") + f + "\"");
-  }
+  FlagSamples(&e, s.flags, transport::TrackerFlagNames, "");
   e.Family("mvtrack_cameras", "gauge", "configured cameras");
   e.Sample(D(static_cast<std::int64_t>(s.cameras.size())));
   e.Family("mvtrack_cameras_delivering", "gauge", "cameras whose input is used for tracking");
@@ -145,13 +151,7 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
   }
   e.Family("mvtrack_camera_flag", "gauge", "1 when the camera flag is set this period");
   for (const transport::CameraStatus& cam : s.cameras) {
-    const std::vector<std::string> set = transport::CameraFlagNames(cam.flags);
-    for (const char* f : {"NO_DATA", "STALE", "LATE", "DROPPING", "REJECTING", "DECODE_ERRORS",
-                          "CLOCK_OFFSET", "LOSING"}) {
-      bool on = false;
-      for (const std::string& n : set) on = on || n == f;
-      e.Sample(on ? 1.0 : 0.0, CameraLabel(cam) + ",flag=\"" + f + "\"");
-    }
+    FlagSamples(&e, cam.flags, transport::CameraFlagNames, CameraLabel(cam) + ",");
   }
   return e.text();
 }

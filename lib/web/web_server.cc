@@ -305,10 +305,8 @@ class WebServer::Impl {
         return;
       }
       const service::HealthReport h = service::AssessStatus(s->first);
-      std::string text = service::ToString(h.health);
-      for (std::size_t i = 0; i < h.reasons.size(); ++i) text += (i ? "; " : ": ") + h.reasons[i];
       res.status = h.health == service::Health::kCritical ? 503 : 200;
-      res.set_content(text + "\n", "text/plain");
+      res.set_content(service::HealthLine(h) + "\n", "text/plain");
     });
     server_.Get("/events", [this](const httplib::Request&, httplib::Response& res) {
       std::shared_ptr<EventHub::Client> client = hub_.Connect(options_.max_clients);

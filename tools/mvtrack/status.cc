@@ -52,12 +52,7 @@ std::string Join(const std::vector<std::string>& words) {
 }
 
 void Print(const transport::TrackerStatus& s, const service::HealthReport& h) {
-  std::printf("mvtrack status: %s%s\n", service::ToString(h.health),
-              h.reasons.empty() ? "" : (": " + [&] {
-                std::string r;
-                for (std::size_t i = 0; i < h.reasons.size(); ++i) r += (i ? "; " : "") + h.reasons[i];
-                return r;
-              }()).c_str());
+  std::printf("mvtrack status: %s\n", service::HealthLine(h).c_str());
   std::printf("tracker %s, configuration %s, up %s\n", s.version.c_str(), s.config_hash.c_str(),
               Seconds(static_cast<double>(s.uptime_us) / 1e6).c_str());
   std::printf("frame %lld, %.1f frames/s, %d active tracks (%d confirmed), latency p50 %s ms, "
