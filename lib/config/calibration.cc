@@ -45,13 +45,6 @@ Vec3 GetVec3(const NodeRef& node) {
   return Vec3(GetDouble(values[0]), GetDouble(values[1]), GetDouble(values[2]));
 }
 
-// Rodrigues' formula: the rotation by |rvec| radians about rvec / |rvec| (OpenCV's convention).
-Mat3 RotationFromRodrigues(const Vec3& rvec) {
-  const double angle = rvec.norm();
-  if (angle == 0.0) return Mat3::Identity();
-  return Eigen::AngleAxisd(angle, rvec / angle).toRotationMatrix();
-}
-
 // Runs CameraModel::Validate on a camera that is valid except for the part being checked, so a
 // failure can be reported at the key that holds that part.
 void CheckPart(const geometry::CameraModel& probe, const NodeRef& where, const std::string& hint) {
@@ -128,7 +121,7 @@ geometry::CameraModel ParseCamera(const NodeRef& node,
     CheckPart(probe, rotation_node,
               " (write R with at least 7 significant digits per entry, or give 'rvec')");
   } else {
-    camera.cam_from_world.rotation = RotationFromRodrigues(GetVec3(rotation_node));
+    camera.cam_from_world.rotation = geometry::RotationFromRodrigues(GetVec3(rotation_node));
   }
   camera.cam_from_world.translation = GetVec3(map.Get("t"));
 

@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "config/internal/yaml_node.h"
+#include "json/json.h"
 #include "datasets/calibration_files.h"
 #include "datasets/dataset.h"
 
@@ -40,12 +41,6 @@ constexpr ImageSize kCampusImageSize{360, 288};
 
 [[noreturn]] void Fail(const std::string& file, const std::string& key, const std::string& reason) {
   throw ConfigError(file, 0, 0, key, reason);
-}
-
-Mat3 RotationFromRodrigues(const Vec3& rvec) {
-  const double angle = rvec.norm();
-  if (angle == 0.0) return Mat3::Identity();
-  return Eigen::AngleAxisd(angle, rvec / angle).toRotationMatrix();
 }
 
 // Rotations printed with few decimals (VoxelPose: 6) are not orthonormal to CameraModel's 1e-6;
@@ -275,24 +270,63 @@ std::vector<CameraId> IdsFromNames(const std::vector<std::string>& names, bool* 
 
 // ---- VoxelPose ---------------------------------------------------------------------------------
 
-// A column of `n` numbers written either as [[a], [b], ...] (VoxelPose) or [a, b, ...].
-std::vector<double> GetColumn(const NodeRef& node, std::size_t n) {
-  std::vector<double> out;
-  for (const NodeRef& item : GetSequence(node, n)) {
-    out.push_back(item.node().IsSequence() ? GetDouble(GetSequence(item, 1)[0]) : GetDouble(item));
-  }
-  return out;
-}
+// A VoxelPose calibration JSON read with lib/json; every failure is a ConfigError at the file's
+// line:column and key path of the offending value.
+class VoxelPoseReader : public json::Checker {
+ public:
+  VoxelPoseReader(const std::string& path, std::string_view text) : path_(path), lines_(text) {}
 
-Mat3 GetMatrix3(const NodeRef& node) {
-  Mat3 m;
-  const std::vector<NodeRef> rows = GetSequence(node, 3);
-  for (int r = 0; r < 3; ++r) {
-    const std::vector<NodeRef> cols = GetSequence(rows[static_cast<std::size_t>(r)], 3);
-    for (int c = 0; c < 3; ++c) m(r, c) = GetDouble(cols[static_cast<std::size_t>(c)]);
+  [[noreturn]] void Throw(const json::Error& e) const {
+    const json::LineColumn at = lines_.At(e.column);
+    throw ConfigError(path_, static_cast<int>(at.line), static_cast<int>(at.column), e.path,
+                      e.reason);
   }
-  return m;
-}
+  [[noreturn]] void Throw() const { Throw(error()); }
+  [[noreturn]] void Throw(const json::Value& at, const std::string& key, std::string reason) {
+    Fail(at, key, std::move(reason));
+    Throw();
+  }
+
+  double Number(const json::Value& v, const std::string& key) {
+    double out = 0.0;
+    if (!GetDouble(v, key, &out)) Throw();
+    return out;
+  }
+
+  // A column of `n` numbers written either as [[a], [b], ...] (VoxelPose) or [a, b, ...].
+  std::vector<double> Column(const json::Value& v, const std::string& key, long n) {
+    if (!ExpectArray(v, key, n, 0, "a column")) Throw();
+    std::vector<double> out;
+    for (std::size_t i = 0; i < v.items.size(); ++i) {
+      const json::Value& item = v.items[i];
+      const std::string item_key = Index(key, i);
+      if (item.kind == json::Value::Kind::kArray) {
+        if (!ExpectArray(item, item_key, 1, 0, "[value]")) Throw();
+        out.push_back(Number(item.items[0], Index(item_key, 0)));
+      } else {
+        out.push_back(Number(item, item_key));
+      }
+    }
+    return out;
+  }
+
+  Mat3 Matrix3(const json::Value& v, const std::string& key) {
+    if (!ExpectArray(v, key, 3, 0, "3 rows")) Throw();
+    Mat3 m;
+    for (std::size_t r = 0; r < 3; ++r) {
+      const std::string row_key = Index(key, r);
+      if (!ExpectArray(v.items[r], row_key, 3, 0, "a row of 3")) Throw();
+      for (std::size_t c = 0; c < 3; ++c) {
+        m(static_cast<int>(r), static_cast<int>(c)) = Number(v.items[r].items[c], Index(row_key, c));
+      }
+    }
+    return m;
+  }
+
+ private:
+  const std::string& path_;
+  json::LineIndex lines_;
+};
 
 }  // namespace
 
@@ -379,7 +413,7 @@ ImportedCalibration ImportEasyMocap(const std::string& intri_path,
     std::optional<Mat3> from_rvec;
     if (extri.Has(rvec_key)) {
       const std::vector<double> r = extri.Vector(rvec_key, {3});
-      from_rvec = RotationFromRodrigues(Vec3(r[0], r[1], r[2]));
+      from_rvec = geometry::RotationFromRodrigues(Vec3(r[0], r[1], r[2]));
     }
     if (extri.Has(rot_key)) {
       cam.cam_from_world.rotation = ToMat3(extri.Matrix(rot_key, 3, 3));
@@ -418,54 +452,62 @@ ImportedCalibration ImportVoxelPose(const std::string& path, const ImageSize& im
          "VoxelPose calibrations carry no image size: give it (--image-size WxH; Shelf "
          "1032x776, Campus 360x288)");
   }
-  const NodeRef root = internal::ParseDocument(internal::ReadTextFile(path), path);
-  if (!root.node().IsMap()) root.Fail("expected an object of cameras keyed by id");
+  const std::string text = internal::ReadTextFile(path);
+  VoxelPoseReader reader(path, text);
+  json::Error error;
+  const std::optional<json::Value> root = json::Parse(text, 16, &error);
+  if (!root.has_value()) reader.Throw(error);
+  if (root->kind != json::Value::Kind::kObject) {
+    reader.Throw(*root, "", "expected an object of cameras keyed by id");
+  }
   ImportedCalibration out;
   std::map<CameraId, geometry::CameraModel> by_id;
   int orthonormalized = 0;
-  for (const auto& item : root.node()) {
-    const std::string key = item.first.Scalar();
+  for (const json::Member& member : root->members) {
+    const std::string& key = member.key;
+    const json::Value& cam_node = *member.value;
     CameraId id = -1;
     const auto [ptr, ec] = std::from_chars(key.data(), key.data() + key.size(), id);
-    const NodeRef cam_node(item.second,
-                           path,
-                           root.ChildPath(key),
-                           item.second.Mark().line + 1,
-                           item.second.Mark().column + 1);
     if (ec != std::errc() || ptr != key.data() + key.size() || id < 0) {
-      cam_node.Fail("camera key '" + key + "' is not a non-negative integer");
+      reader.Throw(json::Error{member.key_column, key,
+                               "camera key '" + key + "' is not a non-negative integer"});
     }
-    const MapRef cam(cam_node, {"R", "T", "fx", "fy", "cx", "cy", "k", "p"});
+    std::map<std::string, const json::Value*> cam;
+    if (!reader.Members(cam_node, key, {"R", "T", "fx", "fy", "cx", "cy", "k", "p"},
+                        {"R", "T", "fx", "fy", "cx", "cy"}, &cam)) {
+      reader.Throw();
+    }
+    auto field = [&](const char* name) { return json::Checker::Join(key, name); };
     geometry::CameraModel c;
     c.id = id;
     c.width_px = image_size.width_px;
     c.height_px = image_size.height_px;
-    c.K << GetDouble(cam.Get("fx")), 0.0, GetDouble(cam.Get("cx")),  //
-        0.0, GetDouble(cam.Get("fy")), GetDouble(cam.Get("cy")),     //
+    c.K << reader.Number(*cam.at("fx"), field("fx")), 0.0, reader.Number(*cam.at("cx"), field("cx")),  //
+        0.0, reader.Number(*cam.at("fy"), field("fy")), reader.Number(*cam.at("cy"), field("cy")),     //
         0.0, 0.0, 1.0;
-    if (const std::optional<NodeRef> k = cam.Find("k")) {
-      const std::vector<double> v = GetColumn(*k, 3);
+    if (cam.count("k") != 0) {
+      const std::vector<double> v = reader.Column(*cam.at("k"), field("k"), 3);
       c.distortion.k1 = v[0];
       c.distortion.k2 = v[1];
       c.distortion.k3 = v[2];
     }
-    if (const std::optional<NodeRef> p = cam.Find("p")) {
-      const std::vector<double> v = GetColumn(*p, 2);
+    if (cam.count("p") != 0) {
+      const std::vector<double> v = reader.Column(*cam.at("p"), field("p"), 2);
       c.distortion.p1 = v[0];
       c.distortion.p2 = v[1];
     }
     bool rounded = false;
-    const Mat3 R = NearestRotation(GetMatrix3(cam.Get("R")), &rounded);
+    const Mat3 R = NearestRotation(reader.Matrix3(*cam.at("R"), field("R")), &rounded);
     if (rounded) ++orthonormalized;
-    const std::vector<double> T = GetColumn(cam.Get("T"), 3);
+    const std::vector<double> T = reader.Column(*cam.at("T"), field("T"), 3);
     const Vec3 centre_m = kMmToM * Vec3(T[0], T[1], T[2]);
     c.cam_from_world.rotation = R;
     c.cam_from_world.translation = -(R * centre_m);
     std::string why;
-    if (!c.Validate(&why)) cam_node.Fail(why);
-    if (!by_id.emplace(id, c).second) cam_node.Fail("camera " + key + " appears twice");
+    if (!c.Validate(&why)) reader.Throw(cam_node, key, why);
+    if (!by_id.emplace(id, c).second) reader.Throw(cam_node, key, "camera " + key + " appears twice");
   }
-  if (by_id.empty()) root.Fail("no cameras");
+  if (by_id.empty()) reader.Throw(*root, "", "no cameras");
   for (auto& [id, camera] : by_id) out.document.cameras.push_back(camera);
   out.notes.push_back(
       "VoxelPose: T is the camera centre in mm (x_cam = R (X - T)); converted to "
@@ -562,7 +604,7 @@ ImportedCalibration ImportWildtrack(const std::string& path, const ImageSize& im
         intr.Vector("distortion_coefficients", {4, 5, 8}), intr.path(), "distortion_coefficients");
     const std::vector<double> r = extr.Vector("rvec", {3});
     const std::vector<double> t = extr.Vector("tvec", {3});
-    cam.cam_from_world.rotation = RotationFromRodrigues(Vec3(r[0], r[1], r[2]));
+    cam.cam_from_world.rotation = geometry::RotationFromRodrigues(Vec3(r[0], r[1], r[2]));
     cam.cam_from_world.translation = kCmToM * Vec3(t[0], t[1], t[2]);
     ValidateCamera(cam, intr.path(), "camera " + name);
     out.document.cameras.push_back(cam);

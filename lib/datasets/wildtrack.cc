@@ -90,11 +90,7 @@ std::vector<geometry::CameraModel> LoadWildtrackCalibration(const std::filesyste
     const std::vector<double> rvec = cam["rvec"].AsDoubles(3);
     const std::vector<double> tvec = cam["tvec_cm"].AsDoubles(3);
     const Mat3 file_rotation = internal::Mat3FromRowMajor(cam["R"].AsMatrix(3, 3));
-    // Rodrigues: rotation by |rvec| about rvec / |rvec|.
-    const Vec3 r(rvec[0], rvec[1], rvec[2]);
-    const double angle = r.norm();
-    const Mat3 rotation =
-        angle > 0.0 ? Mat3(Eigen::AngleAxisd(angle, r / angle)) : Mat3(Mat3::Identity());
+    const Mat3 rotation = geometry::RotationFromRodrigues(Vec3(rvec[0], rvec[1], rvec[2]));
     if ((rotation - file_rotation).cwiseAbs().maxCoeff() > kRotationTolerance) {
       cam["R"].Fail("R differs from Rodrigues(rvec) by more than 1e-6");
     }

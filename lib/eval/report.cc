@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "eval/number_format.h"
+#include "json/json.h"
 
 namespace mvtrack::eval {
 namespace {
@@ -32,40 +33,6 @@ Json Str(std::string v) { return Json{std::move(v)}; }
 Json Arr(JsonArray v) { return Json{std::move(v)}; }
 Json Obj(JsonObject v) { return Json{std::move(v)}; }
 
-std::string Escape(const std::string& text) {
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string out = "\"";
-  for (const char ch : text) {
-    const auto c = static_cast<unsigned char>(ch);
-    switch (ch) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (c < 0x20) {
-          out += "\\u00";
-          out += kHex[c >> 4];
-          out += kHex[c & 0x0f];
-        } else {
-          out += ch;
-        }
-    }
-  }
-  return out + "\"";
-}
-
 void Write(const Json& json, int precision, int indent, std::string* out) {
   const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
   const std::string close_pad(static_cast<std::size_t>(indent), ' ');
@@ -78,7 +45,7 @@ void Write(const Json& json, int precision, int indent, std::string* out) {
   } else if (const auto* d = std::get_if<double>(&json.value)) {
     *out += std::isfinite(*d) ? internal::FormatFixed(*d, precision) : "null";
   } else if (const auto* s = std::get_if<std::string>(&json.value)) {
-    *out += Escape(*s);
+    json::AppendQuoted(*s, out);
   } else if (const auto* a = std::get_if<JsonArray>(&json.value)) {
     // Arrays of scalars stay on one line ("[1, 2, 3]"); arrays of arrays or objects get one
     // element per line.
@@ -113,7 +80,9 @@ void Write(const Json& json, int precision, int indent, std::string* out) {
               [](const auto* x, const auto* y) { return x->first < y->first; });
     *out += "{\n";
     for (std::size_t k = 0; k < members.size(); ++k) {
-      *out += pad + Escape(members[k]->first) + ": ";
+      *out += pad;
+      json::AppendQuoted(members[k]->first, out);
+      *out += ": ";
       Write(members[k]->second, precision, indent + 2, out);
       *out += k + 1 < members.size() ? ",\n" : "\n";
     }

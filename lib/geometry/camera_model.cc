@@ -121,6 +121,12 @@ bool CameraModel::InImage(const Vec2& raw_px, double margin_px) const {
          raw_px.x() <= width_px + margin_px && raw_px.y() <= height_px + margin_px;
 }
 
+Mat3 RotationFromRodrigues(const Vec3& rvec) {
+  const double angle = rvec.norm();
+  if (angle == 0.0) return Mat3::Identity();
+  return Eigen::AngleAxisd(angle, rvec / angle).toRotationMatrix();
+}
+
 bool SeesPoint(const CameraModel& camera, const Vec3& point_in_world) {
   const std::optional<Vec2> pinhole = camera.ProjectUndistorted(point_in_world);
   if (!pinhole) return false;

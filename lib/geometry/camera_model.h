@@ -68,4 +68,8 @@ struct CameraModel {
 /// not count.
 bool SeesPoint(const CameraModel& camera, const Vec3& point_in_world);
 
+/// The rotation of a Rodrigues vector (OpenCV's rvec): |rvec| radians about rvec / |rvec|; the
+/// identity for the zero vector.
+Mat3 RotationFromRodrigues(const Vec3& rvec);
+
 }  // namespace mvtrack::geometry

@@ -6,12 +6,18 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <system_error>
 #include <vector>
 
+#include "json/json.h"
+
 namespace mvtrack::transport {
 namespace {
+
+// Nesting of the format: line, tracks, track, joints, joint.
+constexpr int kMaxDepth = 5;
 
 // ---------------------------------------------------------------------------------------------
 // Formatting
@@ -51,227 +57,70 @@ void AppendPoint(const Vec3& p, std::string* out) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Parsing: a recursive-descent reader for exactly this schema.
+// Parsing: lib/json's reader, then this schema.
 
-class Parser {
- public:
-  explicit Parser(std::string_view text) : text_(text) {}
-
-  const std::string& error() const { return error_; }
-
-  bool Fail(const std::string& what) {
-    if (error_.empty()) {
-      error_ = "column " + std::to_string(pos_ + 1) + ": " + what;
-    }
-    return false;
-  }
-
-  void SkipWhitespace() {
-    while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\t' ||
-                                   text_[pos_] == '\n' || text_[pos_] == '\r')) {
-      ++pos_;
-    }
-  }
-
-  // Skips whitespace, then true (and consumes it) when the next character is `c`.
-  bool Accept(char c) {
-    SkipWhitespace();
-    if (pos_ < text_.size() && text_[pos_] == c) {
-      ++pos_;
-      return true;
-    }
-    return false;
-  }
-
-  bool Expect(char c, std::string_view where) {
-    if (Accept(c)) return true;
-    return Fail(std::string("expected '") + c + "' " + std::string(where) + ", found " +
-                Found());
-  }
-
-  bool AcceptNull() {
-    SkipWhitespace();
-    if (text_.substr(pos_, 4) == "null") {
-      pos_ += 4;
-      return true;
-    }
-    return false;
-  }
-
-  bool AtEnd() {
-    SkipWhitespace();
-    return pos_ == text_.size();
-  }
-
-  // A JSON string without escapes (the schema's keys and layout names need none).
-  bool ParseString(std::string* out) {
-    SkipWhitespace();
-    if (pos_ >= text_.size() || text_[pos_] != '"') {
-      return Fail("expected a string, found " + Found());
-    }
-    const std::size_t begin = ++pos_;
-    while (pos_ < text_.size() && text_[pos_] != '"') {
-      const char c = text_[pos_];
-      if (c == '\\') return Fail("escape sequences are not part of this format");
-      if (static_cast<unsigned char>(c) < 0x20) return Fail("control character in a string");
-      ++pos_;
-    }
-    if (pos_ >= text_.size()) return Fail("unterminated string");
-    out->assign(text_.substr(begin, pos_ - begin));
-    ++pos_;
+// "[x, y, z]" with three numbers. The key path (`base`.`key`, with [index] when index >= 0) is
+// built only to report a failure.
+bool GetPoint(json::Checker* c, const json::Value& v, const std::string& base, const char* key,
+              long index, Vec3* point) {
+  if (v.kind == json::Value::Kind::kArray && v.items.size() == 3 &&
+      v.items[0].kind == json::Value::Kind::kNumber &&
+      v.items[1].kind == json::Value::Kind::kNumber &&
+      v.items[2].kind == json::Value::Kind::kNumber) {
+    *point = Vec3(v.items[0].real, v.items[1].real, v.items[2].real);
     return true;
   }
-
-  bool ParseInt64(std::string_view what, std::int64_t* value) {
-    SkipWhitespace();
-    const std::size_t begin = pos_;
-    std::size_t end = begin;
-    if (!ScanNumber(&end)) return Fail(std::string(what) + " must be an integer, found " + Found());
-    const std::string_view token = text_.substr(begin, end - begin);
-    if (token.find_first_of(".eE") != std::string_view::npos) {
-      return Fail(std::string(what) + " must be an integer, found " + std::string(token));
+  std::string path = json::Checker::Join(base, key);
+  if (index >= 0) path = json::Checker::Index(path, static_cast<std::size_t>(index));
+  if (!c->ExpectArray(v, path, 3, 0, "[x, y, z]")) return false;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!c->GetDouble(v.items[i], json::Checker::Index(path, i), &(*point)[static_cast<int>(i)])) {
+      return false;
     }
-    const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), *value);
-    if (ec != std::errc() || ptr != token.data() + token.size()) {
-      return Fail(std::string(what) + " " + std::string(token) + " is beyond the int64 range");
-    }
-    pos_ = end;
-    return true;
   }
-
-  bool ParseDouble(std::string_view what, double* value) {
-    SkipWhitespace();
-    const std::size_t begin = pos_;
-    std::size_t end = begin;
-    if (!ScanNumber(&end)) return Fail(std::string(what) + " must be a number, found " + Found());
-    const std::string_view token = text_.substr(begin, end - begin);
-    const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), *value);
-    if (ec != std::errc() || ptr != token.data() + token.size() || !std::isfinite(*value)) {
-      return Fail(std::string(what) + " " + std::string(token) + " is beyond the double range");
-    }
-    pos_ = end;
-    return true;
-  }
-
-  // [x, y, z] with three numbers.
-  bool ParsePoint(std::string_view what, Vec3* point) {
-    if (!Expect('[', "to open " + std::string(what))) return false;
-    for (int i = 0; i < 3; ++i) {
-      if (i > 0 && !Expect(',', "between coordinates of " + std::string(what))) return false;
-      if (!ParseDouble(std::string(what) + " coordinate " + std::to_string(i), &(*point)[i])) {
-        return false;
-      }
-    }
-    return Expect(']', "after the 3 coordinates of " + std::string(what));
-  }
-
- private:
-  // Scans a JSON number starting at pos_ (no leading whitespace): -?(0|[1-9]d*)(.d+)?([eE][+-]?d+)?
-  bool ScanNumber(std::size_t* end) const {
-    std::size_t i = pos_;
-    auto digit = [&](std::size_t k) {
-      return k < text_.size() && text_[k] >= '0' && text_[k] <= '9';
-    };
-    if (i < text_.size() && text_[i] == '-') ++i;
-    if (!digit(i)) return false;
-    if (text_[i] == '0') {
-      ++i;
-    } else {
-      while (digit(i)) ++i;
-    }
-    if (i < text_.size() && text_[i] == '.') {
-      ++i;
-      if (!digit(i)) return false;
-      while (digit(i)) ++i;
-    }
-    if (i < text_.size() && (text_[i] == 'e' || text_[i] == 'E')) {
-      ++i;
-      if (i < text_.size() && (text_[i] == '+' || text_[i] == '-')) ++i;
-      if (!digit(i)) return false;
-      while (digit(i)) ++i;
-    }
-    *end = i;
-    return true;
-  }
-
-  std::string Found() const {
-    if (pos_ >= text_.size()) return "the end of the line";
-    return "'" + std::string(text_.substr(pos_, 12)) + "'";
-  }
-
-  std::string_view text_;
-  std::size_t pos_ = 0;
-  std::string error_;
-};
-
-// Parses `{ "key": value, ... }` calling `member(key)` for each key, which parses the value.
-// Rejects duplicate keys and (through `member`) unknown ones.
-template <typename Member>
-bool ParseObject(Parser* p, std::string_view what, Member member) {
-  if (!p->Expect('{', "to open " + std::string(what))) return false;
-  std::vector<std::string> seen;
-  if (p->Accept('}')) return true;
-  do {
-    std::string key;
-    if (!p->ParseString(&key)) return false;
-    if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
-      return p->Fail("duplicate key \"" + key + "\" in " + std::string(what));
-    }
-    seen.push_back(key);
-    if (!p->Expect(':', "after key \"" + key + "\"")) return false;
-    if (!member(key)) return false;
-  } while (p->Accept(','));
-  return p->Expect('}', "to close " + std::string(what));
-}
-
-// Parses `[ item, ... ]` calling `item(index)` for each element.
-template <typename Item>
-bool ParseArray(Parser* p, std::string_view what, Item item) {
-  if (!p->Expect('[', "to open " + std::string(what))) return false;
-  if (p->Accept(']')) return true;
-  std::size_t index = 0;
-  do {
-    if (!item(index++)) return false;
-  } while (p->Accept(','));
-  return p->Expect(']', "to close " + std::string(what));
-}
-
-bool ParseTrack(Parser* p, std::size_t index, tracker::Track3D* track) {
-  bool has_id = false, has_joints = false, has_position = false;
-  const std::string what = "track " + std::to_string(index);
-  const bool ok = ParseObject(p, what, [&](const std::string& key) {
-    if (key == "id") {
-      has_id = true;
-      return p->ParseInt64(what + " id", &track->id);
-    }
-    if (key == "joints") {
-      has_joints = true;
-      return ParseArray(p, what + " joints", [&](std::size_t j) {
-        if (p->AcceptNull()) {
-          track->joints.emplace_back(std::nullopt);
-          return true;
-        }
-        Vec3 joint;
-        if (!p->ParsePoint(what + " joint " + std::to_string(j), &joint)) return false;
-        track->joints.emplace_back(joint);
-        return true;
-      });
-    }
-    if (key == "position") {
-      has_position = true;
-      if (p->AcceptNull()) {
-        track->position = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
-        return true;
-      }
-      return p->ParsePoint(what + " position", &track->position);
-    }
-    return p->Fail("unknown key \"" + key + "\" in " + what);
-  });
-  if (!ok) return false;
-  if (!has_id) return p->Fail(what + " has no \"id\"");
-  if (!has_joints) return p->Fail(what + " has no \"joints\"");
-  if (!has_position) return p->Fail(what + " has no \"position\"");
   return true;
+}
+
+bool GetTrack(json::Checker* c, const json::Value& v, const std::string& path,
+              tracker::Track3D* track) {
+  std::map<std::string, const json::Value*> m;
+  if (!c->Members(v, path, {"id", "joints", "position"}, {"id", "joints", "position"}, &m)) {
+    return false;
+  }
+  const json::Value& id = *m.at("id");
+  if (!c->GetInt(id, json::Checker::Join(path, "id"), std::numeric_limits<std::int64_t>::min(),
+                 std::numeric_limits<std::int64_t>::max(), &track->id)) {
+    return false;
+  }
+  const json::Value& position = *m.at("position");
+  if (position.kind == json::Value::Kind::kNull) {
+    track->position = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  } else if (!GetPoint(c, position, path, "position", -1, &track->position)) {
+    return false;
+  }
+  const json::Value& joints = *m.at("joints");
+  if (joints.kind != json::Value::Kind::kArray) {
+    return c->ExpectKind(joints, json::Checker::Join(path, "joints"), json::Value::Kind::kArray);
+  }
+  track->joints.reserve(joints.items.size());
+  for (std::size_t j = 0; j < joints.items.size(); ++j) {
+    const json::Value& joint = joints.items[j];
+    if (joint.kind == json::Value::Kind::kNull) {
+      track->joints.emplace_back(std::nullopt);
+      continue;
+    }
+    Vec3 point;
+    if (!GetPoint(c, joint, path, "joints", static_cast<long>(j), &point)) return false;
+    track->joints.emplace_back(point);
+  }
+  return true;
+}
+
+// "column C: PATH: REASON" (no path for a syntax error or a key of the line itself).
+std::string Describe(const json::Error& e) {
+  std::string out = "column " + std::to_string(e.column) + ": ";
+  if (!e.path.empty()) out += e.path + ": ";
+  return out + e.reason;
 }
 
 }  // namespace
@@ -321,58 +170,51 @@ std::string TracksJsonLine(const tracker::Frame3D& frame, core::KeypointLayoutId
 std::optional<tracker::Frame3D> ParseTracksJsonLine(std::string_view line,
                                                     core::KeypointLayoutId* layout,
                                                     std::string* why) {
-  Parser p(line);
-  tracker::Frame3D frame;
-  core::KeypointLayoutId parsed_layout = core::KeypointLayoutId::kNone;
-  bool has_frame = false, has_layout = false, has_tracks = false, has_utime = false;
   auto fail = [&](const std::string& message) -> std::optional<tracker::Frame3D> {
     if (why != nullptr) *why = message;
     return std::nullopt;
   };
-  const bool ok = ParseObject(&p, "the line", [&](const std::string& key) {
-    if (key == "frame") {
-      has_frame = true;
-      return p.ParseInt64("frame", &frame.frame);
-    }
-    if (key == "utime") {
-      has_utime = true;
-      return p.ParseInt64("utime", &frame.utime);
-    }
-    if (key == "layout") {
-      has_layout = true;
-      std::string name;
-      if (!p.ParseString(&name)) return false;
-      const std::optional<core::KeypointLayoutId> id = core::KeypointLayoutFromName(name);
-      if (!id) return p.Fail("unknown layout \"" + name + "\"");
-      parsed_layout = *id;
-      return true;
-    }
-    if (key == "tracks") {
-      has_tracks = true;
-      return ParseArray(&p, "tracks", [&](std::size_t index) {
-        frame.tracks.emplace_back();
-        return ParseTrack(&p, index, &frame.tracks.back());
-      });
-    }
-    return p.Fail("unknown key \"" + key + "\"");
-  });
-  if (!ok) return fail(p.error());
-  if (!p.AtEnd()) {
-    p.Fail("unexpected text after the closing '}'");
-    return fail(p.error());
+  json::Error error;
+  const std::optional<json::Value> root = json::Parse(line, kMaxDepth, &error);
+  if (!root.has_value()) return fail(Describe(error));
+  json::Checker c;
+  std::map<std::string, const json::Value*> m;
+  const std::vector<std::string_view> keys = {"frame", "layout", "tracks", "utime"};
+  if (root->kind != json::Value::Kind::kObject) {
+    c.Fail(*root, "", std::string("a line must be a JSON object, found ") + json::KindName(root->kind));
+    return fail(Describe(c.error()));
   }
-  if (!has_frame) return fail("missing key \"frame\"");
-  if (!has_layout) return fail("missing key \"layout\"");
-  if (!has_tracks) return fail("missing key \"tracks\"");
-  if (!has_utime) return fail("missing key \"utime\"");
+  if (!c.Members(*root, "", keys, keys, &m)) return fail(Describe(c.error()));
+  tracker::Frame3D frame;
+  constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  if (!c.GetInt(*m.at("frame"), "frame", kMin, kMax, &frame.frame) ||
+      !c.GetInt(*m.at("utime"), "utime", kMin, kMax, &frame.utime)) {
+    return fail(Describe(c.error()));
+  }
+  std::string name;
+  if (!c.GetString(*m.at("layout"), "layout", &name)) return fail(Describe(c.error()));
+  const std::optional<core::KeypointLayoutId> parsed_layout = core::KeypointLayoutFromName(name);
+  if (!parsed_layout) {
+    c.Fail(*m.at("layout"), "layout", "unknown layout \"" + name + "\"");
+    return fail(Describe(c.error()));
+  }
+  const json::Value& tracks = *m.at("tracks");
+  if (!c.ExpectKind(tracks, "tracks", json::Value::Kind::kArray)) return fail(Describe(c.error()));
+  frame.tracks.resize(tracks.items.size());
+  for (std::size_t i = 0; i < tracks.items.size(); ++i) {
+    if (!GetTrack(&c, tracks.items[i], json::Checker::Index("tracks", i), &frame.tracks[i])) {
+      return fail(Describe(c.error()));
+    }
+  }
 
   const std::size_t layout_joints =
-      static_cast<std::size_t>(core::GetKeypointLayout(parsed_layout).num_joints());
+      static_cast<std::size_t>(core::GetKeypointLayout(*parsed_layout).num_joints());
   for (const tracker::Track3D& track : frame.tracks) {
     if (!track.joints.empty() && track.joints.size() != layout_joints) {
       return fail("track id " + std::to_string(track.id) + " has " +
                   std::to_string(track.joints.size()) + " joints; layout \"" +
-                  core::GetKeypointLayout(parsed_layout).name + "\" needs 0 or " +
+                  core::GetKeypointLayout(*parsed_layout).name + "\" needs 0 or " +
                   std::to_string(layout_joints));
     }
   }
@@ -384,7 +226,7 @@ std::optional<tracker::Frame3D> ParseTracksJsonLine(std::string_view line,
       return fail("duplicate track id " + std::to_string(frame.tracks[i].id));
     }
   }
-  if (layout != nullptr) *layout = parsed_layout;
+  if (layout != nullptr) *layout = *parsed_layout;
   return frame;
 }
 

@@ -3,12 +3,13 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <nlohmann/json.hpp>
+
+#include "json/document.h"
 
 namespace mvtrack::web {
 namespace {
 
-using nlohmann::json;
+using json = mvtrack::json::Document;
 
 json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
@@ -60,7 +61,7 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
                                  ? std::string()
                                  : core::GetKeypointLayout(message.layout).name},
                   {"tracks", std::move(tracks)}};
-  return o.dump(-1, ' ', true, json::error_handler_t::replace);
+  return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);
 }
 
 std::string StatusEventJson(const transport::TrackerStatus& s) {
@@ -105,7 +106,7 @@ std::string StatusEventJson(const transport::TrackerStatus& s) {
                   {"executor_queue_depth", s.executor_queue_depth},
                   {"kernel_drops", s.kernel_drops},
                   {"cameras", std::move(cameras)}};
-  return o.dump(-1, ' ', true, json::error_handler_t::replace);
+  return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);
 }
 
 std::string FloorJson(const std::vector<geometry::CameraModel>& cameras) {
@@ -156,7 +157,7 @@ std::string FloorJson(const std::vector<geometry::CameraModel>& cameras) {
     bounds = json::array({bx0 - m, by0 - m, bx1 + m, by1 + m});
   }
   const json o = {{"cameras", std::move(out_cameras)}, {"bounds", std::move(bounds)}};
-  return o.dump(-1, ' ', true, json::error_handler_t::replace);
+  return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);
 }
 
 }  // namespace mvtrack::web

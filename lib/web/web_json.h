@@ -3,7 +3,7 @@
 /// The JSON of `mvtrack web` (docs/FORMATS.md "Live events"): one object per tracks message and
 /// per status message (the /events stream, for clients that do not speak LCM), and the floor
 /// the page draws (cameras and their fields of view on the floor, from the calibration).
-/// Written with nlohmann-json; numbers that are not finite become null.
+/// Written with lib/json's documents (nlohmann-json); numbers that are not finite become null.
 
 #include <string>
 #include <vector>

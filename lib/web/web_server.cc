@@ -9,12 +9,12 @@
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <mutex>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
 #include <utility>
 
 #include "core/keypoint_layout.h"
+#include "json/document.h"
 #include "service/status_check.h"
 #include "transport/codec.h"
 #include "web/web_json.h"
@@ -130,14 +130,14 @@ class EventHub {
 };
 
 std::string LayoutsJson() {
-  nlohmann::json o = nlohmann::json::object();
+  json::Document o = json::Document::object();
   for (const core::KeypointLayoutId id : core::AllKeypointLayouts()) {
     const core::KeypointLayout& l = core::GetKeypointLayout(id);
-    nlohmann::json bones = nlohmann::json::array();
+    json::Document bones = json::Document::array();
     for (const auto& [a, b] : l.bones) bones.push_back({a, b});
     o[l.name] = {{"joints", l.joints}, {"bones", std::move(bones)}};
   }
-  return o.dump();
+  return json::Dump(o);
 }
 
 }  // namespace

@@ -110,7 +110,7 @@ printf '[{"image_id": 1, "keypoints": [1, 2, 3]}' >"$OUT/trunc.json"
 expect_exit 1 "$OUT/e2.txt" "$MVTRACK" convert coco --detections "1=$OUT/trunc.json" \
   --calibration "$OUT/cal.yaml" --fps 30 --out "$OUT/e2"
 # The error is just after the last byte.
-expect_fixed "$OUT/trunc.json:1:$(( $(wc -c <"$OUT/trunc.json") + 1 )): unexpected end of the file, expected ',' or ']' in an array" "$OUT/e2.txt"
+expect_fixed "$OUT/trunc.json:1:$(( $(wc -c <"$OUT/trunc.json") + 1 )): syntax error while parsing array - unexpected end of input; expected ']'" "$OUT/e2.txt"
 printf '[]' >"$OUT/empty.json"
 expect_exit 1 "$OUT/e3.txt" "$MVTRACK" convert coco --detections "1=$OUT/empty.json" \
   --calibration "$OUT/cal.yaml" --fps 30 --out "$OUT/e3"

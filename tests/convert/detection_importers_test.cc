@@ -1,8 +1,8 @@
-// Readers of MOTChallenge det.txt and COCO-style keypoint JSON (tools/mvtrack/
+// Readers of MOTChallenge det.txt and COCO-style keypoint JSON (lib/formats/
 // detection_importers.h): hand-made inputs whose detections are known by construction, the
 // accepted variants, and bad inputs (file, line, column and reason in the message).
 
-#include "mvtrack/detection_importers.h"
+#include "formats/detection_importers.h"
 
 #include <catch2/catch.hpp>
 
@@ -11,7 +11,7 @@
 
 #include "core/keypoint_layout.h"
 
-namespace mvtrack::cli {
+namespace mvtrack::formats {
 namespace {
 
 // The ImportError message of reading `text`, or "" when it reads.
@@ -241,9 +241,14 @@ TEST_CASE("COCO: bad input names file, line, column, path and reason", "[unit]")
         "cam1.json:1:17: annotations: expected an array of records, found a number");
   CHECK(CocoError("[1]") == "cam1.json:1:2: [0]: expected an object, found a number");
   CHECK(CocoError("[\n{\"image_id\": 1,}\n]") ==
-        "cam1.json:2:16: unexpected '}', expected a key (a string in double quotes)");
-  CHECK(CocoError("[\n") == "cam1.json:2:1: unexpected end of the file, expected a JSON value");
-  CHECK(CocoError("") == "cam1.json:1:1: unexpected end of the file, expected a JSON value");
+        "cam1.json:2:16: syntax error while parsing object key - unexpected '}'; expected string "
+        "literal");
+  CHECK(CocoError("[\n") ==
+        "cam1.json:2:1: syntax error while parsing value - unexpected end of input; expected '[', "
+        "'{', or a literal");
+  CHECK(CocoError("") ==
+        "cam1.json:1:1: syntax error while parsing value - unexpected end of input; expected '[', "
+        "'{', or a literal");
   CHECK(ReadCocoKeypoints("[]", "x", {}).records == 0);
 }
 
@@ -255,4 +260,4 @@ TEST_CASE("Import frame utime rule", "[unit]") {
 }
 
 }  // namespace
-}  // namespace mvtrack::cli
+}  // namespace mvtrack::formats

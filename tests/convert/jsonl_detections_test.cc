@@ -1,9 +1,9 @@
-// The JSON-lines detection reader of `mvtrack convert jsonl` (tools/mvtrack/jsonl_detections.h):
+// The JSON-lines detection reader of `mvtrack convert jsonl` (lib/formats/jsonl_detections.h):
 // valid lines in every spelling the format allows, every class of invalid line with the column
 // and key path of the error, the cross-line rules with line numbers, --skip-bad-lines, a seeded
 // round trip and a seeded mutation loop.
 
-#include "mvtrack/jsonl_detections.h"
+#include "formats/jsonl_detections.h"
 
 #include <catch2/catch.hpp>
 #include <cstdio>
@@ -14,7 +14,7 @@
 
 #include "core/keypoint_layout.h"
 
-namespace mvtrack::cli {
+namespace mvtrack::formats {
 namespace {
 
 // Column (1-based) of the first occurrence of `marker` in `line`.
@@ -144,29 +144,29 @@ TEST_CASE("jsonl: syntax errors give the byte column", "[unit]") {
   std::string line;
 
   line = head + "],}";
-  RequireError(line, ColumnOf(line, "}"), {"expected a key"});
+  RequireError(line, ColumnOf(line, "}"), {"unexpected '}'", "expected string literal"});
   line = head + "]} x";
-  RequireError(line, ColumnOf(line, "x"), {"after the end of the JSON value"});
+  RequireError(line, ColumnOf(line, "x"), {"expected end of input"});
   line = head + "]";
-  RequireError(line, line.size() + 1, {"end of the line", "',' or '}'"});
+  RequireError(line, line.size() + 1, {"unexpected end of input", "expected '}'"});
   line = R"({'camera': 0})";
-  RequireError(line, 2, {"expected a key"});
+  RequireError(line, 2, {"expected string literal"});
   line = head + R"({"box": [0, 0, 1, 1], "score": NaN}]})";
-  RequireError(line, ColumnOf(line, "NaN"), {"expected a JSON value"});
+  RequireError(line, ColumnOf(line, "NaN"), {"invalid literal"});
   line = head + R"({"box": [0, 0, 1, 1], "score": 01}]})";
-  RequireError(line, ColumnOf(line, "01") + 1, {"leading zeros"});
+  RequireError(line, ColumnOf(line, "01") + 1, {"unexpected number literal"});
   line = head + R"({"box": [0, 0, 1., 1], "score": 1}]})";
-  RequireError(line, ColumnOf(line, "1.,") + 2, {"digit after '.'"});
+  RequireError(line, ColumnOf(line, "1.,") + 2, {"expected digit after '.'"});
   line = head + R"({"box": [0, 0, 1, 1], "score": +1}]})";
-  RequireError(line, ColumnOf(line, "+1"), {"expected a JSON value"});
+  RequireError(line, ColumnOf(line, "+1"), {"invalid literal"});
   line = head + R"({"box": [0, 0, 1, 1,], "score": 1}]})";
-  RequireError(line, ColumnOf(line, ",]") + 1, {"expected a JSON value"});
+  RequireError(line, ColumnOf(line, ",]") + 1, {"unexpected ']'"});
   line = head + "]} // comment";
-  RequireError(line, ColumnOf(line, "//"), {"after the end"});
+  RequireError(line, ColumnOf(line, "//"), {"expected end of input"});
   line = "";
-  RequireError(line, 1, {"end of the line"});
+  RequireError(line, 1, {"unexpected end of input"});
   line = "   \r";
-  RequireError(line, 4, {"end of the line"});
+  RequireError(line, 4, {"unexpected end of input"});
   line = "[1, 2]";
   RequireError(line, 1, {"must be a JSON object", "an array"});
   line = R"({"camera": 0, "camera": 1, "frame": 1, "utime": 2, "detections": []})";
@@ -175,12 +175,12 @@ TEST_CASE("jsonl: syntax errors give the byte column", "[unit]") {
       head + "{\"box\": [0, 0, 1, 1], \"score\": 1, \"layout\": \"co\x01\", \"keypoints\": []}]}";
   RequireError(line, ColumnOf(line, "\x01"), {"control character"});
   line = head + R"({"box": [0, 0, 1, 1], "score": 1, "layout": "\ud800x", "keypoints": []}]})";
-  RequireError(line, ColumnOf(line, "\\ud800") + 6, {"low surrogate"});
+  RequireError(line, ColumnOf(line, "\\ud800") + 6, {"must be followed by U+DC00..U+DFFF"});
   line = head + R"({"box": [0, 0, 1, 1], "score": 1, "layout": "\q", "keypoints": []}]})";
-  RequireError(line, ColumnOf(line, "q"), {"invalid escape"});
+  RequireError(line, ColumnOf(line, "q"), {"forbidden character after backslash"});
   line =
       head + "{\"box\": [0, 0, 1, 1], \"score\": 1, \"layout\": \"\xC3\x28\", \"keypoints\": []}]}";
-  RequireError(line, ColumnOf(line, "\xC3"), {"invalid UTF-8"});
+  RequireError(line, ColumnOf(line, "\xC3") + 1, {"ill-formed UTF-8 byte"});  // the byte that breaks it
   // Nesting deeper than kJsonlMaxDepth.
   line = head + R"({"embedding": )" + std::string(20, '[') + std::string(20, ']') + "}]}";
   RequireError(line,
@@ -230,7 +230,7 @@ TEST_CASE("jsonl: schema errors name the key path and the reason", "[unit]") {
   line = head + R"({"box": [0, 0, 1e39, 1], "score": 1}]})";
   RequireError(line, ColumnOf(line, "1e39"), {"detections[0].box[2]: ", "float range"});
   line = head + R"({"box": [0, 0, 1e400, 1], "score": 1}]})";
-  RequireError(line, ColumnOf(line, "1e400"), {"detections[0].box[2]: ", "range of a double"});
+  RequireError(line, ColumnOf(line, "1e400"), {"number overflow parsing '1e400'"});
   line = head + R"({"box": [0, 0, 1, 1], "score": 1, "keypoints": []}]})";
   RequireError(
       line, ColumnOf(line, "[]"), {"detections[0].keypoints: keypoints need a \"layout\""});
@@ -359,7 +359,7 @@ TEST_CASE("jsonl reader: --skip-bad-lines skips, counts and keeps the first mess
   CHECK(reader.bad_lines() == 4);
   REQUIRE(reader.first_bad_lines().size() == 2);
   CHECK(reader.first_bad_lines()[0].line == 2);
-  CHECK(reader.first_bad_lines()[0].message.rfind("d.jsonl:2:1: ", 0) == 0);
+  CHECK(reader.first_bad_lines()[0].message.rfind("d.jsonl:2:2: ", 0) == 0);  // "no" is no literal
   CHECK(reader.first_bad_lines()[1].line == 3);
   CHECK(reader.first_bad_lines()[1].message.find("frame: 9 is smaller than frame 10") !=
         std::string::npos);
@@ -497,4 +497,4 @@ TEST_CASE("jsonl: seeded byte mutations never crash and errors stay in the line"
 }
 
 }  // namespace
-}  // namespace mvtrack::cli
+}  // namespace mvtrack::formats

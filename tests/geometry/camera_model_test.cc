@@ -351,5 +351,20 @@ TEST_CASE("InImage honours the image bounds and the margin", "[unit]") {
   REQUIRE_FALSE(camera.InImage(Vec2(kNaN, 540.0)));
 }
 
+TEST_CASE("RotationFromRodrigues matches cv::Rodrigues", "[unit]") {
+  CHECK(RotationFromRodrigues(Vec3::Zero()).isApprox(Mat3::Identity()));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 r(u(rng), u(rng), u(rng));
+    cv::Mat rotation;
+    cv::Rodrigues(cv::Vec3d(r.x(), r.y(), r.z()), rotation);
+    const Mat3 ours = RotationFromRodrigues(r);
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) CHECK(std::abs(ours(a, b) - rotation.at<double>(a, b)) < 1e-12);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mvtrack::geometry

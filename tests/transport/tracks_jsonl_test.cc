@@ -227,63 +227,79 @@ TEST_CASE("the parser accepts any whitespace, key order and JSON number syntax",
       "{\"frame\": 1, \"layout\": \"campus14\", \"tracks\": [], \"utime\": 2}", &layout, &why);
   REQUIRE(campus.has_value());
   CHECK(layout == core::KeypointLayoutId::kShelf14);
+  // Any valid JSON spelling is read: escapes in strings, keys in any order, free whitespace.
+  const std::optional<tracker::Frame3D> escaped = ParseTracksJsonLine(
+      "{ \"utime\":2,\"tracks\":[ ],\"layout\":\"co\\u0063o17\",\"frame\":1 }\r\n", &layout, &why);
+  REQUIRE(escaped.has_value());
+  CHECK(layout == core::KeypointLayoutId::kCoco17);
 }
 
 TEST_CASE("the parser rejects malformed lines with a reason", "[unit]") {
   const std::string head = "{\"frame\": 1, \"layout\": \"none\", \"tracks\": [";
   const std::string tail = "], \"utime\": 2}";
   const std::string track = "{\"id\": 4, \"joints\": [], \"position\": [1, 2, 3]}";
+  // Syntax errors are lib/json's (nlohmann-json's words, at the byte that broke the syntax);
+  // schema errors name the column and key path of the offending value.
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"", "column 1: expected '{' to open the line, found the end of the line"},
-      {"[]", "expected '{' to open the line, found '[]'"},
-      {"{\"frame\": 1, \"layout\": \"none\", \"tracks\": []}", "missing key \"utime\""},
+      {"", "column 1: syntax error while parsing value - unexpected end of input"},
+      {"[]", "column 1: a line must be a JSON object, found an array"},
+      {"{\"frame\": 1, \"layout\": \"none\", \"tracks\": []}", "column 1: missing key \"utime\""},
       {"{\"utime\": 1, \"layout\": \"none\", \"tracks\": []}", "missing key \"frame\""},
       {"{\"frame\": 1, \"frame\": 2, \"layout\": \"none\", \"tracks\": [], \"utime\": 2}",
-       "duplicate key \"frame\""},
-      {head + tail.substr(0, tail.size() - 1) + ", \"extra\": 1}", "unknown key \"extra\""},
-      {head + tail + " x", "unexpected text after the closing '}'"},
-      {head + tail + "\n{}", "unexpected text after the closing '}'"},
+       "column 14: duplicate key \"frame\""},
+      {head + tail.substr(0, tail.size() - 1) + ", \"extra\": 1}",
+       "extra: unknown key \"extra\" (allowed: frame, layout, tracks, utime)"},
+      {head + tail + " x", "column 58: syntax error while parsing value - invalid literal"},
+      {head + tail + "\n{}", "column 58: syntax error while parsing value - unexpected '{'; expected "
+                              "end of input"},
       {"{\"frame\": \"1\", \"layout\": \"none\", \"tracks\": [], \"utime\": 2}",
-       "frame must be an integer"},
+       "column 11: frame: expected an integer, found a string"},
       {"{\"frame\": 1.5, \"layout\": \"none\", \"tracks\": [], \"utime\": 2}",
-       "frame must be an integer, found 1.5"},
+       "column 11: frame: expected an integer, found 1.5"},
       {"{\"frame\": 1, \"layout\": \"none\", \"tracks\": [], \"utime\": 99999999999999999999}",
-       "utime 99999999999999999999 is beyond the int64 range"},
+       "column 55: utime: 99999999999999999999 is beyond the 64-bit integer range"},
       {"{\"frame\": 01, \"layout\": \"none\", \"tracks\": [], \"utime\": 2}",
-       "expected '}' to close the line"},
+       "column 12: syntax error while parsing object - unexpected number literal"},
       {"{\"frame\": 1 \"layout\": \"none\", \"tracks\": [], \"utime\": 2}",
-       "expected '}' to close the line, found '\"layout\": \"n'"},
+       "column 20: syntax error while parsing object - unexpected string literal; expected '}'"},
       {"{\"frame\": 1, \"layout\": \"coco18\", \"tracks\": [], \"utime\": 2}",
-       "unknown layout \"coco18\""},
-      {"{\"frame\": 1, \"layout\": \"co\\u0063o17\", \"tracks\": [], \"utime\": 2}",
-       "escape sequences are not part of this format"},
-      {"{\"frame\": 1, \"layout\": \"none", "unterminated string"},
-      {"{\"frame\": 1, \"layout\": none, \"tracks\": [], \"utime\": 2}", "expected a string"},
+       "column 24: layout: unknown layout \"coco18\""},
+      {"{\"frame\": 1, \"layout\": \"none", "missing closing quote"},
+      {"{\"frame\": 1, \"layout\": none, \"tracks\": [], \"utime\": 2}",
+       "column 25: syntax error while parsing value - invalid literal"},
+      {"{\"frame\": 1, \"layout\": 7, \"tracks\": [], \"utime\": 2}",
+       "column 24: layout: expected a string, found a number"},
       {"{\"frame\": 1, \"layout\": \"none\", \"tracks\": {}, \"utime\": 2}",
-       "expected '[' to open tracks"},
+       "tracks: expected an array, found an object"},
       {head + track + ", " + track + tail, "duplicate track id 4"},
-      {head + "{\"joints\": [], \"position\": [1, 2, 3]}" + tail, "track 0 has no \"id\""},
-      {head + "{\"id\": 1, \"position\": [1, 2, 3]}" + tail, "track 0 has no \"joints\""},
-      {head + "{\"id\": 1, \"joints\": []}" + tail, "track 0 has no \"position\""},
+      {head + "{\"joints\": [], \"position\": [1, 2, 3]}" + tail,
+       "tracks[0]: missing key \"id\""},
+      {head + "{\"id\": 1, \"position\": [1, 2, 3]}" + tail, "tracks[0]: missing key \"joints\""},
+      {head + "{\"id\": 1, \"joints\": []}" + tail, "tracks[0]: missing key \"position\""},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [1, 2]}" + tail,
-       "expected ',' between coordinates of track 0 position"},
+       "tracks[0].position: expected [x, y, z] (3 values), found 2 values"},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [1, 2, 3, 4]}" + tail,
-       "expected ']' after the 3 coordinates of track 0 position"},
+       "tracks[0].position: expected [x, y, z] (3 values), found 4 values"},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [1., 2, 3]}" + tail,
-       "track 0 position coordinate 0 must be a number, found '1., 2"},
+       "expected digit after '.'"},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [NaN, 2, 3]}" + tail,
-       "coordinate 0 must be a number"},
+       "invalid literal"},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [1e999, 2, 3]}" + tail,
-       "track 0 position coordinate 0 1e999 is beyond the double range"},
+       "column 80: number overflow parsing '1e999'"},
+      {head + "{\"id\": 1, \"joints\": [], \"position\": [\"1\", 2, 3]}" + tail,
+       "column 80: tracks[0].position[0]: expected a number, found a string"},
       {head + "{\"id\": 1, \"joints\": [null], \"position\": [1, 2, 3]}" + tail,
        "track id 1 has 1 joints; layout \"none\" needs 0 or 0"},
       {"{\"frame\": 1, \"layout\": \"coco17\", \"tracks\": [{\"id\": 1, \"joints\": [null, "
        "[1, 2, 3]], \"position\": [1, 2, 3]}], \"utime\": 2}",
        "track id 1 has 2 joints; layout \"coco17\" needs 0 or 17"},
       {head + "{\"id\": 1, \"joints\": [[1, 2]], \"position\": [1, 2, 3]}" + tail,
-       "between coordinates of track 0 joint 0"},
+       "tracks[0].joints[0]: expected [x, y, z] (3 values), found 2 values"},
+      {head + "{\"id\": 1, \"joints\": 3, \"position\": [1, 2, 3]}" + tail,
+       "tracks[0].joints: expected an array, found a number"},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [1, 2, 3], \"cameras\": []}" + tail,
-       "unknown key \"cameras\" in track 0"},
+       "tracks[0].cameras: unknown key \"cameras\" (allowed: id, joints, position)"},
+      {std::string(head) + "[[[[[[1]]]]]]" + tail, "nesting deeper than 5"},
   };
   for (const auto& [line, needle] : cases) {
     INFO("line: " << line);

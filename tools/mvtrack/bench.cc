@@ -35,6 +35,7 @@
 #include <Eigen/Dense>
 
 #include "config/tracker_options.h"
+#include "json/document.h"
 #include "eval/tracking_metrics.h"
 #include "mvtrack/cli.h"
 #include "mvtrack/sim_scene.h"
@@ -117,65 +118,6 @@ std::string UtcNow() {
   char buf[64];
   std::strftime(buf, sizeof(buf), "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
-}
-
-// --- a tiny JSON writer ---------------------------------------------------------------------
-
-std::string JsonNumber(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.6g", v);
-  return buf;
-}
-std::string JsonString(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof(buf), "\\u%04x", static_cast<unsigned>(c));
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-// Members of one JSON object, written in insertion order.
-class JsonObject {
- public:
-  JsonObject& Num(const std::string& k, double v) { return Raw(k, JsonNumber(v)); }
-  JsonObject& Int(const std::string& k, std::int64_t v) { return Raw(k, std::to_string(v)); }
-  JsonObject& Str(const std::string& k, const std::string& v) { return Raw(k, JsonString(v)); }
-  JsonObject& Bool(const std::string& k, bool v) { return Raw(k, v ? "true" : "false"); }
-  JsonObject& Raw(const std::string& k, const std::string& v) {
-    members_.emplace_back(k, v);
-    return *this;
-  }
-  std::string Dump(int indent = 0) const {
-    const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
-    std::string out = "{";
-    for (std::size_t i = 0; i < members_.size(); ++i) {
-      out += (i == 0 ? "\n" : ",\n") + pad + JsonString(members_[i].first) + ": " +
-             members_[i].second;
-    }
-    return out + (members_.empty()
-                      ? "}"
-                      : "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "}");
-  }
-
- private:
-  std::vector<std::pair<std::string, std::string>> members_;
-};
-std::string JsonArray(const std::vector<std::string>& items, int indent) {
-  const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
-  std::string out = "[";
-  for (std::size_t i = 0; i < items.size(); ++i) out += (i == 0 ? "\n" : ",\n") + pad + items[i];
-  return out +
-         (items.empty() ? "]" : "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "]");
 }
 
 // --- scenes ---------------------------------------------------------------------------------
@@ -412,33 +354,12 @@ PointResult MeasurePoint(const std::string& suite, int cameras, int people, bool
   return last;
 }
 
-JsonObject PointJson(const PointResult& r) {
-  JsonObject o;
-  o.Str("suite", r.suite)
-      .Int("cameras", r.cameras)
-      .Int("people", r.people)
-      .Str("mode", r.poses ? "poses" : "boxes")
-      .Str("runner", r.threads == 0 ? "tracker_inline" : "pipeline")
-      .Int("worker_threads", r.threads == 0 ? 1 : r.threads)
-      .Int("frames", r.frames)
-      .Int("repeats", r.repeats)
-      .Num("median_s", r.median_s)
-      .Num("min_s", r.min_s)
-      .Num("fps", r.fps)
-      .Num("fps_per_cpu_second", r.cpu_fps)
-      .Num("camera_frames_per_s", r.camera_fps)
-      .Num("realtime_factor_at_30fps", r.realtime_factor)
-      .Num("mota", r.accuracy.mota)
-      .Num("idf1", r.accuracy.idf1)
-      .Num("hota", r.accuracy.hota)
-      .Num("mpjpe_m", r.accuracy.mpjpe_m)
-      .Int("id_switches", r.accuracy.switches)
-      .Int("id_transfers", r.accuracy.id_transfers)
-      .Num("coverage_two_views", r.coverage)
-      .Num("detections_per_frame", r.detections_per_frame)
-      .Num("peak_rss_mib", r.peak_rss_mib)
-      .Num("scene_generation_s", r.generate_s);
-  if (r.paper_fps > 0.0) o.Num("paper_fps", r.paper_fps).Num("ratio_to_paper", r.fps / r.paper_fps);
+json::OrderedDocument PointJson(const PointResult& r) {
+  json::OrderedDocument o = {{"suite", r.suite}, {"cameras", r.cameras}, {"people", r.people}, {"mode", r.poses ? "poses" : "boxes"}, {"runner", r.threads == 0 ? "tracker_inline" : "pipeline"}, {"worker_threads", r.threads == 0 ? 1 : r.threads}, {"frames", r.frames}, {"repeats", r.repeats}, {"median_s", r.median_s}, {"min_s", r.min_s}, {"fps", r.fps}, {"fps_per_cpu_second", r.cpu_fps}, {"camera_frames_per_s", r.camera_fps}, {"realtime_factor_at_30fps", r.realtime_factor}, {"mota", r.accuracy.mota}, {"idf1", r.accuracy.idf1}, {"hota", r.accuracy.hota}, {"mpjpe_m", r.accuracy.mpjpe_m}, {"id_switches", r.accuracy.switches}, {"id_transfers", r.accuracy.id_transfers}, {"coverage_two_views", r.coverage}, {"detections_per_frame", r.detections_per_frame}, {"peak_rss_mib", r.peak_rss_mib}, {"scene_generation_s", r.generate_s}};
+  if (r.paper_fps > 0.0) {
+    o["paper_fps"] = r.paper_fps;
+    o["ratio_to_paper"] = r.fps / r.paper_fps;
+  }
   return o;
 }
 
@@ -487,17 +408,8 @@ IdentityResult MeasureIdentity(int cameras, int people, bool poses, bool enter_l
   return r;
 }
 
-JsonObject AccuracyJson(const Accuracy& a) {
-  JsonObject o;
-  o.Num("mota", a.mota)
-      .Num("idf1", a.idf1)
-      .Num("hota", a.hota)
-      .Int("id_switches", a.switches)
-      .Int("id_transfers", a.id_transfers)
-      .Int("id_fragmentations", a.id_fragmentations)
-      .Int("gt_ids", a.gt_ids)
-      .Int("predicted_ids", a.predicted_ids);
-  return o;
+json::OrderedDocument AccuracyJson(const Accuracy& a) {
+  return {{"mota", a.mota}, {"idf1", a.idf1}, {"hota", a.hota}, {"id_switches", a.switches}, {"id_transfers", a.id_transfers}, {"id_fragmentations", a.id_fragmentations}, {"gt_ids", a.gt_ids}, {"predicted_ids", a.predicted_ids}};
 }
 
 // --- latency --------------------------------------------------------------------------------
@@ -1116,100 +1028,37 @@ int RunBench(int argc, char** argv) {
   const std::string load_after = ReadFirstLine("/proc/loadavg");
 
   // results.json
-  std::vector<std::string> point_json, latency_json, soak_json;
-  for (const PointResult& r : points) point_json.push_back(PointJson(r).Dump(4));
+  std::vector<json::OrderedDocument> point_json, latency_json, soak_json;
+  for (const PointResult& r : points) point_json.push_back(PointJson(r));
   for (const LatencyResult& l : latencies) {
-    latency_json.push_back(JsonObject()
-                               .Int("cameras", l.cameras)
-                               .Int("people", l.people)
-                               .Str("mode", l.poses ? "poses" : "boxes")
-                               .Int("worker_threads", l.threads)
-                               .Int("frames", l.frames)
-                               .Int("windows", l.windows)
-                               .Num("p50_ms", l.p50_ms)
-                               .Num("p99_ms", l.p99_ms)
-                               .Num("max_ms", l.max_ms)
-                               .Num("pipeline_job_to_link_mean_ms", l.pipeline_mean_ms)
-                               .Num("pipeline_job_to_link_max_ms", l.pipeline_max_ms)
-                               .Int("late_frames", l.late_frames)
-                               .Num("mota", l.accuracy.mota)
-                               .Num("idf1", l.accuracy.idf1)
-                               .Num("hota", l.accuracy.hota)
-                               .Int("id_transfers", l.accuracy.id_transfers)
-                               .Num("mpjpe_m", l.accuracy.mpjpe_m)
-                               .Dump(4));
+    latency_json.push_back(json::OrderedDocument{{"cameras", l.cameras}, {"people", l.people}, {"mode", l.poses ? "poses" : "boxes"}, {"worker_threads", l.threads}, {"frames", l.frames}, {"windows", l.windows}, {"p50_ms", l.p50_ms}, {"p99_ms", l.p99_ms}, {"max_ms", l.max_ms}, {"pipeline_job_to_link_mean_ms", l.pipeline_mean_ms}, {"pipeline_job_to_link_max_ms", l.pipeline_max_ms}, {"late_frames", l.late_frames}, {"mota", l.accuracy.mota}, {"idf1", l.accuracy.idf1}, {"hota", l.accuracy.hota}, {"id_transfers", l.accuracy.id_transfers}, {"mpjpe_m", l.accuracy.mpjpe_m}});
   }
-  std::vector<std::string> identity_json;
+  std::vector<json::OrderedDocument> identity_json;
   for (const IdentityResult& r : identities) {
-    identity_json.push_back(JsonObject()
-                                .Int("cameras", r.cameras)
-                                .Int("people", r.people)
-                                .Str("mode", r.poses ? "poses" : "boxes")
-                                .Bool("enter_and_leave", r.enter_leave)
-                                .Int("frames", r.frames)
-                                .Int("seed", static_cast<std::int64_t>(r.seed))
-                                .Num("fps", r.fps)
-                                .Raw("whole_run", AccuracyJson(r.whole).Dump(6))
-                                .Raw("first_10_percent", AccuracyJson(r.head).Dump(6))
-                                .Dump(4));
+    identity_json.push_back(json::OrderedDocument{{"cameras", r.cameras}, {"people", r.people}, {"mode", r.poses ? "poses" : "boxes"}, {"enter_and_leave", r.enter_leave}, {"frames", r.frames}, {"seed", static_cast<std::int64_t>(r.seed)}, {"fps", r.fps}, {"whole_run", AccuracyJson(r.whole)}, {"first_10_percent", AccuracyJson(r.head)}});
   }
   for (const SoakResult& s : soaks) {
-    std::vector<std::string> samples, chunks;
+    std::vector<json::OrderedDocument> samples, chunks;
     for (const auto& [f, mib] : s.rss_mib) {
-      samples.push_back("[" + std::to_string(f) + ", " + JsonNumber(mib) + "]");
+      samples.push_back(json::OrderedDocument::array({f, mib}));
     }
     for (const Accuracy& a : s.chunks) {
-      chunks.push_back(AccuracyJson(a).Dump(6));
+      chunks.push_back(AccuracyJson(a));
     }
     soak_json.push_back(
-        JsonObject()
-            .Int("cameras", s.cameras)
-            .Int("people", s.people)
-            .Str("mode", s.poses ? "poses" : "boxes")
-            .Bool("enter_and_leave", true)
-            .Int("worker_threads", s.threads)
-            .Int("frames", s.frames)
-            .Num("wall_s", s.wall_s)
-            .Num("simulate_s", s.simulate_s)
-            .Num("fps_including_simulation", static_cast<double>(s.frames) / s.wall_s)
-            .Num("peak_rss_mib", s.peak_rss_mib)
-            .Num("rss_growth_after_warmup_mib", s.rss_growth_after_warmup_mib)
-            .Int("tracks_born", s.tracks_born)
-            .Int("chunk_frames", s.chunk_frames)
-            .Raw("rss_samples_frame_mib", JsonArray(samples, 4))
-            .Raw("chunk_accuracy", JsonArray(chunks, 4))
-            .Dump(4));
+        json::OrderedDocument{{"cameras", s.cameras}, {"people", s.people}, {"mode", s.poses ? "poses" : "boxes"}, {"enter_and_leave", true}, {"worker_threads", s.threads}, {"frames", s.frames}, {"wall_s", s.wall_s}, {"simulate_s", s.simulate_s}, {"fps_including_simulation", static_cast<double>(s.frames) / s.wall_s}, {"peak_rss_mib", s.peak_rss_mib}, {"rss_growth_after_warmup_mib", s.rss_growth_after_warmup_mib}, {"tracks_born", s.tracks_born}, {"chunk_frames", s.chunk_frames}, {"rss_samples_frame_mib", samples}, {"chunk_accuracy", chunks}});
   }
-  JsonObject growth;
+  json::OrderedDocument growth = json::OrderedDocument::object();
   for (const bool poses : {false, true}) {
     const auto [b, c] = GrowthExponents(points, poses);
-    growth.Raw(poses ? "poses" : "boxes",
-               JsonObject().Num("cameras_exponent", b).Num("people_exponent", c).Dump(4));
+    growth[poses ? "poses" : "boxes"] = {{"cameras_exponent", b}, {"people_exponent", c}};
   }
-  const std::string json =
-      JsonObject()
-          .Str("schema", "mvtrack.bench/1")
-          .Str("version", MVTRACK_VERSION)
-          .Str("build_type", build_type)
-          .Str("started_utc", started)
-          .Str("cpu", CpuModel())
-          .Int("hardware_threads", std::thread::hardware_concurrency())
-          .Str("loadavg_before", load_before)
-          .Str("loadavg_after", load_after)
-          .Num("total_s", total_s)
-          .Str("fps_definition",
-               "multi-view frames (one camera-frame from every camera) per second of tracking "
-               "time, detections in to tracks out; detection and simulation excluded")
-          .Raw("growth_exponents", growth.Dump(2))
-          .Raw("points", JsonArray(point_json, 2))
-          .Raw("identity", JsonArray(identity_json, 2))
-          .Raw("latency", JsonArray(latency_json, 2))
-          .Raw("soak", JsonArray(soak_json, 2))
-          .Dump() +
-      "\n";
+  const json::OrderedDocument results = {{"schema", "mvtrack.bench/1"}, {"version", MVTRACK_VERSION}, {"build_type", build_type}, {"started_utc", started}, {"cpu", CpuModel()}, {"hardware_threads", std::thread::hardware_concurrency()}, {"loadavg_before", load_before}, {"loadavg_after", load_after}, {"total_s", total_s}, {"fps_definition", "multi-view frames (one camera-frame from every camera) per second of tracking "
+               "time, detections in to tracks out; detection and simulation excluded"}, {"growth_exponents", growth}, {"points", point_json}, {"identity", identity_json}, {"latency", latency_json}, {"soak", soak_json}};
+  const std::string results_text = json::Dump(results, 2) + "\n";
   {
     std::ofstream f(out / "results.json", std::ios::trunc);
-    f << json;
+    f << results_text;
     if (!f) throw std::runtime_error((out / "results.json").string() + ": write error");
   }
 

@@ -16,7 +16,7 @@
 #include "core/keypoint_layout.h"
 #include "geometry/camera_rig.h"
 #include "mvtrack/cli.h"
-#include "mvtrack/tracks_io.h"
+#include "formats/tracks_io.h"
 #include "service/daemon_config.h"
 #include "tracker/tracker.h"
 
@@ -101,7 +101,7 @@ int RunCheckConfig(int argc, char** argv) {
   std::ostringstream summary;
   summary << "# ok: " << options_path << ": mode " << config::InputModeName(options.mode);
   if (options.mode == tracker::InputMode::kPoses) {
-    summary << ", layout " << LayoutName(options.layout);
+    summary << ", layout " << formats::LayoutName(options.layout);
   } else {
     summary << ", box point " << config::BoxPointName(options.box_point);
   }

@@ -30,9 +30,10 @@
 #include "datasets/wildtrack.h"
 #include "eval/sequence.h"
 #include "mvtrack/cli.h"
-#include "mvtrack/convert_output.h"
-#include "mvtrack/detection_importers.h"
-#include "mvtrack/jsonl_detections.h"
+#include "formats/convert_output.h"
+#include "formats/detection_importers.h"
+#include "formats/jsonl_detections.h"
+#include "formats/tracks_io.h"
 #include "transport/channels.h"
 #include "transport/tracks_jsonl.h"
 
@@ -75,7 +76,7 @@ struct CommonSettings {
   std::string format;
   std::filesystem::path data_root;
   std::filesystem::path out;
-  ChannelMode channel = ChannelMode::kShared;
+  formats::ChannelMode channel = formats::ChannelMode::kShared;
   bool overwrite = false;
   bool quiet = false;
   std::string command_line;  // the command as typed, shell-quoted
@@ -113,9 +114,9 @@ CommonSettings ParseCommon(const Args& args,
   }
   const std::string channel = args.Get("channel");
   if (channel == "shared") {
-    c.channel = ChannelMode::kShared;
+    c.channel = formats::ChannelMode::kShared;
   } else if (channel == "per-camera") {
-    c.channel = ChannelMode::kPerCamera;
+    c.channel = formats::ChannelMode::kPerCamera;
   } else {
     throw UsageError("--channel must be 'shared' or 'per-camera', not '" + channel + "'");
   }
@@ -227,10 +228,6 @@ struct DatasetJob {
   double load_seconds = 0.0;
 };
 
-std::string LayoutName(core::KeypointLayoutId id) {
-  return id == core::KeypointLayoutId::kNone ? "none" : core::GetKeypointLayout(id).name;
-}
-
 std::string JoinIds(const std::vector<std::int64_t>& ids) {
   std::string s;
   for (std::int64_t id : ids) s += (s.empty() ? "" : ", ") + std::to_string(id);
@@ -245,11 +242,11 @@ std::string PerCamera(const std::map<CameraId, std::int64_t>& counts) {
   return s;
 }
 
-std::string LogDescription(const CommonSettings& c, const DetectionsLogStats& st) {
+std::string LogDescription(const CommonSettings& c, const formats::DetectionsLogStats& st) {
   std::ostringstream os;
-  os << "  " << kConvertLogFile << " (" << st.bytes << " bytes): " << st.events
+  os << "  " << formats::kConvertLogFile << " (" << st.bytes << " bytes): " << st.events
      << " events of mvtrack.camera_detections_t on "
-     << (c.channel == ChannelMode::kShared
+     << (c.channel == formats::ChannelMode::kShared
              ? "the shared channel " + std::string(transport::kDetectionsChannel)
              : "the per-camera channels " + std::string(transport::kDetectionsChannelPrefix) +
                    "<camera id>")
@@ -268,32 +265,32 @@ std::string LogDescription(const CommonSettings& c, const DetectionsLogStats& st
 void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
   const datasets::Dataset& ds = job.ds;
   const Clock::time_point start = Clock::now();
-  ConvertOutputDir out(c.out, c.overwrite);
+  formats::ConvertOutputDir out(c.out, c.overwrite);
 
   // Detections log.
-  Progress(c, "writing " + out.File(kConvertLogFile).string());
-  DetectionsLogSink sink(&out, c.channel);
+  Progress(c, "writing " + out.File(formats::kConvertLogFile).string());
+  formats::DetectionsLogSink sink(&out, c.channel);
   for (const std::vector<core::CameraFrame>& frame : ds.detections) {
-    std::vector<CameraFrameToWrite> batch;
+    std::vector<formats::CameraFrameToWrite> batch;
     for (std::size_t i = 0; i < frame.size(); ++i) {
       batch.push_back({&frame[i], ds.cameras[i].width_px, ds.cameras[i].height_px});
     }
     sink.WriteFrame(std::move(batch));
   }
   sink.Finish();
-  const DetectionsLogStats& st = sink.stats();
+  const formats::DetectionsLogStats& st = sink.stats();
 
   // Calibration.
-  config::SaveCalibration(out.File(kConvertCalibrationFile).string(), ds.cameras, job.camera_names);
+  config::SaveCalibration(out.File(formats::kConvertCalibrationFile).string(), ds.cameras, job.camera_names);
 
   // Ground truth, peer output, ground points.
   if (!ds.ground_truth.empty()) {
-    out.WriteText(kConvertGroundTruthFile,
-                  SequenceToTracksJsonl(ds.ground_truth, ds.gt_layout, ds.fps, "ground truth"));
+    out.WriteText(formats::kConvertGroundTruthFile,
+                  formats::SequenceToTracksJsonl(ds.ground_truth, ds.gt_layout, ds.fps, "ground truth"));
   }
   if (job.peer.has_value()) {
-    out.WriteText(kConvertPeerFile,
-                  SequenceToTracksJsonl(
+    out.WriteText(formats::kConvertPeerFile,
+                  formats::SequenceToTracksJsonl(
                       job.peer->shelf14, core::KeypointLayoutId::kShelf14, ds.fps, job.peer->name));
   }
   std::int64_t ground_point_count = 0;
@@ -312,7 +309,7 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
       ground_point_count += static_cast<std::int64_t>(f.points.size());
       text += transport::TracksJsonLine(frame, core::KeypointLayoutId::kNone);
     }
-    out.WriteText(kConvertGroundPointsFile, text);
+    out.WriteText(formats::kConvertGroundPointsFile, text);
   }
 
   // README.
@@ -351,14 +348,14 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
     << ".\n\n";
 
   r << "Files:\n" << LogDescription(c, st);
-  r << "  " << kConvertCalibrationFile << ": mvtrack.calibration/1 (docs/FORMATS.md), "
+  r << "  " << formats::kConvertCalibrationFile << ": mvtrack.calibration/1 (docs/FORMATS.md), "
     << ds.cameras.size() << " cameras, cam_from_world in metres, world z up.\n";
   if (!ds.ground_truth.empty() && job.gt_without_ids) {
     std::int64_t positions = 0;
     for (const eval::EvalFrame& f : ds.ground_truth) {
       positions += static_cast<std::int64_t>(f.objects.size());
     }
-    r << "  " << kConvertGroundTruthFile << ": canonical tracks JSONL (transport::TracksJsonLine), "
+    r << "  " << formats::kConvertGroundTruthFile << ": canonical tracks JSONL (transport::TracksJsonLine), "
       << ds.ground_truth.size() << " lines (frames " << ds.ground_truth.front().frame << "-"
       << ds.ground_truth.back().frame << "), " << positions << " annotated positions, z = 0.\n"
       << "      There are NO person ids: track ids are the index of the position within its\n"
@@ -370,17 +367,17 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
     for (const eval::EvalFrame& f : ds.ground_truth) {
       for (const eval::EvalObject& o : f.objects) ++frames_per_actor[o.id];
     }
-    r << "  " << kConvertGroundTruthFile << ": canonical tracks JSONL (transport::TracksJsonLine), "
+    r << "  " << formats::kConvertGroundTruthFile << ": canonical tracks JSONL (transport::TracksJsonLine), "
       << ds.ground_truth.size() << " lines, one per frame (also frames without people);\n"
       << "      the ground-truth actors as tracks: id = actor id, position = footprint (hip\n"
-      << "      midpoint dropped onto z = 0), joints in layout " << LayoutName(ds.gt_layout)
+      << "      midpoint dropped onto z = 0), joints in layout " << formats::LayoutName(ds.gt_layout)
       << " (metres, null = missing).\n      Actors (frames present):";
     for (const auto& [id, n] : frames_per_actor) r << " " << id << " (" << n << ")";
     r << ".\n";
   }
   if (job.peer.has_value()) {
     const datasets::PeerOutput& p = *job.peer;
-    r << "  " << kConvertPeerFile << ": the published output of " << p.name
+    r << "  " << formats::kConvertPeerFile << ": the published output of " << p.name
       << " as canonical tracks JSONL in layout shelf14, " << p.shelf14.size()
       << " lines (the frames of the file).\n"
       << "      Track ids are dense (1, 2, ... in order of first appearance); the ids in the\n"
@@ -391,7 +388,7 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
     r << ".\n      Peer protocol notes: " << p.protocol_notes << "\n";
   }
   if (job.ground_points.has_value()) {
-    r << "  " << kConvertGroundPointsFile << ": MVDeTr's ground points as canonical tracks JSONL "
+    r << "  " << formats::kConvertGroundPointsFile << ": MVDeTr's ground points as canonical tracks JSONL "
       << "(layout none), " << job.ground_points->size() << " lines, " << ground_point_count
       << " points.\n"
       << "      Each point is one merged person position (box bottom centres mapped to the\n"
@@ -402,15 +399,15 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
       << "      x, then y): they are MEANINGLESS across frames and must not be used for identity\n"
       << "      metrics; compare footprints only.\n";
   }
-  r << "  " << kConvertReadmeFile << ": this file.\n\n";
+  r << "  " << formats::kConvertReadmeFile << ": this file.\n\n";
   r << "Tracking it (from this directory):\n"
-    << "  mvtrack replay --calibration " << kConvertCalibrationFile << " --mode " << job.replay_mode
-    << " --layout " << job.replay_layout << " --jsonl tracks.jsonl " << kConvertLogFile << "\n";
+    << "  mvtrack replay --calibration " << formats::kConvertCalibrationFile << " --mode " << job.replay_mode
+    << " --layout " << job.replay_layout << " --jsonl tracks.jsonl " << formats::kConvertLogFile << "\n";
   if (!ds.ground_truth.empty() && job.gt_without_ids) {
-    r << "  mvtrack eval --gt " << kConvertGroundTruthFile << " tracks.jsonl --points --area "
+    r << "  mvtrack eval --gt " << formats::kConvertGroundTruthFile << " tracks.jsonl --points --area "
       << job.gt_area << "\n";
   } else if (!ds.ground_truth.empty()) {
-    r << "  mvtrack eval --gt " << kConvertGroundTruthFile << " tracks.jsonl";
+    r << "  mvtrack eval --gt " << formats::kConvertGroundTruthFile << " tracks.jsonl";
     if (!ds.protocol_frames.empty()) {
       r << " --frames ";
       for (std::size_t i = 0; i < ds.protocol_frames.size(); ++i) {
@@ -429,7 +426,7 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
     }
     r << "\n";
   }
-  out.WriteText(kConvertReadmeFile, r.str());
+  out.WriteText(formats::kConvertReadmeFile, r.str());
 
   Progress(c,
            "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
@@ -735,24 +732,24 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
 
   const Clock::time_point start = Clock::now();
   const config::CalibrationDocument calibration = config::LoadCalibrationDocument(calibration_path);
-  JsonlReaderOptions reader_options;
+  formats::JsonlReaderOptions reader_options;
   reader_options.skip_bad_lines = args.Has("skip-bad-lines");
   reader_options.max_kept_bad_lines = kBadLinesShown;
   for (const geometry::CameraModel& cam : calibration.cameras) {
-    reader_options.cameras[cam.id] = JsonlCameraInfo{cam.width_px, cam.height_px};
+    reader_options.cameras[cam.id] = formats::JsonlCameraInfo{cam.width_px, cam.height_px};
   }
   std::ifstream in(detections_path, std::ios::binary);
   if (!in) throw std::runtime_error(detections_path + ": cannot open the detections file");
 
-  ConvertOutputDir out(c.out, c.overwrite);
-  Progress(c, "reading " + detections_path + ", writing " + out.File(kConvertLogFile).string());
-  DetectionsLogSink sink(&out, c.channel);
-  JsonlDetectionsReader reader(&in, detections_path, reader_options);
-  std::vector<JsonlCameraFrame> pending;  // the lines of the current frame
+  formats::ConvertOutputDir out(c.out, c.overwrite);
+  Progress(c, "reading " + detections_path + ", writing " + out.File(formats::kConvertLogFile).string());
+  formats::DetectionsLogSink sink(&out, c.channel);
+  formats::JsonlDetectionsReader reader(&in, detections_path, reader_options);
+  std::vector<formats::JsonlCameraFrame> pending;  // the lines of the current frame
   auto flush = [&]() {
-    std::vector<CameraFrameToWrite> batch;
-    for (const JsonlCameraFrame& f : pending) {
-      const JsonlCameraInfo& info = reader_options.cameras.at(f.frame.camera_id);
+    std::vector<formats::CameraFrameToWrite> batch;
+    for (const formats::JsonlCameraFrame& f : pending) {
+      const formats::JsonlCameraInfo& info = reader_options.cameras.at(f.frame.camera_id);
       batch.push_back({&f.frame, info.width_px, info.height_px});
     }
     sink.WriteFrame(std::move(batch));
@@ -762,7 +759,7 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
   std::error_code size_error;
   const auto total_bytes = std::filesystem::file_size(detections_path, size_error);
   auto next_report = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-  while (std::optional<JsonlCameraFrame> f = reader.Next()) {
+  while (std::optional<formats::JsonlCameraFrame> f = reader.Next()) {
     if (!pending.empty() && f->frame.frame != pending.front().frame.frame) flush();
     pending.push_back(std::move(*f));
     if (std::chrono::steady_clock::now() >= next_report) {
@@ -781,14 +778,14 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
                              std::to_string(reader.lines_read()) + " lines read)");
   }
   sink.Finish();
-  const DetectionsLogStats& st = sink.stats();
+  const formats::DetectionsLogStats& st = sink.stats();
   config::SaveCalibration(
-      out.File(kConvertCalibrationFile).string(), calibration.cameras, calibration.names);
+      out.File(formats::kConvertCalibrationFile).string(), calibration.cameras, calibration.names);
 
   if (reader.bad_lines() > 0) {
     std::cerr << "mvtrack convert jsonl: skipped " << reader.bad_lines() << " bad line(s) of "
               << reader.lines_read() << "; the first:\n";
-    for (const JsonlBadLine& bad : reader.first_bad_lines())
+    for (const formats::JsonlBadLine& bad : reader.first_bad_lines())
       std::cerr << "  " << bad.message << "\n";
   }
 
@@ -800,7 +797,7 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
     << reader.lines_read() << " lines: " << st.events << " converted, " << reader.bad_lines()
     << " bad line(s) skipped" << (reader_options.skip_bad_lines ? "" : " (--skip-bad-lines off)")
     << ".\n";
-  for (const JsonlBadLine& bad : reader.first_bad_lines())
+  for (const formats::JsonlBadLine& bad : reader.first_bad_lines())
     r << "    skipped: " << bad.message << "\n";
   r << "  Calibration: " << calibration_path << ", " << calibration.cameras.size()
     << " cameras, written back in canonical form.\n";
@@ -819,10 +816,10 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
        "  scores, keypoints (raw pixels) and embeddings; coordinates become floats on the wire.\n"
        "  Image size of each event: the camera's calibrated size.\n\n";
   r << "Files:\n" << LogDescription(c, st);
-  r << "  " << kConvertCalibrationFile << ": mvtrack.calibration/1 (docs/FORMATS.md), "
+  r << "  " << formats::kConvertCalibrationFile << ": mvtrack.calibration/1 (docs/FORMATS.md), "
     << calibration.cameras.size() << " cameras.\n";
-  r << "  " << kConvertReadmeFile << ": this file.\n";
-  out.WriteText(kConvertReadmeFile, r.str());
+  r << "  " << formats::kConvertReadmeFile << ": this file.\n";
+  out.WriteText(formats::kConvertReadmeFile, r.str());
 
   Progress(c,
            "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
@@ -914,7 +911,7 @@ void AddPerCameraOptions(Args* args) {
 int ConvertPerCameraFiles(const Args& args,
                           const CommonSettings& c,
                           const PerCameraFormat& format,
-                          const std::function<ImportedDetections(const std::string&,
+                          const std::function<formats::ImportedDetections(const std::string&,
                                                                  const std::string&)>& read,
                           const std::vector<std::string>& what) {
   if (!args.Has("detections")) throw UsageError("--detections CAMERA_ID=FILE,... is required");
@@ -941,7 +938,7 @@ int ConvertPerCameraFiles(const Args& args,
   }
 
   // Read every file; the frame range is checked against all of them.
-  std::map<CameraId, ImportedDetections> per_camera;
+  std::map<CameraId, formats::ImportedDetections> per_camera;
   std::int64_t clamped = 0;
   for (const auto& [id, path] : files) {
     Progress(c, "reading camera " + std::to_string(id) + ": " + path);
@@ -971,14 +968,14 @@ int ConvertPerCameraFiles(const Args& args,
                              "empty frames");
   }
 
-  ConvertOutputDir out(c.out, c.overwrite);
-  Progress(c, "writing " + out.File(kConvertLogFile).string() + ", frames " +
+  formats::ConvertOutputDir out(c.out, c.overwrite);
+  Progress(c, "writing " + out.File(formats::kConvertLogFile).string() + ", frames " +
                   std::to_string(*first) + "-" + std::to_string(*last));
-  DetectionsLogSink sink(&out, c.channel);
+  formats::DetectionsLogSink sink(&out, c.channel);
   const std::vector<core::Detection2D> none;
   for (FrameIndex frame = *first; frame <= *last; ++frame) {
     const Utime utime =
-        ImportFrameUtime(frame, format.first_frame_number, fps, static_cast<Utime>(start_utime));
+        formats::ImportFrameUtime(frame, format.first_frame_number, fps, static_cast<Utime>(start_utime));
     std::vector<core::CameraFrame> frames;
     frames.reserve(per_camera.size());
     for (const auto& [id, imported] : per_camera) {
@@ -990,7 +987,7 @@ int ConvertPerCameraFiles(const Args& args,
       if (it != imported.by_frame.end()) f.detections = it->second;
       frames.push_back(std::move(f));
     }
-    std::vector<CameraFrameToWrite> batch;
+    std::vector<formats::CameraFrameToWrite> batch;
     for (const core::CameraFrame& f : frames) {
       const geometry::CameraModel& cam = *cameras.at(f.camera_id);
       batch.push_back({&f, cam.width_px, cam.height_px});
@@ -1001,9 +998,9 @@ int ConvertPerCameraFiles(const Args& args,
     }
   }
   sink.Finish();
-  const DetectionsLogStats& st = sink.stats();
+  const formats::DetectionsLogStats& st = sink.stats();
   config::SaveCalibration(
-      out.File(kConvertCalibrationFile).string(), calibration.cameras, calibration.names);
+      out.File(formats::kConvertCalibrationFile).string(), calibration.cameras, calibration.names);
 
   std::ostringstream r;
   r << "mvtrack convert " << format.name << " (mvtrack " << MVTRACK_VERSION << ")\n\n";
@@ -1034,10 +1031,10 @@ int ConvertPerCameraFiles(const Args& args,
     r << ".\n";
   }
   r << "\nFiles:\n" << LogDescription(c, st);
-  r << "  " << kConvertCalibrationFile << ": mvtrack.calibration/1 (docs/FORMATS.md), "
+  r << "  " << formats::kConvertCalibrationFile << ": mvtrack.calibration/1 (docs/FORMATS.md), "
     << calibration.cameras.size() << " cameras.\n";
-  r << "  " << kConvertReadmeFile << ": this file.\n";
-  out.WriteText(kConvertReadmeFile, r.str());
+  r << "  " << formats::kConvertReadmeFile << ": this file.\n";
+  out.WriteText(formats::kConvertReadmeFile, r.str());
 
   Progress(c,
            "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
@@ -1068,7 +1065,7 @@ int ConvertMotChallenge(int argc, char** argv, const std::string& command_line) 
     return 0;
   }
   const CommonSettings c = ParseCommon(args, "motchallenge", false, command_line);
-  MotChallengeOptions options;
+  formats::MotChallengeOptions options;
   const std::string origin = args.Get("pixel-origin");
   if (origin != "0" && origin != "1") {
     throw UsageError("--pixel-origin must be 1 or 0, not '" + origin + "'");
@@ -1081,7 +1078,7 @@ int ConvertMotChallenge(int argc, char** argv, const std::string& command_line) 
       c,
       format,
       [&](const std::string& text, const std::string& path) {
-        return ReadMotChallengeDetections(text, path, options);
+        return formats::ReadMotChallengeDetections(text, path, options);
       },
       {"Box-only detections (layout none), box = [left, top, left + width, top + height] - " +
            origin + " (pixel origin " + origin + "), score = conf; id and x, y, z ignored."});
@@ -1115,12 +1112,12 @@ int ConvertCoco(int argc, char** argv, const std::string& command_line) {
     return 0;
   }
   const CommonSettings c = ParseCommon(args, "coco", false, command_line);
-  CocoOptions options;
+  formats::CocoOptions options;
   const std::string score = args.Get("keypoint-score");
   if (score == "confidence") {
-    options.keypoint_score = CocoKeypointScore::kConfidence;
+    options.keypoint_score = formats::CocoKeypointScore::kConfidence;
   } else if (score == "visibility") {
-    options.keypoint_score = CocoKeypointScore::kVisibility;
+    options.keypoint_score = formats::CocoKeypointScore::kVisibility;
   } else {
     throw UsageError("--keypoint-score must be 'confidence' or 'visibility', not '" + score + "'");
   }
@@ -1131,7 +1128,7 @@ int ConvertCoco(int argc, char** argv, const std::string& command_line) {
       c,
       format,
       [&](const std::string& text, const std::string& path) {
-        return ReadCocoKeypoints(text, path, options);
+        return formats::ReadCocoKeypoints(text, path, options);
       },
       {"COCO-17 poses (layout coco17), keypoint confidence = the keypoints' third value (" +
            score + "); box = bbox [x, y, x + w, y + h], else the keypoint",
@@ -1188,7 +1185,7 @@ int RunConvert(int argc, char** argv) {
   }
   std::vector<std::string> words = {"mvtrack"};
   for (int i = 0; i < argc; ++i) words.emplace_back(argv[i]);
-  const std::string command_line = ShellQuoteCommand(words);
+  const std::string command_line = formats::ShellQuoteCommand(words);
   for (const Format& f : kFormats) {
     if (format == f.name) return f.run(argc - 1, argv + 1, command_line);
   }

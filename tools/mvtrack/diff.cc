@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "mvtrack/cli.h"
-#include "mvtrack/tracks_io.h"
+#include "formats/tracks_io.h"
 
 namespace mvtrack::cli {
 namespace {
@@ -74,7 +74,7 @@ FrameComparison CompareFrames(const tracker::Frame3D& a, core::KeypointLayoutId 
   if (a.utime != b.utime) {
     differ("utime " + std::to_string(a.utime) + " vs " + std::to_string(b.utime));
   }
-  if (layout_a != layout_b) differ("layout " + LayoutName(layout_a) + " vs " + LayoutName(layout_b));
+  if (layout_a != layout_b) differ("layout " + formats::LayoutName(layout_a) + " vs " + formats::LayoutName(layout_b));
   if (a.tracks.size() != b.tracks.size() ||
       !std::equal(a.tracks.begin(), a.tracks.end(), b.tracks.begin(),
                   [](const tracker::Track3D& x, const tracker::Track3D& y) { return x.id == y.id; })) {
@@ -124,8 +124,8 @@ std::string FrameList(const std::vector<FrameIndex>& frames) {
   return s;
 }
 
-std::string Source(const TrackFile& f, const TrackFileFrame& frame) {
-  return (f.format == TrackFileFormat::kJsonl ? "line " : "event ") + std::to_string(frame.source);
+std::string Source(const formats::TrackFile& f, const formats::TrackFileFrame& frame) {
+  return (f.format == formats::TrackFileFormat::kJsonl ? "line " : "event ") + std::to_string(frame.source);
 }
 
 }  // namespace
@@ -154,20 +154,20 @@ int RunDiff(int argc, char** argv) {
   const double tolerance = args.GetDouble("tolerance");
   if (tolerance < 0.0) throw UsageError("--tolerance must be >= 0 (metres)");
 
-  TrackFile a;
-  TrackFile b;
+  formats::TrackFile a;
+  formats::TrackFile b;
   try {
-    a = ReadTrackFile(args.Get("A"));
-    b = ReadTrackFile(args.Get("B"));
-  } catch (const TrackFileError& e) {
+    a = formats::ReadTrackFile(args.Get("A"));
+    b = formats::ReadTrackFile(args.Get("B"));
+  } catch (const formats::TrackFileError& e) {
     std::cerr << "mvtrack diff: " << e.what() << "\n";
     return 2;
   }
 
-  std::map<FrameIndex, const TrackFileFrame*> in_a;
-  std::map<FrameIndex, const TrackFileFrame*> in_b;
-  for (const TrackFileFrame& f : a.frames) in_a[f.frame.frame] = &f;
-  for (const TrackFileFrame& f : b.frames) in_b[f.frame.frame] = &f;
+  std::map<FrameIndex, const formats::TrackFileFrame*> in_a;
+  std::map<FrameIndex, const formats::TrackFileFrame*> in_b;
+  for (const formats::TrackFileFrame& f : a.frames) in_a[f.frame.frame] = &f;
+  for (const formats::TrackFileFrame& f : b.frames) in_b[f.frame.frame] = &f;
   std::vector<FrameIndex> all;
   for (const auto& [frame, f] : in_a) all.push_back(frame);
   for (const auto& [frame, f] : in_b) {
@@ -183,8 +183,8 @@ int RunDiff(int argc, char** argv) {
   for (FrameIndex frame : all) {
     const auto ia = in_a.find(frame);
     const auto ib = in_b.find(frame);
-    const TrackFileFrame* fa = ia == in_a.end() ? nullptr : ia->second;
-    const TrackFileFrame* fb = ib == in_b.end() ? nullptr : ib->second;
+    const formats::TrackFileFrame* fa = ia == in_a.end() ? nullptr : ia->second;
+    const formats::TrackFileFrame* fb = ib == in_b.end() ? nullptr : ib->second;
     std::string what;
     if (!fa) {
       only_b.push_back(frame);
@@ -213,7 +213,7 @@ int RunDiff(int argc, char** argv) {
   std::cout << "A: " << a.Describe() << "\n";
   std::cout << "B: " << b.Describe() << "\n";
   if (a.layout && b.layout && *a.layout != *b.layout) {
-    std::cout << "layouts differ: A " << LayoutName(*a.layout) << ", B " << LayoutName(*b.layout)
+    std::cout << "layouts differ: A " << formats::LayoutName(*a.layout) << ", B " << formats::LayoutName(*b.layout)
               << "\n";
   }
   const std::size_t common = in_a.size() - only_a.size();

@@ -23,7 +23,7 @@
 #include "eval/sequence.h"
 #include "eval/tracking_metrics.h"
 #include "mvtrack/cli.h"
-#include "mvtrack/tracks_io.h"
+#include "formats/tracks_io.h"
 
 namespace mvtrack::cli {
 namespace {
@@ -43,14 +43,14 @@ std::vector<std::int64_t> ParseActors(const std::string& text) {
 }
 
 // True when the file's tracks carry joints (or the file has no frames, so nothing to compare).
-bool HasJoints(const TrackFile& file) {
+bool HasJoints(const formats::TrackFile& file) {
   return !file.layout || *file.layout != core::KeypointLayoutId::kNone;
 }
 
 // The frames of `file` as an evaluation sequence; joints dropped (`keep_joints` false), kept, or
 // mapped with `mapping` (when not null; head_top then follows `head_rule` when the target is
 // shelf14).
-eval::EvalSequence ToSequence(const TrackFile& file, bool keep_joints,
+eval::EvalSequence ToSequence(const formats::TrackFile& file, bool keep_joints,
                               const core::KeypointMapping* mapping, eval::HeadRule head_rule) {
   eval::EvalSequence seq;
   seq.reserve(file.frames.size());
@@ -58,7 +58,7 @@ eval::EvalSequence ToSequence(const TrackFile& file, bool keep_joints,
   std::vector<bool> valid;
   std::vector<Vec3> mapped_points;
   std::vector<bool> mapped_valid;
-  for (const TrackFileFrame& f : file.frames) {
+  for (const formats::TrackFileFrame& f : file.frames) {
     eval::EvalFrame ef;
     ef.frame = f.frame.frame;
     for (const tracker::Track3D& t : f.frame.tracks) {
@@ -156,8 +156,8 @@ eval::PointComparisonOptions::Area ParseArea(const std::string& text) {
 }
 
 int RunPointComparison(const Args& args,
-                       const TrackFile& gt,
-                       const TrackFile& pred,
+                       const formats::TrackFile& gt,
+                       const formats::TrackFile& pred,
                        const eval::TrackingOptions& tracking_options) {
   eval::PointComparisonOptions options;
   options.gate_m = tracking_options.footprint_threshold_m;
@@ -298,12 +298,12 @@ int RunEval(int argc, char** argv) {
     throw UsageError("--layout none has no joints: --distance joints and --pcp need joints");
   }
 
-  TrackFile gt;
-  TrackFile pred;
+  formats::TrackFile gt;
+  formats::TrackFile pred;
   try {
-    gt = ReadTrackFile(args.Get("gt"));
-    pred = ReadTrackFile(pred_path);
-  } catch (const TrackFileError& e) {
+    gt = formats::ReadTrackFile(args.Get("gt"));
+    pred = formats::ReadTrackFile(pred_path);
+  } catch (const formats::TrackFileError& e) {
     std::cerr << "mvtrack eval: " << e.what() << "\n";
     return 1;
   }
@@ -341,9 +341,9 @@ int RunEval(int argc, char** argv) {
   out << "predictions:  " << pred.Describe() << "\n";
   {
     std::set<FrameIndex> gt_frames;
-    for (const TrackFileFrame& f : gt.frames) gt_frames.insert(f.frame.frame);
+    for (const formats::TrackFileFrame& f : gt.frames) gt_frames.insert(f.frame.frame);
     std::int64_t common = 0;
-    for (const TrackFileFrame& f : pred.frames) common += gt_frames.count(f.frame.frame) ? 1 : 0;
+    for (const formats::TrackFileFrame& f : pred.frames) common += gt_frames.count(f.frame.frame) ? 1 : 0;
     out << "frames: " << gt.frames.size() << " in the ground truth, " << pred.frames.size()
         << " predicted, " << common << " in both\n";
   }
@@ -354,13 +354,13 @@ int RunEval(int argc, char** argv) {
                 : (!HasJoints(gt) ? "the ground truth has none" : "the predictions have none"))
         << "); footprints only\n";
   } else {
-    out << "joints: compared in layout " << LayoutName(eval_layout) << "\n";
+    out << "joints: compared in layout " << formats::LayoutName(eval_layout) << "\n";
     const std::pair<const char*, const std::optional<core::KeypointMapping>*> sides[] = {
         {"ground truth", &gt_mapping}, {"predictions", &pred_mapping}};
     for (const auto& [name, mapping] : sides) {
       if (!*mapping) continue;
-      out << "  " << name << " mapped " << LayoutName((*mapping)->from) << " -> "
-          << LayoutName((*mapping)->to) << " (core::MakeKeypointMapping):\n"
+      out << "  " << name << " mapped " << formats::LayoutName((*mapping)->from) << " -> "
+          << formats::LayoutName((*mapping)->to) << " (core::MakeKeypointMapping):\n"
           << DescribeMapping(**mapping);
       if ((*mapping)->to == core::KeypointLayoutId::kShelf14 &&
           *head_rule == eval::HeadRule::kShelf4da) {

@@ -27,7 +27,7 @@
 #include "core/keypoint_layout.h"
 #include "geometry/camera_rig.h"
 #include "mvtrack/cli.h"
-#include "mvtrack/tracks_io.h"
+#include "formats/tracks_io.h"
 #include "pipeline/clock.h"
 #include "pipeline/executor.h"
 #include "pipeline/pipeline.h"
@@ -461,7 +461,7 @@ int RunReplay(int argc, char** argv) {
          << " filtered\n";
   report << "  output: " << frames.size() << " frame(s), " << track_ids.size()
          << " track id(s), " << track_frames << " track-frame(s), layout "
-         << LayoutName(output_layout) << "; " << st.windows_processed << " window(s)";
+         << formats::LayoutName(output_layout) << "; " << st.windows_processed << " window(s)";
   if (status.windows_failed > 0) {
     report << ", " << status.windows_failed << " FAILED (" << status.last_failure << ")";
   }

@@ -25,7 +25,7 @@
 #include "config/calibration.h"
 #include "core/detection.h"
 #include "mvtrack/cli.h"
-#include "mvtrack/tracks_io.h"
+#include "formats/tracks_io.h"
 #include "transport/channels.h"
 #include "transport/codec.h"
 #include "transport/log_io.h"
@@ -224,10 +224,10 @@ int RunView(int argc, char** argv) {
 
   // Inputs.
   const std::string tracks_path = args.Get("TRACKS");
-  TrackFile tracks = ReadTrackFile(tracks_path);
+  formats::TrackFile tracks = formats::ReadTrackFile(tracks_path);
   if (tracks.frames.empty()) throw std::runtime_error(tracks_path + ": no frames to render");
   std::vector<tracker::Frame3D> frames;
-  for (TrackFileFrame& f : tracks.frames) frames.push_back(std::move(f.frame));
+  for (formats::TrackFileFrame& f : tracks.frames) frames.push_back(std::move(f.frame));
   std::sort(frames.begin(), frames.end(), [](const tracker::Frame3D& a, const tracker::Frame3D& b) {
     return a.frame < b.frame;
   });

@@ -1,147 +1,135 @@
 #include "datasets/internal/json_document.h"
 
-#include <cerrno>
+#include <charconv>
 #include <cmath>
-#include <cstdlib>
-#include <limits>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <sstream>
+#include <system_error>
 
 #include "datasets/dataset.h"
+#include "json/json.h"
 
 namespace mvtrack::datasets::internal {
+
+/// The text of one file and its parsed tree (whose numbers are views into the text).
+struct JsonDocument {
+  std::string file;
+  std::string text;
+  std::optional<json::LineIndex> lines;
+  json::Value root;
+};
+
 namespace {
 
-// yaml-cpp gives plain (unquoted) scalars the non-specific tag "?" and quoted scalars "!".
-// JSON numbers are plain scalars; a quoted "1.5" is a string and must not read as a number.
-bool IsPlainScalar(const YAML::Node& node) { return node.IsScalar() && node.Tag() != "!"; }
+// Nesting the dataset files need (a few levels) with a wide margin.
+constexpr int kMaxDepth = 64;
 
-// A JSON number: optional '-', digits, optional fraction, optional exponent. (YAML would also
-// accept forms such as ".inf" or "0x10"; JSON does not.)
-bool LooksLikeJsonNumber(const std::string& s) {
-  std::size_t i = 0;
-  const std::size_t n = s.size();
-  if (i < n && s[i] == '-') ++i;
-  const std::size_t int_start = i;
-  while (i < n && s[i] >= '0' && s[i] <= '9') ++i;
-  if (i == int_start) return false;
-  if (i < n && s[i] == '.') {
-    ++i;
-    const std::size_t frac_start = i;
-    while (i < n && s[i] >= '0' && s[i] <= '9') ++i;
-    if (i == frac_start) return false;
-  }
-  if (i < n && (s[i] == 'e' || s[i] == 'E')) {
-    ++i;
-    if (i < n && (s[i] == '+' || s[i] == '-')) ++i;
-    const std::size_t exp_start = i;
-    while (i < n && s[i] >= '0' && s[i] <= '9') ++i;
-    if (i == exp_start) return false;
-  }
-  return i == n;
+// The value of a number, or nullopt.
+std::optional<double> ToDouble(const json::Value& v) {
+  if (v.kind != json::Value::Kind::kNumber) return std::nullopt;
+  return v.real;
 }
 
-bool LooksLikeJsonInteger(const std::string& s) {
-  if (!LooksLikeJsonNumber(s)) return false;
-  return s.find_first_of(".eE") == std::string::npos;
+bool IsInteger(const json::Value& v) {
+  return v.kind == json::Value::Kind::kNumber &&
+         v.number.find_first_of(".eE") == std::string_view::npos;
 }
 
 }  // namespace
 
-JsonValue::JsonValue(std::string file, YAML::Node node, std::string path)
-    : file_(std::move(file)), node_(std::move(node)), path_(std::move(path)) {}
+JsonValue::JsonValue(std::shared_ptr<const JsonDocument> document,
+                     const json::Value* value,
+                     std::string path)
+    : document_(std::move(document)), value_(value), path_(std::move(path)) {}
 
 void JsonValue::Fail(const std::string& problem) const {
-  const YAML::Mark mark = node_.Mark();
-  std::string where;
-  if (!mark.is_null()) {
-    where = std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1) + ": ";
-  }
-  throw DatasetError(file_, where + path_ + ": " + problem);
+  const json::LineColumn at = document_->lines->At(value_->column);
+  throw DatasetError(document_->file, std::to_string(at.line) + ":" + std::to_string(at.column) +
+                                          ": " + path_ + ": " + problem);
 }
 
 JsonValue JsonValue::operator[](const std::string& key) const {
-  if (!node_.IsMap()) Fail("expected an object (to read member \"" + key + "\")");
-  const YAML::Node child = node_[key];
-  if (!child.IsDefined()) Fail("missing member \"" + key + "\"");
-  return JsonValue(file_, child, path_ + "." + key);
+  if (value_->kind != json::Value::Kind::kObject) {
+    Fail("expected an object (to read member \"" + key + "\")");
+  }
+  const json::Value* child = value_->Find(key);
+  if (child == nullptr) Fail("missing member \"" + key + "\"");
+  return JsonValue(document_, child, path_ + "." + key);
 }
 
 JsonValue JsonValue::At(std::size_t i) const {
-  if (!node_.IsSequence()) Fail("expected an array");
-  if (i >= node_.size()) {
+  if (value_->kind != json::Value::Kind::kArray) Fail("expected an array");
+  if (i >= value_->items.size()) {
     Fail("index " + std::to_string(i) + " out of range (array of " +
-         std::to_string(node_.size()) + ")");
+         std::to_string(value_->items.size()) + ")");
   }
-  return JsonValue(file_, node_[i], path_ + "[" + std::to_string(i) + "]");
+  return JsonValue(document_, &value_->items[i], path_ + "[" + std::to_string(i) + "]");
 }
 
 std::size_t JsonValue::Size() const {
-  if (!node_.IsSequence()) Fail("expected an array");
-  return node_.size();
+  if (value_->kind != json::Value::Kind::kArray) Fail("expected an array");
+  return value_->items.size();
 }
 
 std::vector<std::pair<std::string, JsonValue>> JsonValue::Items() const {
-  if (!node_.IsMap()) Fail("expected an object");
+  if (value_->kind != json::Value::Kind::kObject) Fail("expected an object");
   std::vector<std::pair<std::string, JsonValue>> items;
-  items.reserve(node_.size());
-  for (const auto& kv : node_) {
-    if (!kv.first.IsScalar()) {
-      JsonValue(file_, kv.first, path_).Fail("object key is not a string");
-    }
-    const std::string key = kv.first.Scalar();
-    items.emplace_back(key, JsonValue(file_, kv.second, path_ + "." + key));
+  items.reserve(value_->members.size());
+  for (const json::Member& m : value_->members) {
+    items.emplace_back(m.key, JsonValue(document_, m.value.get(), path_ + "." + m.key));
   }
   return items;
 }
 
 double JsonValue::AsDouble() const {
-  if (!IsPlainScalar(node_) || !LooksLikeJsonNumber(node_.Scalar())) Fail("expected a number");
-  const std::string& s = node_.Scalar();
-  errno = 0;
-  char* end = nullptr;
-  const double value = std::strtod(s.c_str(), &end);
-  if (end != s.c_str() + s.size() || !std::isfinite(value)) {
-    Fail("number \"" + s + "\" is not a finite double");
+  if (value_->kind != json::Value::Kind::kNumber) Fail("expected a number");
+  const std::optional<double> value = ToDouble(*value_);
+  if (!value) Fail("number \"" + std::string(value_->number) + "\" is not a finite double");
+  return *value;
+}
+
+std::int64_t JsonValue::AsInt() const {
+  if (!IsInteger(*value_)) Fail("expected an integer");
+  std::int64_t value = 0;
+  const char* end = value_->number.data() + value_->number.size();
+  const auto [ptr, ec] = std::from_chars(value_->number.data(), end, value);
+  if (ec != std::errc() || ptr != end) {
+    Fail("integer \"" + std::string(value_->number) + "\" is out of the range of int64");
   }
   return value;
 }
 
-std::int64_t JsonValue::AsInt() const {
-  if (!IsPlainScalar(node_) || !LooksLikeJsonInteger(node_.Scalar())) {
-    Fail("expected an integer");
-  }
-  const std::string& s = node_.Scalar();
-  errno = 0;
-  char* end = nullptr;
-  const long long value = std::strtoll(s.c_str(), &end, 10);
-  if (errno == ERANGE || end != s.c_str() + s.size()) {
-    Fail("integer \"" + s + "\" is out of the range of int64");
-  }
-  return static_cast<std::int64_t>(value);
-}
-
 std::uint64_t JsonValue::AsUint64() const {
-  if (!IsPlainScalar(node_) || !LooksLikeJsonInteger(node_.Scalar()) ||
-      node_.Scalar().front() == '-') {
+  if (!IsInteger(*value_) || value_->number.front() == '-') {
     Fail("expected a non-negative integer");
   }
-  const std::string& s = node_.Scalar();
-  errno = 0;
-  char* end = nullptr;
-  const unsigned long long value = std::strtoull(s.c_str(), &end, 10);
-  if (errno == ERANGE || end != s.c_str() + s.size()) {
-    Fail("integer \"" + s + "\" is out of the range of uint64");
+  std::uint64_t value = 0;
+  const char* end = value_->number.data() + value_->number.size();
+  const auto [ptr, ec] = std::from_chars(value_->number.data(), end, value);
+  if (ec != std::errc() || ptr != end) {
+    Fail("integer \"" + std::string(value_->number) + "\" is out of the range of uint64");
   }
-  return static_cast<std::uint64_t>(value);
+  return value;
 }
 
 std::string JsonValue::AsString() const {
-  if (!node_.IsScalar()) Fail("expected a string");
-  return node_.Scalar();
+  switch (value_->kind) {
+    case json::Value::Kind::kString:
+      return value_->string;
+    case json::Value::Kind::kNumber:
+      return std::string(value_->number);
+    case json::Value::Kind::kBool:
+      return value_->boolean ? "true" : "false";
+    default:
+      Fail("expected a string");
+  }
 }
 
 std::vector<double> JsonValue::AsDoubles(int n) const {
-  if (!node_.IsSequence()) Fail("expected an array of numbers");
-  const std::size_t size = node_.size();
+  if (value_->kind != json::Value::Kind::kArray) Fail("expected an array of numbers");
+  const std::size_t size = value_->items.size();
   if (n >= 0 && size != static_cast<std::size_t>(n)) {
     Fail("expected an array of " + std::to_string(n) + " numbers, got " + std::to_string(size) +
          " entries");
@@ -149,26 +137,24 @@ std::vector<double> JsonValue::AsDoubles(int n) const {
   std::vector<double> values;
   values.reserve(size);
   for (std::size_t i = 0; i < size; ++i) {
-    const YAML::Node element = node_[i];
     // Fast path without building a path string; the slow path reports the exact element.
-    if (IsPlainScalar(element) && LooksLikeJsonNumber(element.Scalar())) {
-      const double v = std::strtod(element.Scalar().c_str(), nullptr);
-      if (std::isfinite(v)) {
-        values.push_back(v);
-        continue;
-      }
+    if (const std::optional<double> v = ToDouble(value_->items[i])) {
+      values.push_back(*v);
+    } else {
+      values.push_back(At(i).AsDouble());
     }
-    values.push_back(At(i).AsDouble());
   }
   return values;
 }
 
 std::vector<double> JsonValue::AsMatrix(int rows, int cols) const {
-  if (!node_.IsSequence()) Fail("expected a " + std::to_string(rows) + "x" +
-                                std::to_string(cols) + " matrix (array of arrays)");
-  if (node_.size() != static_cast<std::size_t>(rows)) {
+  if (value_->kind != json::Value::Kind::kArray) {
+    Fail("expected a " + std::to_string(rows) + "x" + std::to_string(cols) +
+         " matrix (array of arrays)");
+  }
+  if (value_->items.size() != static_cast<std::size_t>(rows)) {
     Fail("expected a " + std::to_string(rows) + "x" + std::to_string(cols) + " matrix, got " +
-         std::to_string(node_.size()) + " rows");
+         std::to_string(value_->items.size()) + " rows");
   }
   std::vector<double> values;
   values.reserve(static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols));
@@ -185,20 +171,30 @@ JsonValue LoadJsonFile(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file, ec)) {
     throw DatasetError(name, "file not found (or not a regular file)");
   }
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(name);
-  } catch (const YAML::ParserException& e) {
-    throw DatasetError(name, std::to_string(e.mark.line + 1) + ":" +
-                                 std::to_string(e.mark.column + 1) + ": not valid JSON: " + e.msg);
-  } catch (const YAML::Exception& e) {
-    throw DatasetError(name, std::string("cannot be read: ") + e.what());
+  auto document = std::make_shared<JsonDocument>();
+  document->file = name;
+  {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (!in && !in.eof()) throw DatasetError(name, "cannot be read");
+    document->text = std::move(buffer).str();
   }
-  if (!root.IsMap() && !root.IsSequence()) {
+  document->lines.emplace(document->text);
+  json::Error error;
+  std::optional<json::Value> root = json::Parse(document->text, kMaxDepth, &error);
+  if (!root.has_value()) {
+    const json::LineColumn at = document->lines->At(error.column);
+    throw DatasetError(name, std::to_string(at.line) + ":" + std::to_string(at.column) +
+                                 ": not valid JSON: " + error.reason);
+  }
+  if (root->kind != json::Value::Kind::kObject && root->kind != json::Value::Kind::kArray) {
     throw DatasetError(name, "not a JSON document (the top level is neither an object nor an "
                              "array)");
   }
-  return JsonValue(name, root, "$");
+  document->root = std::move(*root);
+  const json::Value* root_value = &document->root;
+  return JsonValue(std::move(document), root_value, "$");
 }
 
 }  // namespace mvtrack::datasets::internal

@@ -1,4 +1,4 @@
-#include "mvtrack/jsonl_detections.h"
+#include "formats/jsonl_detections.h"
 
 #include <charconv>
 #include <cmath>
@@ -12,12 +12,12 @@
 #include <utility>
 
 #include "core/keypoint_layout.h"
-#include "mvtrack/json.h"
+#include "json/json.h"
 
-namespace mvtrack::cli {
+namespace mvtrack::formats {
 namespace {
 
-using LineError = JsonValueError;
+using LineError = json::Error;
 
 // ---------------------------------------------------------------------------------------------
 // The schema.
@@ -30,16 +30,16 @@ struct ParsedLine {
   std::size_t image_size_column = 0;  // 0 when the line has no image_size
 };
 
-class SchemaChecker : public JsonChecker {
+class SchemaChecker : public json::Checker {
  public:
-  bool Detection(const JsonValue& v, const std::string& path, core::Detection2D* d) {
-    std::map<std::string, const JsonValue*> m;
+  bool Detection(const json::Value& v, const std::string& path, core::Detection2D* d) {
+    std::map<std::string, const json::Value*> m;
     if (!Members(
             v, path, {"box", "score", "keypoints", "layout", "embedding"}, {"box", "score"}, &m)) {
       return false;
     }
     // box
-    const JsonValue& box = *m.at("box");
+    const json::Value& box = *m.at("box");
     const std::string box_path = Join(path, "box");
     if (!ExpectArray(box, box_path, 4, 0, "[x_min, y_min, x_max, y_max]")) return false;
     double b[4];
@@ -75,9 +75,9 @@ class SchemaChecker : public JsonChecker {
                   "\"layout\" is only allowed together with \"keypoints\"");
     }
     if (has_keypoints) {
-      const JsonValue& layout = *m.at("layout");
+      const json::Value& layout = *m.at("layout");
       const std::string layout_path = Join(path, "layout");
-      if (!ExpectKind(layout, layout_path, JsonValue::Kind::kString)) return false;
+      if (!ExpectKind(layout, layout_path, json::Value::Kind::kString)) return false;
       const std::optional<core::KeypointLayoutId> id = core::KeypointLayoutFromName(layout.string);
       if (!id.has_value() || *id == core::KeypointLayoutId::kNone) {
         return Fail(layout,
@@ -87,9 +87,9 @@ class SchemaChecker : public JsonChecker {
       }
       d->layout = *id;
       const int n = core::GetKeypointLayout(*id).num_joints();
-      const JsonValue& kps = *m.at("keypoints");
+      const json::Value& kps = *m.at("keypoints");
       const std::string kps_path = Join(path, "keypoints");
-      if (!ExpectKind(kps, kps_path, JsonValue::Kind::kArray)) return false;
+      if (!ExpectKind(kps, kps_path, json::Value::Kind::kArray)) return false;
       if (kps.items.size() != static_cast<std::size_t>(n)) {
         return Fail(kps,
                     kps_path,
@@ -98,7 +98,7 @@ class SchemaChecker : public JsonChecker {
       }
       d->keypoints.resize(kps.items.size());
       for (std::size_t j = 0; j < kps.items.size(); ++j) {
-        const JsonValue& kp = kps.items[j];
+        const json::Value& kp = kps.items[j];
         const std::string kp_path = Index(kps_path, j);
         if (!ExpectArray(kp, kp_path, 3, 0, "[x, y, confidence]")) return false;
         double x = 0.0, y = 0.0;
@@ -112,7 +112,7 @@ class SchemaChecker : public JsonChecker {
     }
     // embedding
     if (m.count("embedding") > 0) {
-      const JsonValue& e = *m.at("embedding");
+      const json::Value& e = *m.at("embedding");
       const std::string e_path = Join(path, "embedding");
       if (!ExpectArray(e, e_path, -1, static_cast<std::size_t>(kJsonlMaxEmbedding), "")) {
         return false;
@@ -127,11 +127,11 @@ class SchemaChecker : public JsonChecker {
     return true;
   }
 
-  bool Line(const JsonValue& root, ParsedLine* out) {
-    std::map<std::string, const JsonValue*> m;
-    if (root.kind != JsonValue::Kind::kObject) {
+  bool Line(const json::Value& root, ParsedLine* out) {
+    std::map<std::string, const json::Value*> m;
+    if (root.kind != json::Value::Kind::kObject) {
       return Fail(
-          root, "", std::string("a line must be a JSON object, found ") + JsonKindName(root.kind));
+          root, "", std::string("a line must be a JSON object, found ") + json::KindName(root.kind));
     }
     if (!Members(root,
                  "",
@@ -163,7 +163,7 @@ class SchemaChecker : public JsonChecker {
     }
     out->utime_column = m.at("utime")->column;
     if (m.count("image_size") > 0) {
-      const JsonValue& size = *m.at("image_size");
+      const json::Value& size = *m.at("image_size");
       if (!ExpectArray(size, "image_size", 2, 0, "[width, height]")) return false;
       std::int64_t w = 0, h = 0;
       if (!GetInt(size.items[0], "image_size[0]", 1, kJsonlMaxImageSize, &w)) return false;
@@ -172,7 +172,7 @@ class SchemaChecker : public JsonChecker {
       out->value.image_height_px = static_cast<int>(h);
       out->image_size_column = size.column;
     }
-    const JsonValue& dets = *m.at("detections");
+    const json::Value& dets = *m.at("detections");
     if (!ExpectArray(dets, "detections", -1, static_cast<std::size_t>(kJsonlMaxDetections), "")) {
       return false;
     }
@@ -190,7 +190,7 @@ class SchemaChecker : public JsonChecker {
 // Parses and checks one line; on failure fills `error`.
 std::optional<ParsedLine> ParseLine(std::string_view line, LineError* error) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-  const std::optional<JsonValue> root = ParseJson(line, "line", kJsonlMaxDepth, error);
+  const std::optional<json::Value> root = json::Parse(line, kJsonlMaxDepth, error);
   if (!root.has_value()) return std::nullopt;
   ParsedLine parsed;
   SchemaChecker checker;
@@ -310,4 +310,4 @@ std::optional<JsonlCameraFrame> JsonlDetectionsReader::Next() {
   return std::nullopt;
 }
 
-}  // namespace mvtrack::cli
+}  // namespace mvtrack::formats

@@ -1,4 +1,4 @@
-#include "mvtrack/detection_importers.h"
+#include "formats/detection_importers.h"
 
 #include <algorithm>
 #include <charconv>
@@ -13,9 +13,9 @@
 
 #include "core/keypoint_layout.h"
 #include "datasets/dataset.h"
-#include "mvtrack/json.h"
+#include "json/json.h"
 
-namespace mvtrack::cli {
+namespace mvtrack::formats {
 namespace {
 
 constexpr double kFloatMax = static_cast<double>(std::numeric_limits<float>::max());
@@ -89,28 +89,6 @@ class MotLine {
 // ---------------------------------------------------------------------------------------------
 // COCO.
 
-// Line starts of a text, to turn 1-based byte offsets into 1-based (line, column).
-class LineIndex {
- public:
-  explicit LineIndex(std::string_view text) : size_(text.size()) {
-    starts_.push_back(0);
-    for (std::size_t i = 0; i < text.size(); ++i) {
-      if (text[i] == '\n') starts_.push_back(i + 1);
-    }
-  }
-
-  std::pair<std::int64_t, std::int64_t> At(std::size_t offset) const {
-    const std::size_t pos = offset == 0 ? 0 : std::min(offset - 1, size_);
-    const auto it = std::upper_bound(starts_.begin(), starts_.end(), pos) - 1;
-    return {static_cast<std::int64_t>(it - starts_.begin()) + 1,
-            static_cast<std::int64_t>(pos - *it) + 1};
-  }
-
- private:
-  std::size_t size_;
-  std::vector<std::size_t> starts_;
-};
-
 // The frame of an image file name: the decimal digits that end its base name without
 // extension ("cam0/000123.jpg" -> 123).
 std::optional<FrameIndex> FrameFromFileName(const std::string& name) {
@@ -128,22 +106,22 @@ std::optional<FrameIndex> FrameFromFileName(const std::string& name) {
   return frame;
 }
 
-class CocoChecker : public JsonChecker {
+class CocoChecker : public json::Checker {
  public:
   CocoChecker(const CocoOptions& options, ImportedDetections* out)
       : options_(options), out_(out) {}
 
-  bool Record(const JsonValue& v, const std::string& path, FrameIndex* frame,
+  bool Record(const json::Value& v, const std::string& path, FrameIndex* frame,
               core::Detection2D* d) {
-    if (!ExpectKind(v, path, JsonValue::Kind::kObject)) return false;
-    const JsonValue* image_id = nullptr;
-    const JsonValue* frame_value = nullptr;
-    const JsonValue* keypoints = nullptr;
-    const JsonValue* score = nullptr;
-    const JsonValue* box = nullptr;
+    if (!ExpectKind(v, path, json::Value::Kind::kObject)) return false;
+    const json::Value* image_id = nullptr;
+    const json::Value* frame_value = nullptr;
+    const json::Value* keypoints = nullptr;
+    const json::Value* score = nullptr;
+    const json::Value* box = nullptr;
     std::string box_key;
-    const JsonValue* category = nullptr;
-    for (const JsonMember& m : v.members) {
+    const json::Value* category = nullptr;
+    for (const json::Member& m : v.members) {
       if (m.key == "image_id") image_id = m.value.get();
       if (m.key == "frame") frame_value = m.value.get();
       if (m.key == "keypoints") keypoints = m.value.get();
@@ -170,7 +148,7 @@ class CocoChecker : public JsonChecker {
                   frame)) {
         return false;
       }
-    } else if (image_id->kind == JsonValue::Kind::kString) {
+    } else if (image_id->kind == json::Value::Kind::kString) {
       const std::optional<FrameIndex> f = FrameFromFileName(image_id->string);
       if (!f.has_value()) {
         return Fail(*image_id, Join(path, "image_id"),
@@ -234,10 +212,10 @@ class CocoChecker : public JsonChecker {
     return true;
   }
 
-  bool Keypoints(const JsonValue& v, const std::string& path, core::Detection2D* d) {
-    if (!ExpectKind(v, path, JsonValue::Kind::kArray)) return false;
+  bool Keypoints(const json::Value& v, const std::string& path, core::Detection2D* d) {
+    if (!ExpectKind(v, path, json::Value::Kind::kArray)) return false;
     const std::size_t n = kCocoNumKeypoints;
-    const bool nested = !v.items.empty() && v.items.front().kind == JsonValue::Kind::kArray;
+    const bool nested = !v.items.empty() && v.items.front().kind == json::Value::Kind::kArray;
     if (!nested && v.items.size() != 3 * n) {
       return Fail(v, path,
                   "expected " + std::to_string(3 * n) + " numbers (17 COCO keypoints x, y, v) or " +
@@ -253,7 +231,7 @@ class CocoChecker : public JsonChecker {
     d->layout = core::KeypointLayoutId::kCoco17;
     d->keypoints.resize(n);
     for (std::size_t j = 0; j < n; ++j) {
-      const JsonValue* xyv[3];
+      const json::Value* xyv[3];
       std::string at[3];
       if (nested) {
         const std::string kp_path = Index(path, j);
@@ -366,23 +344,23 @@ ImportedDetections ReadCocoKeypoints(std::string_view text,
                                      const std::string& source,
                                      const CocoOptions& options) {
   ImportedDetections out;
-  const LineIndex lines(text);
-  auto fail = [&](const JsonValueError& e) {
+  const json::LineIndex lines(text);
+  auto fail = [&](const json::Error& e) {
     std::string where = source;
     if (e.column > 0) {
-      const auto [line, column] = lines.At(e.column);
-      where += ":" + std::to_string(line) + ":" + std::to_string(column);
+      const json::LineColumn at = lines.At(e.column);
+      where += ":" + std::to_string(at.line) + ":" + std::to_string(at.column);
     }
     throw ImportError(where + ": " + (e.path.empty() ? "" : e.path + ": ") + e.reason);
   };
-  JsonValueError error;
-  const std::optional<JsonValue> root = ParseJson(text, "file", 16, &error);
+  json::Error error;
+  const std::optional<json::Value> root = json::Parse(text, 16, &error);
   if (!root.has_value()) fail(error);
-  const JsonValue* records = &*root;
+  const json::Value* records = &*root;
   std::string path;
-  if (root->kind == JsonValue::Kind::kObject) {
+  if (root->kind == json::Value::Kind::kObject) {
     records = nullptr;
-    for (const JsonMember& m : root->members) {
+    for (const json::Member& m : root->members) {
       if (m.key == "annotations") records = m.value.get();
     }
     if (records == nullptr) {
@@ -392,20 +370,20 @@ ImportedDetections ReadCocoKeypoints(std::string_view text,
     }
     path = "annotations";
   }
-  if (records->kind != JsonValue::Kind::kArray) {
+  if (records->kind != json::Value::Kind::kArray) {
     fail({records->column, path,
-          std::string("expected an array of records, found ") + JsonKindName(records->kind)});
+          std::string("expected an array of records, found ") + json::KindName(records->kind)});
   }
   CocoChecker checker(options, &out);
   for (std::size_t i = 0; i < records->items.size(); ++i) {
     FrameIndex frame = 0;
     core::Detection2D d;
-    const JsonValue& record = records->items[i];
+    const json::Value& record = records->items[i];
     if (!checker.Record(record, path + "[" + std::to_string(i) + "]", &frame, &d)) {
       fail(checker.error());
     }
     out.by_frame[frame].push_back(std::move(d));
-    out.first_line.emplace(frame, lines.At(record.column).first);
+    out.first_line.emplace(frame, static_cast<std::int64_t>(lines.At(record.column).line));
     ++out.records;
   }
   return out;
@@ -418,4 +396,4 @@ Utime ImportFrameUtime(FrameIndex frame,
   return start_utime + datasets::FrameUtime(frame - first_frame_number, fps);
 }
 
-}  // namespace mvtrack::cli
+}  // namespace mvtrack::formats

@@ -16,14 +16,9 @@
 /// most once per frame, a camera's utime increases strictly from frame to frame, and (when the
 /// calibration is known) the camera exists and the image size matches.
 ///
-/// Why a hand-written reader and not yaml-cpp (which the project already uses for YAML and
-/// which reads JSON as YAML flow syntax): yaml-cpp is lenient where this format must be strict
-/// (it accepts single quotes, unquoted words, comments and `.inf`, and it does not reject a
-/// duplicate key: both are kept and a lookup returns the first), it reports positions in YAML
-/// terms, and it builds a node tree with several allocations per scalar: measured on 2000
-/// lines of 5 detections with 17 keypoints and a 128-value embedding each (39 MB), yaml-cpp
-/// 0.7 took 9.8 s and this reader 0.39 s (g++ -O2). The reader here has no dependency beyond
-/// the standard library, follows the JSON grammar exactly, and reports byte columns.
+/// JSON is read by lib/json (nlohmann-json's parser with byte positions); not yaml-cpp, which is
+/// lenient where this format must be strict (single quotes, unquoted words, comments, `.inf`,
+/// duplicate keys) and was measured 25 times slower (docs/DECISIONS.md "JSON").
 ///
 /// Free functions are stateless; JsonlDetectionsReader is a single-owner, single-threaded
 /// object.
@@ -40,7 +35,7 @@
 #include "core/detection.h"
 #include "core/types.h"
 
-namespace mvtrack::cli {
+namespace mvtrack::formats {
 
 /// Most detections one line may hold (the decode limit of the detections wire format, so
 /// every accepted line can be replayed).
@@ -142,4 +137,4 @@ class JsonlDetectionsReader {
   std::map<CameraId, std::pair<Utime, std::int64_t>> last_utime_;  // camera -> (utime, line)
 };
 
-}  // namespace mvtrack::cli
+}  // namespace mvtrack::formats

@@ -1,4 +1,4 @@
-#include "mvtrack/tracks_io.h"
+#include "formats/tracks_io.h"
 
 #include <algorithm>
 #include <array>
@@ -15,7 +15,7 @@
 #include "transport/log_io.h"
 #include "transport/tracks_jsonl.h"
 
-namespace mvtrack::cli {
+namespace mvtrack::formats {
 namespace {
 
 // The first 4 bytes of every LCM log event (lcm/eventlog.c), big-endian 0xEDA1DA01.
@@ -202,4 +202,4 @@ TrackFile ReadTrackFile(const std::string& path) {
   return file;
 }
 
-}  // namespace mvtrack::cli
+}  // namespace mvtrack::formats

@@ -25,7 +25,7 @@ namespace mvtrack::transport {
 class LogWriter;
 }  // namespace mvtrack::transport
 
-namespace mvtrack::cli {
+namespace mvtrack::formats {
 
 /// File names inside the output directory.
 inline constexpr char kConvertLogFile[] = "detections.lcmlog";
@@ -142,4 +142,4 @@ std::string SequenceToTracksJsonl(const eval::EvalSequence& sequence,
 /// single-quoted).
 std::string ShellQuoteCommand(const std::vector<std::string>& args);
 
-}  // namespace mvtrack::cli
+}  // namespace mvtrack::formats

@@ -1,4 +1,4 @@
-#include "mvtrack/convert_output.h"
+#include "formats/convert_output.h"
 
 #include <algorithm>
 #include <fstream>
@@ -12,7 +12,7 @@
 #include "transport/log_io.h"
 #include "transport/tracks_jsonl.h"
 
-namespace mvtrack::cli {
+namespace mvtrack::formats {
 namespace {
 
 const char* const kAllOutputFiles[] = {kConvertLogFile,
@@ -219,4 +219,4 @@ std::string ShellQuoteCommand(const std::vector<std::string>& args) {
   return out;
 }
 
-}  // namespace mvtrack::cli
+}  // namespace mvtrack::formats

@@ -23,7 +23,7 @@
 #include "core/detection.h"
 #include "core/types.h"
 
-namespace mvtrack::cli {
+namespace mvtrack::formats {
 
 /// Bad input in a detection file. what() is "FILE:LINE: reason" or "FILE:LINE:COLUMN: PATH:
 /// reason".
@@ -108,4 +108,4 @@ Utime ImportFrameUtime(FrameIndex frame,
                        double fps,
                        Utime start_utime);
 
-}  // namespace mvtrack::cli
+}  // namespace mvtrack::formats

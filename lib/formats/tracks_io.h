@@ -24,7 +24,7 @@
 #include "core/keypoint_layout.h"
 #include "tracker/types.h"
 
-namespace mvtrack::cli {
+namespace mvtrack::formats {
 
 /// A track output could not be read: what(), for example
 /// "out.jsonl:12: column 40: unknown key \"poss\"" or
@@ -83,4 +83,4 @@ TrackFile ReadTrackFile(const std::string& path);
 /// "coco17", "body25", ..., or "none" (core::GetKeypointLayout(layout).name, "none" for kNone).
 std::string LayoutName(core::KeypointLayoutId layout);
 
-}  // namespace mvtrack::cli
+}  // namespace mvtrack::formats
