@@ -18,6 +18,8 @@ packages=(
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev
   # Java types jar and lcm-spy (jchart2d draws its plots)
   default-jdk-headless libjchart2d-java
+  # format check (CTest format/clang_format) and the tidy preset, pinned to Debian 12's LLVM 14
+  clang-format-14 clang-tidy-14
   # tests (chromium: mvtrack web's page in a real browser, headless)
   catch2 python3 chromium curl python3-websocket
   # Python examples: a virtualenv with PyPI's lcm (tests/python)
