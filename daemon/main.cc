@@ -3,9 +3,9 @@
 // LcmRunner, FrameSynchronizer) on top of lib/pipeline. See docs/DAEMON.md.
 
 #include <signal.h>
-#include <sys/resource.h>
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
+#include <sys/resource.h>
 #include <systemd/sd-daemon.h>
 #include <time.h>
 
@@ -79,7 +79,8 @@ const char kHelp[] =
     "                      (replayable with `mvtrack replay`)\n"
     "  --tracks-jsonl FILE also write every published frame as canonical tracks JSONL\n"
     "  --workers N         override threads.workers (0 = one per core)\n"
-    "  --log-level LEVEL   override logging.level (trace, debug, info, warn, error, critical, off)\n"
+    "  --log-level LEVEL   override logging.level (trace, debug, info, warn, error, critical, "
+    "off)\n"
     "  --version           print the version and exit\n"
     "\n"
     "Signals: SIGINT/SIGTERM stop the input, finish the open windows, publish every remaining\n"
@@ -261,46 +262,84 @@ void LogSummary(const mvtrack::service::ServiceCounters& c, double seconds) {
     far_future += cam.far_future;
     missed += cam.missed;
   }
-  spdlog::info("summary: messages={} foreign={} decode_errors={} ({}) channel_mismatches={} "
-               "image_size_mismatches={}",
-               c.messages, c.foreign_messages, c.decode_errors, Counts(c.decode_errors_by_kind),
-               c.channel_mismatches, c.image_size_mismatches);
-  spdlog::info("summary: camera_frames={} unknown_camera={} backwards={} duplicates={} "
-               "far_future={} late={} flood={} clock_offset={} camera_restarts={} lost={} "
-               "resyncs={} submitted={} gate_rejected={}",
-               c.camera_frames_decoded, c.sync.unknown_camera, backwards, duplicates, far_future,
-               late, flood, clock_offset, camera_restarts, lost, c.stream_restarts, c.submitted,
-               c.gate_rejected);
-  spdlog::info("summary: frames_released={} complete={} by_deadline={} by_bound={} missed={} "
-               "queue_dropped={} kernel_drops={}",
-               c.sync.frames_released, c.sync.released_complete, c.sync.released_by_deadline,
-               c.sync.released_by_bound, missed, c.pipeline.camera_frames_dropped,
-               c.kernel_drops);
+  spdlog::info(
+      "summary: messages={} foreign={} decode_errors={} ({}) channel_mismatches={} "
+      "image_size_mismatches={}",
+      c.messages,
+      c.foreign_messages,
+      c.decode_errors,
+      Counts(c.decode_errors_by_kind),
+      c.channel_mismatches,
+      c.image_size_mismatches);
+  spdlog::info(
+      "summary: camera_frames={} unknown_camera={} backwards={} duplicates={} "
+      "far_future={} late={} flood={} clock_offset={} camera_restarts={} lost={} "
+      "resyncs={} submitted={} gate_rejected={}",
+      c.camera_frames_decoded,
+      c.sync.unknown_camera,
+      backwards,
+      duplicates,
+      far_future,
+      late,
+      flood,
+      clock_offset,
+      camera_restarts,
+      lost,
+      c.stream_restarts,
+      c.submitted,
+      c.gate_rejected);
+  spdlog::info(
+      "summary: frames_released={} complete={} by_deadline={} by_bound={} missed={} "
+      "queue_dropped={} kernel_drops={}",
+      c.sync.frames_released,
+      c.sync.released_complete,
+      c.sync.released_by_deadline,
+      c.sync.released_by_bound,
+      missed,
+      c.pipeline.camera_frames_dropped,
+      c.kernel_drops);
   spdlog::info("summary: detections used={} rejected={} repaired={} filtered={}",
-               st.detections_used, st.detections_rejected, st.detections_repaired,
+               st.detections_used,
+               st.detections_rejected,
+               st.detections_repaired,
                st.detections_filtered);
   std::vector<std::int64_t> e2e = c.receive_to_publish_us;
   const std::size_t samples = e2e.size();
   const std::int64_t e2e_max = e2e.empty() ? 0 : *std::max_element(e2e.begin(), e2e.end());
-  spdlog::info("summary: receive_to_publish_us p50={} p99={} max={} samples={} "
-               "(frames published by a flush, not sampled: {})",
-               mvtrack::service::NearestRankPercentile(&e2e, 0.5),
-               mvtrack::service::NearestRankPercentile(&e2e, 0.99), e2e_max, samples,
-               c.frames_published_by_flush);
-  spdlog::info("summary: published_frames={} status_messages={} windows={} windows_failed={} "
-               "tracks_born={} max_latency_us={} reloads={} idle_flushes={} suppressed_warnings={} "
-               "seconds={:.3f} max_rss_kb={}",
-               c.frames_published, c.status_published, st.windows_processed,
-               c.pipeline.windows_failed, st.tracks_born, c.max_latency_us, c.reloads,
-               c.idle_flushes, c.log_suppressed, seconds, MaxRssKb());
+  spdlog::info(
+      "summary: receive_to_publish_us p50={} p99={} max={} samples={} "
+      "(frames published by a flush, not sampled: {})",
+      mvtrack::service::NearestRankPercentile(&e2e, 0.5),
+      mvtrack::service::NearestRankPercentile(&e2e, 0.99),
+      e2e_max,
+      samples,
+      c.frames_published_by_flush);
+  spdlog::info(
+      "summary: published_frames={} status_messages={} windows={} windows_failed={} "
+      "tracks_born={} max_latency_us={} reloads={} idle_flushes={} suppressed_warnings={} "
+      "seconds={:.3f} max_rss_kb={}",
+      c.frames_published,
+      c.status_published,
+      st.windows_processed,
+      c.pipeline.windows_failed,
+      st.tracks_born,
+      c.max_latency_us,
+      c.reloads,
+      c.idle_flushes,
+      c.log_suppressed,
+      seconds,
+      MaxRssKb());
 }
 
 int Run(const Options& options) {
   DaemonConfig config = LoadConfig(options);
   spdlog::set_level(spdlog::level::from_str(config.log_level));
-  spdlog::info("mvtrackd {} starting: {} camera(s), {} worker(s)", MVTRACK_VERSION,
-               config.cameras.size(), config.EffectiveWorkers());
-  spdlog::info("effective configuration (hash {}):\n{}", mvtrack::service::DaemonConfigHash(config),
+  spdlog::info("mvtrackd {} starting: {} camera(s), {} worker(s)",
+               MVTRACK_VERSION,
+               config.cameras.size(),
+               config.EffectiveWorkers());
+  spdlog::info("effective configuration (hash {}):\n{}",
+               mvtrack::service::DaemonConfigHash(config),
                mvtrack::service::DaemonConfigToYaml(config));
   for (const std::string& w : mvtrack::config::CalibrationLoadWarnings(config.cameras)) {
     spdlog::warn("{}: {}", config.calibration_path, w);
@@ -385,10 +424,12 @@ int Run(const Options& options) {
       spdlog::info("{}", rb.message);
     }
   }
-  spdlog::info("input: LCM holds up to {} message(s) per subscription while the tracker is busy "
-               "(input.lcm_queue_capacity)",
-               mvtrack::service::LcmQueueCapacity(config));
-  spdlog::info("input {}, output {}{}", config.input_url,
+  spdlog::info(
+      "input: LCM holds up to {} message(s) per subscription while the tracker is busy "
+      "(input.lcm_queue_capacity)",
+      mvtrack::service::LcmQueueCapacity(config));
+  spdlog::info("input {}, output {}{}",
+               config.input_url,
                runner->has_output() ? runner->output_url() : std::string("none (no LCM output)"),
                options.record_path.empty() ? "" : ", recording to " + options.record_path);
 
@@ -425,8 +466,10 @@ int Run(const Options& options) {
           std::string notes;
           if (service->Reload(next, &notes)) {
             spdlog::set_level(spdlog::level::from_str(next.log_level));
-            spdlog::info("configuration reloaded from {} (hash {}){}", options.config_path,
-                         service->config_hash(), notes.empty() ? "" : "; " + notes);
+            spdlog::info("configuration reloaded from {} (hash {}){}",
+                         options.config_path,
+                         service->config_hash(),
+                         notes.empty() ? "" : "; " + notes);
           } else {
             spdlog::error("reload refused, keeping the running configuration: {}", notes);
           }
@@ -463,11 +506,16 @@ int Run(const Options& options) {
   // A log that gave the tracker nothing: the run could not do its job (a live daemon waits).
   if (options.input_log && counters.submitted == 0) {
     std::string ids;
-    for (const auto& cam : config.cameras) ids += (ids.empty() ? "" : ", ") + std::to_string(cam.id);
-    spdlog::error("{}: no camera-frame was tracked ({} message(s), {} of unknown cameras, {} "
-                  "undecodable; the calibration's cameras: {})",
-                  *options.input_log, counters.messages, counters.sync.unknown_camera,
-                  counters.decode_errors, ids);
+    for (const auto& cam : config.cameras)
+      ids += (ids.empty() ? "" : ", ") + std::to_string(cam.id);
+    spdlog::error(
+        "{}: no camera-frame was tracked ({} message(s), {} of unknown cameras, {} "
+        "undecodable; the calibration's cameras: {})",
+        *options.input_log,
+        counters.messages,
+        counters.sync.unknown_camera,
+        counters.decode_errors,
+        ids);
     exit_code = 1;
   }
   spdlog::info("mvtrackd stopped (exit {})", exit_code);

@@ -22,7 +22,7 @@ double MergedDistance(ClusteringMethod method, double d_iq, double d_jq) {
     case ClusteringMethod::kPdnc:
       if (std::isnan(d_iq)) return d_jq;  // ∅ and x -> x (x may be ∅ too)
       if (std::isnan(d_jq)) return d_iq;
-      return std::max(d_iq, d_jq);        // both calculable; max with ∞ is ∞
+      return std::max(d_iq, d_jq);  // both calculable; max with ∞ is ∞
     case ClusteringMethod::kCompleteLinkageEmptyAsZero:
     case ClusteringMethod::kCompleteLinkageEmptyAsUpper:
       return std::max(d_iq, d_jq);

@@ -25,7 +25,8 @@ bool Usable(const core::Observation2D& o, std::size_t k, double min_confidence) 
 std::optional<double> FrameDistance(const core::Observation2D& a,
                                     const core::Observation2D& b,
                                     const Mat3& f_a_to_b,
-                                    double min_confidence, int max_points) {
+                                    double min_confidence,
+                                    int max_points) {
   MVTRACK_DCHECK(a.scale_px > 0.0 && b.scale_px > 0.0);
   std::size_t num_points = std::min(a.points_px.size(), b.points_px.size());
   if (max_points > 0) num_points = std::min(num_points, static_cast<std::size_t>(max_points));
@@ -33,8 +34,8 @@ std::optional<double> FrameDistance(const core::Observation2D& a,
   int used = 0;
   for (std::size_t k = 0; k < num_points; ++k) {
     if (!Usable(a, k, min_confidence) || !Usable(b, k, min_confidence)) continue;
-    const double d = geometry::NormalizedEpipolarDistance(a.points_px[k], a.scale_px,
-                                                          b.points_px[k], b.scale_px, f_a_to_b);
+    const double d = geometry::NormalizedEpipolarDistance(
+        a.points_px[k], a.scale_px, b.points_px[k], b.scale_px, f_a_to_b);
     if (!std::isfinite(d)) continue;
     sum += d;
     ++used;
@@ -204,8 +205,8 @@ class AllPairs {
 
   /// Eq. 3-4 for a in group g and b in group h (different cameras); lines_a_ / lines_b_ hold
   /// the lines of groups g / h. Early exit as documented for ComputeDistanceMatrixForClustering.
-  TrackletDistance CrossCamera(std::size_t g, std::size_t a, std::size_t h, std::size_t b,
-                               double cutoff) const {
+  TrackletDistance CrossCamera(
+      std::size_t g, std::size_t a, std::size_t h, std::size_t b, double cutoff) const {
     const std::size_t ea = frame_begin_[a + 1], eb = frame_begin_[b + 1];
     if (frame_begin_[a] == ea || frame_begin_[b] == eb ||
         frames_[ea - 1] < frames_[frame_begin_[b]] || frames_[eb - 1] < frames_[frame_begin_[a]]) {
@@ -216,8 +217,8 @@ class AllPairs {
                                std::max(frames_[frame_begin_[a]], frames_[frame_begin_[b]]) + 1;
     const double bound_frames =
         std::isfinite(cutoff)
-            ? static_cast<double>(std::min({static_cast<std::size_t>(overlap),
-                                            ea - frame_begin_[a], eb - frame_begin_[b]}))
+            ? static_cast<double>(std::min(
+                  {static_cast<std::size_t>(overlap), ea - frame_begin_[a], eb - frame_begin_[b]}))
             : 0.0;
     // A relative margin far above rounding keeps "proven >= cutoff" true for the exact mean.
     const double stop_sum = cutoff * bound_frames * (1.0 + 1e-9);
@@ -260,15 +261,15 @@ class AllPairs {
         ++used_frames;
         if (bound_frames > 0.0 && sum >= stop_sum) {
           // Proven: mean >= sum / bound_frames >= cutoff. Report that lower bound.
-          return TrackletDistance::Value(std::min(std::max(cutoff, sum / bound_frames),
-                                                  std::numeric_limits<double>::max()));
+          return TrackletDistance::Value(
+              std::min(std::max(cutoff, sum / bound_frames), std::numeric_limits<double>::max()));
         }
       }
       ++ia;
       ++ib;
     }
     if (used_frames == 0) return TrackletDistance::Empty();  // no common usable point
-    return MeanValue(sum, used_frames);  // Eq. 4, mean(S)
+    return MeanValue(sum, used_frames);                      // Eq. 4, mean(S)
   }
 
   const geometry::CameraRig& rig_;
@@ -279,10 +280,10 @@ class AllPairs {
   std::vector<std::size_t> num_points_;   ///< points per observation slot of a flat tracklet
   std::vector<FrameIndex> frames_;
   std::vector<double> inv_scale_;
-  std::vector<double> px_, py_;           ///< px_ is NaN for an unusable point
-  std::vector<std::size_t> group_begin_;  ///< flat tracklet ranges of one camera each (+ end)
-  std::vector<int> group_camera_;         ///< rig index of each group
-  std::vector<double> lines_a_, lines_b_; ///< normalized lines of the two current groups
+  std::vector<double> px_, py_;            ///< px_ is NaN for an unusable point
+  std::vector<std::size_t> group_begin_;   ///< flat tracklet ranges of one camera each (+ end)
+  std::vector<int> group_camera_;          ///< rig index of each group
+  std::vector<double> lines_a_, lines_b_;  ///< normalized lines of the two current groups
 };
 
 }  // namespace
@@ -348,8 +349,11 @@ TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
       ++ib;
     } else {
       if (same_camera) return TrackletDistance::Infinite();  // Eq. 4, c_a = c_b with overlap
-      if (auto d = FrameDistance(a.observations[ia], b.observations[ib], f_a_to_b,
-                                 options.min_confidence, options.num_points)) {
+      if (auto d = FrameDistance(a.observations[ia],
+                                 b.observations[ib],
+                                 f_a_to_b,
+                                 options.min_confidence,
+                                 options.num_points)) {
         sum += *d;
         ++used_frames;
       }
@@ -358,7 +362,7 @@ TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
     }
   }
   if (used_frames == 0) return TrackletDistance::Empty();  // no common (usable) frame
-  return MeanValue(sum, used_frames);  // Eq. 4, mean(S)
+  return MeanValue(sum, used_frames);                      // Eq. 4, mean(S)
 }
 
 DistanceMatrix ComputeDistanceMatrix(const geometry::CameraRig& rig,

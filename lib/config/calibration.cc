@@ -64,8 +64,20 @@ geometry::CameraModel MinimalCamera(CameraId id) {
 geometry::CameraModel ParseCamera(const NodeRef& node,
                                   std::optional<std::string>* name,
                                   std::optional<NodeRef>* id_node) {
-  const MapRef map(node, {"id", "name", "image_size", "K", "fx", "fy", "cx", "cy", "skew",
-                          "distortion", "R", "rvec", "t"});
+  const MapRef map(node,
+                   {"id",
+                    "name",
+                    "image_size",
+                    "K",
+                    "fx",
+                    "fy",
+                    "cx",
+                    "cy",
+                    "skew",
+                    "distortion",
+                    "R",
+                    "rvec",
+                    "t"});
   geometry::CameraModel camera;
   *id_node = map.Get("id");
   camera.id = GetInt(**id_node, 0, std::numeric_limits<CameraId>::max());
@@ -79,8 +91,9 @@ geometry::CameraModel ParseCamera(const NodeRef& node,
   if (map.Has("K")) {
     for (const std::string& key : kIntrinsicScalars) {
       if (map.Has(key)) {
-        map.KeyRef(key).Fail("give the intrinsics either as 'K' or as 'fx', 'fy', 'cx', 'cy' "
-                             "(+ 'skew'), not both");
+        map.KeyRef(key).Fail(
+            "give the intrinsics either as 'K' or as 'fx', 'fy', 'cx', 'cy' "
+            "(+ 'skew'), not both");
       }
     }
     const NodeRef k_node = map.Get("K");
@@ -89,7 +102,8 @@ geometry::CameraModel ParseCamera(const NodeRef& node,
     probe.K = camera.K;
     CheckPart(probe, k_node, " (K = [[fx, skew, cx], [0, fy, cy], [0, 0, 1]])");
   } else {
-    const bool any_scalar = std::any_of(kIntrinsicScalars.begin(), kIntrinsicScalars.end(),
+    const bool any_scalar = std::any_of(kIntrinsicScalars.begin(),
+                                        kIntrinsicScalars.end(),
                                         [&](const std::string& key) { return map.Has(key); });
     if (!any_scalar) {
       map.ref().Fail("missing intrinsics: give 'K' or 'fx', 'fy', 'cx', 'cy' (+ 'skew')");
@@ -118,7 +132,8 @@ geometry::CameraModel ParseCamera(const NodeRef& node,
     camera.cam_from_world.rotation = GetMat3(rotation_node);
     geometry::CameraModel probe = MinimalCamera(camera.id);
     probe.cam_from_world.rotation = camera.cam_from_world.rotation;
-    CheckPart(probe, rotation_node,
+    CheckPart(probe,
+              rotation_node,
               " (write R with at least 7 significant digits per entry, or give 'rvec')");
   } else {
     camera.cam_from_world.rotation = geometry::RotationFromRodrigues(GetVec3(rotation_node));
@@ -156,8 +171,8 @@ namespace internal {
 
 CalibrationDocument ParseCalibrationNode(const NodeRef& root) {
   if (root.IsNull()) {
-    root.Fail("empty calibration (expected a map with 'format: " +
-              std::string(kCalibrationFormat) + "' and 'cameras')");
+    root.Fail("empty calibration (expected a map with 'format: " + std::string(kCalibrationFormat) +
+              "' and 'cameras')");
   }
   const MapRef map(root, {"format", "units", "cameras"});
   const NodeRef format = map.Get("format");
@@ -182,9 +197,9 @@ CalibrationDocument ParseCalibrationNode(const NodeRef& root) {
     geometry::CameraModel camera = ParseCamera(cameras[i], &name, &id_node);
     const auto [it, inserted] = index_of_id.emplace(camera.id, i);
     if (!inserted) {
-      id_node->Fail("duplicate camera id " + std::to_string(camera.id) +
-                                " (also used by " + cameras[it->second].path() + " at line " +
-                                std::to_string(cameras[it->second].line()) + ")");
+      id_node->Fail("duplicate camera id " + std::to_string(camera.id) + " (also used by " +
+                    cameras[it->second].path() + " at line " +
+                    std::to_string(cameras[it->second].line()) + ")");
     }
     if (name.has_value()) document.names.emplace(camera.id, std::move(*name));
     document.cameras.push_back(std::move(camera));
@@ -201,8 +216,11 @@ CalibrationDocument ParseCalibrationDocument(std::string_view text,
     return internal::ParseCalibrationNode(root);
   } catch (const YAML::Exception& e) {
     // Backstop: the helpers check types before touching yaml-cpp's throwing accessors.
-    throw ConfigError(source_name, e.mark.is_null() ? 0 : e.mark.line + 1,
-                      e.mark.is_null() ? 0 : e.mark.column + 1, "", e.msg);
+    throw ConfigError(source_name,
+                      e.mark.is_null() ? 0 : e.mark.line + 1,
+                      e.mark.is_null() ? 0 : e.mark.column + 1,
+                      "",
+                      e.msg);
   }
 }
 
@@ -241,8 +259,9 @@ std::string CalibrationToYaml(const std::vector<geometry::CameraModel>& cameras,
     out += "    K: ";
     AppendMatrix(&out, c.K);
     out += "\n    distortion: ";
-    AppendVector(&out, {c.distortion.k1, c.distortion.k2, c.distortion.p1, c.distortion.p2,
-                        c.distortion.k3});
+    AppendVector(
+        &out,
+        {c.distortion.k1, c.distortion.k2, c.distortion.p1, c.distortion.p2, c.distortion.k3});
     out += "\n    R: ";
     AppendMatrix(&out, c.cam_from_world.rotation);
     out += "\n    t: ";
@@ -266,7 +285,10 @@ void SaveCalibration(const std::string& path,
     if (!cameras[i].Validate(&why)) throw ConfigError(path, 0, 0, key_path, why);
     const auto [it, inserted] = index_of_id.emplace(cameras[i].id, i);
     if (!inserted) {
-      throw ConfigError(path, 0, 0, key_path + ".id",
+      throw ConfigError(path,
+                        0,
+                        0,
+                        key_path + ".id",
                         "duplicate camera id " + std::to_string(cameras[i].id) +
                             " (also used by cameras[" + std::to_string(it->second) + "])");
     }

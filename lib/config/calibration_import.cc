@@ -16,9 +16,9 @@
 #include <utility>
 
 #include "config/internal/yaml_node.h"
-#include "json/json.h"
 #include "datasets/calibration_files.h"
 #include "datasets/dataset.h"
+#include "json/json.h"
 
 namespace mvtrack::config {
 namespace {
@@ -278,8 +278,8 @@ class VoxelPoseReader : public json::Checker {
 
   [[noreturn]] void Throw(const json::Error& e) const {
     const json::LineColumn at = lines_.At(e.column);
-    throw ConfigError(path_, static_cast<int>(at.line), static_cast<int>(at.column), e.path,
-                      e.reason);
+    throw ConfigError(
+        path_, static_cast<int>(at.line), static_cast<int>(at.column), e.path, e.reason);
   }
   [[noreturn]] void Throw() const { Throw(error()); }
   [[noreturn]] void Throw(const json::Value& at, const std::string& key, std::string reason) {
@@ -317,7 +317,8 @@ class VoxelPoseReader : public json::Checker {
       const std::string row_key = Index(key, r);
       if (!ExpectArray(v.items[r], row_key, 3, 0, "a row of 3")) Throw();
       for (std::size_t c = 0; c < 3; ++c) {
-        m(static_cast<int>(r), static_cast<int>(c)) = Number(v.items[r].items[c], Index(row_key, c));
+        m(static_cast<int>(r), static_cast<int>(c)) =
+            Number(v.items[r].items[c], Index(row_key, c));
       }
     }
     return m;
@@ -469,12 +470,15 @@ ImportedCalibration ImportVoxelPose(const std::string& path, const ImageSize& im
     CameraId id = -1;
     const auto [ptr, ec] = std::from_chars(key.data(), key.data() + key.size(), id);
     if (ec != std::errc() || ptr != key.data() + key.size() || id < 0) {
-      reader.Throw(json::Error{member.key_column, key,
-                               "camera key '" + key + "' is not a non-negative integer"});
+      reader.Throw(json::Error{
+          member.key_column, key, "camera key '" + key + "' is not a non-negative integer"});
     }
     std::map<std::string, const json::Value*> cam;
-    if (!reader.Members(cam_node, key, {"R", "T", "fx", "fy", "cx", "cy", "k", "p"},
-                        {"R", "T", "fx", "fy", "cx", "cy"}, &cam)) {
+    if (!reader.Members(cam_node,
+                        key,
+                        {"R", "T", "fx", "fy", "cx", "cy", "k", "p"},
+                        {"R", "T", "fx", "fy", "cx", "cy"},
+                        &cam)) {
       reader.Throw();
     }
     auto field = [&](const char* name) { return json::Checker::Join(key, name); };
@@ -482,8 +486,10 @@ ImportedCalibration ImportVoxelPose(const std::string& path, const ImageSize& im
     c.id = id;
     c.width_px = image_size.width_px;
     c.height_px = image_size.height_px;
-    c.K << reader.Number(*cam.at("fx"), field("fx")), 0.0, reader.Number(*cam.at("cx"), field("cx")),  //
-        0.0, reader.Number(*cam.at("fy"), field("fy")), reader.Number(*cam.at("cy"), field("cy")),     //
+    c.K << reader.Number(*cam.at("fx"), field("fx")), 0.0,
+        reader.Number(*cam.at("cx"), field("cx")),  //
+        0.0, reader.Number(*cam.at("fy"), field("fy")),
+        reader.Number(*cam.at("cy"), field("cy")),  //
         0.0, 0.0, 1.0;
     if (cam.count("k") != 0) {
       const std::vector<double> v = reader.Column(*cam.at("k"), field("k"), 3);
@@ -505,7 +511,8 @@ ImportedCalibration ImportVoxelPose(const std::string& path, const ImageSize& im
     c.cam_from_world.translation = -(R * centre_m);
     std::string why;
     if (!c.Validate(&why)) reader.Throw(cam_node, key, why);
-    if (!by_id.emplace(id, c).second) reader.Throw(cam_node, key, "camera " + key + " appears twice");
+    if (!by_id.emplace(id, c).second)
+      reader.Throw(cam_node, key, "camera " + key + " appears twice");
   }
   if (by_id.empty()) reader.Throw(*root, "", "no cameras");
   for (auto& [id, camera] : by_id) out.document.cameras.push_back(camera);

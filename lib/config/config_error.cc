@@ -4,8 +4,8 @@
 
 namespace mvtrack::config {
 
-ConfigError::ConfigError(std::string file, int line, int column, std::string key_path,
-                         std::string reason)
+ConfigError::ConfigError(
+    std::string file, int line, int column, std::string key_path, std::string reason)
     : std::runtime_error(Format(file, line, column, key_path, reason)),
       file_(std::move(file)),
       line_(line),
@@ -13,8 +13,11 @@ ConfigError::ConfigError(std::string file, int line, int column, std::string key
       key_path_(std::move(key_path)),
       reason_(std::move(reason)) {}
 
-std::string ConfigError::Format(const std::string& file, int line, int column,
-                                const std::string& key_path, const std::string& reason) {
+std::string ConfigError::Format(const std::string& file,
+                                int line,
+                                int column,
+                                const std::string& key_path,
+                                const std::string& reason) {
   std::string text = file.empty() ? std::string("<input>") : file;
   if (line > 0) {
     text += ':' + std::to_string(line);

@@ -34,8 +34,11 @@ class ConfigError : public std::runtime_error {
   const std::string& reason() const { return reason_; }
 
   /// Formats "file[:line[:column]]: [key_path: ]reason" (the text of what()).
-  static std::string Format(const std::string& file, int line, int column,
-                            const std::string& key_path, const std::string& reason);
+  static std::string Format(const std::string& file,
+                            int line,
+                            int column,
+                            const std::string& key_path,
+                            const std::string& reason);
 
  private:
   std::string file_;

@@ -40,8 +40,8 @@ constexpr std::array<std::pair<tracker::BoxPoint, std::string_view>, 3> kBoxPoin
 }};
 
 // The sub-maps of `tracker:`, in output order.
-const std::vector<std::string> kSections = {"sort", "association", "triangulation", "linking",
-                                             "refinement"};
+const std::vector<std::string> kSections = {
+    "sort", "association", "triangulation", "linking", "refinement"};
 
 // One option: its sub-map ("" = directly under `tracker:`), its key, how to read it from YAML
 // (with the range checks of the owning struct's Validate, so errors point at the key) and how
@@ -57,29 +57,37 @@ struct Field {
 // `access` is a generic lambda returning a reference to the option in a (const) TrackerOptions.
 template <typename Access>
 Field IntField(std::string section, std::string key, Access access, int min, int max) {
-  return Field{std::move(section), std::move(key),
+  return Field{std::move(section),
+               std::move(key),
                [=](const NodeRef& node, TrackerOptions* o) { access(*o) = GetInt(node, min, max); },
                [=](const TrackerOptions& o) { return std::to_string(access(o)); }};
 }
 
 template <typename Access>
 Field Int64Field(std::string section, std::string key, Access access, std::int64_t min) {
-  return Field{std::move(section), std::move(key),
+  return Field{std::move(section),
+               std::move(key),
                [=](const NodeRef& node, TrackerOptions* o) { access(*o) = GetInt64(node, min); },
                [=](const TrackerOptions& o) { return std::to_string(access(o)); }};
 }
 
 template <typename Access>
 Field DoubleField(std::string section, std::string key, Access access, DoubleRange range) {
-  return Field{std::move(section), std::move(key),
+  return Field{std::move(section),
+               std::move(key),
                [=](const NodeRef& node, TrackerOptions* o) { access(*o) = GetDouble(node, range); },
                [=](const TrackerOptions& o) { return FormatDouble(access(o)); }};
 }
 
 template <typename Enum, typename Access, typename FromName, typename ToName>
-Field EnumField(std::string section, std::string key, Access access, FromName from_name,
-                ToName to_name, std::vector<std::string> names) {
-  return Field{std::move(section), std::move(key),
+Field EnumField(std::string section,
+                std::string key,
+                Access access,
+                FromName from_name,
+                ToName to_name,
+                std::vector<std::string> names) {
+  return Field{std::move(section),
+               std::move(key),
                [=](const NodeRef& node, TrackerOptions* o) {
                  access(*o) = GetEnum<Enum>(node, from_name, names);
                },
@@ -90,7 +98,8 @@ Field EnumField(std::string section, std::string key, Access access, FromName fr
 template <typename Access>
 Field BoolField(std::string section, std::string key, Access access) {
   static const std::vector<std::string> kNames = {"true", "false"};
-  return Field{std::move(section), std::move(key),
+  return Field{std::move(section),
+               std::move(key),
                [=](const NodeRef& node, TrackerOptions* o) {
                  access(*o) = GetEnum<bool>(
                      node,
@@ -130,9 +139,9 @@ std::vector<std::string> ClusteringMethodNames() {
 
 std::vector<std::string> TriangulationMethodNames() {
   std::vector<std::string> names;
-  for (const triangulation::TriangulationMethod m :
-       {triangulation::TriangulationMethod::kCmmt, triangulation::TriangulationMethod::kDlt,
-        triangulation::TriangulationMethod::kRansac}) {
+  for (const triangulation::TriangulationMethod m : {triangulation::TriangulationMethod::kCmmt,
+                                                     triangulation::TriangulationMethod::kDlt,
+                                                     triangulation::TriangulationMethod::kRansac}) {
     names.emplace_back(triangulation::TriangulationMethodName(m));
   }
   return names;
@@ -143,185 +152,310 @@ std::vector<Field> MakeFields() {
   const DoubleRange unit = DoubleRange::Closed(0.0, 1.0);
   std::vector<Field> f;
   // tracker (TrackerOptions::Validate; cross-field rules are left to Validate itself).
-  f.push_back(EnumField<tracker::InputMode>(
-      "", "mode", [](auto& o) -> auto& { return o.mode; }, InputModeFromName, InputModeName,
-      {"boxes", "poses"}));
+  f.push_back(EnumField<tracker::InputMode>("",
+                                            "mode",
+                                            [](auto& o) -> auto& { return o.mode; },
+                                            InputModeFromName,
+                                            InputModeName,
+                                            {"boxes", "poses"}));
   f.push_back(EnumField<core::KeypointLayoutId>(
-      "", "layout", [](auto& o) -> auto& { return o.layout; },
-      [](std::string_view name) { return core::KeypointLayoutFromName(name); }, LayoutName,
+      "",
+      "layout",
+      [](auto& o) -> auto& { return o.layout; },
+      [](std::string_view name) { return core::KeypointLayoutFromName(name); },
+      LayoutName,
       LayoutNames()));
-  f.push_back(
-      IntField("", "window_size", [](auto& o) -> auto& { return o.window_size; }, 2, 10000));
-  f.push_back(
-      IntField("", "window_step", [](auto& o) -> auto& { return o.window_step; }, 1, 10000));
-  f.push_back(DoubleField("", "reference_fps", [](auto& o) -> auto& { return o.reference_fps; },
-                          DoubleRange::Closed(0.0, 1000.0)));
-  f.push_back(EnumField<tracker::BoxPoint>(
-      "", "box_point", [](auto& o) -> auto& { return o.box_point; }, BoxPointFromName,
-      BoxPointName, {"center", "bottom_center", "center_ends"}));
-  f.push_back(BoolField("", "box_ends_in_association",
-                        [](auto& o) -> auto& { return o.box_ends_in_association; }));
-  f.push_back(DoubleField("", "box_ends_max_elevation_deg",
-                          [](auto& o) -> auto& { return o.box_ends_max_elevation_deg; },
-                          DoubleRange::Closed(0.0, 90.0)));
-  f.push_back(DoubleField("", "ground_height_m", [](auto& o) -> auto& { return o.ground_height_m; },
-                          DoubleRange::Any()));
-  f.push_back(DoubleField("", "min_detection_score",
-                          [](auto& o) -> auto& { return o.min_detection_score; }, unit));
-  f.push_back(DoubleField("", "min_keypoint_confidence",
-                          [](auto& o) -> auto& { return o.min_keypoint_confidence; }, unit));
-  f.push_back(IntField("", "min_pose_keypoints",
-                       [](auto& o) -> auto& { return o.min_pose_keypoints; }, 1, kIntMax));
-  f.push_back(IntField("", "min_tracklet_length",
-                       [](auto& o) -> auto& { return o.min_tracklet_length; }, 1, kIntMax));
-  f.push_back(
-      Int64Field("", "max_frame_jump", [](auto& o) -> auto& { return o.max_frame_jump; }, 2));
-  f.push_back(DoubleField("", "box_margin_fraction",
-                          [](auto& o) -> auto& { return o.box_margin_fraction; },
-                          DoubleRange::Closed(0.0, 10.0)));
-  f.push_back(IntField("", "max_detections_per_frame",
-                       [](auto& o) -> auto& { return o.max_detections_per_frame; }, 1, kIntMax));
+  f.push_back(IntField(
+      "", "window_size", [](auto& o) -> auto& { return o.window_size; }, 2, 10000));
+  f.push_back(IntField(
+      "", "window_step", [](auto& o) -> auto& { return o.window_step; }, 1, 10000));
+  f.push_back(DoubleField(
+      "",
+      "reference_fps",
+      [](auto& o) -> auto& { return o.reference_fps; },
+      DoubleRange::Closed(0.0, 1000.0)));
+  f.push_back(EnumField<tracker::BoxPoint>("",
+                                           "box_point",
+                                           [](auto& o) -> auto& { return o.box_point; },
+                                           BoxPointFromName,
+                                           BoxPointName,
+                                           {"center", "bottom_center", "center_ends"}));
+  f.push_back(BoolField(
+      "", "box_ends_in_association", [](auto& o) -> auto& { return o.box_ends_in_association; }));
+  f.push_back(DoubleField(
+      "",
+      "box_ends_max_elevation_deg",
+      [](auto& o) -> auto& { return o.box_ends_max_elevation_deg; },
+      DoubleRange::Closed(0.0, 90.0)));
+  f.push_back(DoubleField(
+      "",
+      "ground_height_m",
+      [](auto& o) -> auto& { return o.ground_height_m; },
+      DoubleRange::Any()));
+  f.push_back(DoubleField(
+      "", "min_detection_score", [](auto& o) -> auto& { return o.min_detection_score; }, unit));
+  f.push_back(DoubleField(
+      "",
+      "min_keypoint_confidence",
+      [](auto& o) -> auto& { return o.min_keypoint_confidence; },
+      unit));
+  f.push_back(IntField(
+      "", "min_pose_keypoints", [](auto& o) -> auto& { return o.min_pose_keypoints; }, 1, kIntMax));
+  f.push_back(IntField(
+      "",
+      "min_tracklet_length",
+      [](auto& o) -> auto& { return o.min_tracklet_length; },
+      1,
+      kIntMax));
+  f.push_back(Int64Field(
+      "", "max_frame_jump", [](auto& o) -> auto& { return o.max_frame_jump; }, 2));
+  f.push_back(DoubleField(
+      "",
+      "box_margin_fraction",
+      [](auto& o) -> auto& { return o.box_margin_fraction; },
+      DoubleRange::Closed(0.0, 10.0)));
+  f.push_back(IntField(
+      "",
+      "max_detections_per_frame",
+      [](auto& o) -> auto& { return o.max_detections_per_frame; },
+      1,
+      kIntMax));
   // sort (tracking2d::SortOptions::Validate).
-  f.push_back(
-      IntField("sort", "max_age", [](auto& o) -> auto& { return o.sort.max_age; }, 0, kIntMax));
-  f.push_back(
-      IntField("sort", "min_hits", [](auto& o) -> auto& { return o.sort.min_hits; }, 1, kIntMax));
-  f.push_back(DoubleField("sort", "iou_threshold",
-                          [](auto& o) -> auto& { return o.sort.iou_threshold; },
-                          DoubleRange::LeftOpen(0.0, 1.0)));
+  f.push_back(IntField(
+      "sort", "max_age", [](auto& o) -> auto& { return o.sort.max_age; }, 0, kIntMax));
+  f.push_back(IntField(
+      "sort", "min_hits", [](auto& o) -> auto& { return o.sort.min_hits; }, 1, kIntMax));
+  f.push_back(DoubleField(
+      "sort",
+      "iou_threshold",
+      [](auto& o) -> auto& { return o.sort.iou_threshold; },
+      DoubleRange::LeftOpen(0.0, 1.0)));
   // association (association::AssociationOptions::Validate).
-  f.push_back(DoubleField("association", "lambda",
-                          [](auto& o) -> auto& { return o.association.lambda; },
-                          DoubleRange::GreaterThan(0.0)));
-  f.push_back(DoubleField("association", "min_confidence",
-                          [](auto& o) -> auto& { return o.association.min_confidence; }, unit));
+  f.push_back(DoubleField(
+      "association",
+      "lambda",
+      [](auto& o) -> auto& { return o.association.lambda; },
+      DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField(
+      "association",
+      "min_confidence",
+      [](auto& o) -> auto& { return o.association.min_confidence; },
+      unit));
   f.push_back(EnumField<association::ClusteringMethod>(
-      "association", "method", [](auto& o) -> auto& { return o.association.method; },
-      association::ClusteringMethodFromName, association::ClusteringMethodName,
+      "association",
+      "method",
+      [](auto& o) -> auto& { return o.association.method; },
+      association::ClusteringMethodFromName,
+      association::ClusteringMethodName,
       ClusteringMethodNames()));
-  f.push_back(DoubleField("association", "empty_upper_bound",
-                          [](auto& o) -> auto& { return o.association.empty_upper_bound; },
-                          DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "association",
+      "empty_upper_bound",
+      [](auto& o) -> auto& { return o.association.empty_upper_bound; },
+      DoubleRange::AtLeast(0.0)));
   // triangulation (triangulation::TriangulationOptions::Validate).
   f.push_back(EnumField<triangulation::TriangulationMethod>(
-      "triangulation", "method", [](auto& o) -> auto& { return o.triangulation.method; },
-      triangulation::TriangulationMethodFromName, triangulation::TriangulationMethodName,
+      "triangulation",
+      "method",
+      [](auto& o) -> auto& { return o.triangulation.method; },
+      triangulation::TriangulationMethodFromName,
+      triangulation::TriangulationMethodName,
       TriangulationMethodNames()));
-  f.push_back(IntField("triangulation", "phi", [](auto& o) -> auto& { return o.triangulation.phi; },
-                       0, kIntMax));
-  f.push_back(DoubleField("triangulation", "kappa_m",
-                          [](auto& o) -> auto& { return o.triangulation.kappa_m; },
-                          DoubleRange::GreaterThan(0.0)));
-  f.push_back(DoubleField("triangulation", "min_confidence",
-                          [](auto& o) -> auto& { return o.triangulation.min_confidence; }, unit));
-  f.push_back(DoubleField("triangulation", "ransac_threshold_px",
-                          [](auto& o) -> auto& { return o.triangulation.ransac_threshold_px; },
-                          DoubleRange::GreaterThan(0.0)));
-  f.push_back(IntField("triangulation", "min_inliers",
-                       [](auto& o) -> auto& { return o.triangulation.min_inliers; }, 1, kIntMax));
-  f.push_back(Field{"triangulation", "max_views",
-                    [](const NodeRef& node, TrackerOptions* o) {
-                      const int value = GetInt(node, 0, kIntMax);
-                      if (value == 1) {
-                        node.Fail("value 1 out of range: must be 0 (all views) or >= 2");
-                      }
-                      o->triangulation.max_views = value;
-                    },
-                    [](const TrackerOptions& o) {
-                      return std::to_string(o.triangulation.max_views);
-                    }});
+  f.push_back(IntField(
+      "triangulation", "phi", [](auto& o) -> auto& { return o.triangulation.phi; }, 0, kIntMax));
+  f.push_back(DoubleField(
+      "triangulation",
+      "kappa_m",
+      [](auto& o) -> auto& { return o.triangulation.kappa_m; },
+      DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField(
+      "triangulation",
+      "min_confidence",
+      [](auto& o) -> auto& { return o.triangulation.min_confidence; },
+      unit));
+  f.push_back(DoubleField(
+      "triangulation",
+      "ransac_threshold_px",
+      [](auto& o) -> auto& { return o.triangulation.ransac_threshold_px; },
+      DoubleRange::GreaterThan(0.0)));
+  f.push_back(IntField(
+      "triangulation",
+      "min_inliers",
+      [](auto& o) -> auto& { return o.triangulation.min_inliers; },
+      1,
+      kIntMax));
+  f.push_back(
+      Field{"triangulation",
+            "max_views",
+            [](const NodeRef& node, TrackerOptions* o) {
+              const int value = GetInt(node, 0, kIntMax);
+              if (value == 1) {
+                node.Fail("value 1 out of range: must be 0 (all views) or >= 2");
+              }
+              o->triangulation.max_views = value;
+            },
+            [](const TrackerOptions& o) { return std::to_string(o.triangulation.max_views); }});
   // linking (linking::LinkerOptions::Validate).
-  f.push_back(DoubleField("linking", "max_link_distance_m",
-                          [](auto& o) -> auto& { return o.linking.max_link_distance_m; },
-                          DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "max_link_distance_m",
+      [](auto& o) -> auto& { return o.linking.max_link_distance_m; },
+      DoubleRange::GreaterThan(0.0)));
   f.push_back(IntField(
       "linking", "min_hits", [](auto& o) -> auto& { return o.linking.min_hits; }, 1, kIntMax));
-  f.push_back(IntField("linking", "strong_birth_cameras",
-                       [](auto& o) -> auto& { return o.linking.strong_birth_cameras; }, 2,
-                       kIntMax));
-  f.push_back(DoubleField("linking", "isolated_birth_distance_m",
-                          [](auto& o) -> auto& { return o.linking.isolated_birth_distance_m; },
-                          DoubleRange::AtLeast(0.0)));
-  f.push_back(DoubleField("linking", "unshared_link_distance_m",
-                          [](auto& o) -> auto& { return o.linking.unshared_link_distance_m; },
-                          DoubleRange::AtLeast(0.0)));
-  f.push_back(DoubleField("linking", "max_lost_s",
-                          [](auto& o) -> auto& { return o.linking.max_lost_s; },
-                          DoubleRange::AtLeast(0.0)));
-  f.push_back(DoubleField("linking", "measurement_sigma_m",
-                          [](auto& o) -> auto& { return o.linking.motion.measurement_sigma_m; },
-                          DoubleRange::GreaterThan(0.0)));
-  f.push_back(DoubleField("linking", "acceleration_sigma_mps2",
-                          [](auto& o) -> auto& { return o.linking.motion.acceleration_sigma_mps2; },
-                          DoubleRange::GreaterThan(0.0)));
-  f.push_back(DoubleField("linking", "initial_speed_sigma_mps",
-                          [](auto& o) -> auto& { return o.linking.motion.initial_speed_sigma_mps; },
-                          DoubleRange::GreaterThan(0.0)));
-  f.push_back(DoubleField("linking", "gap_gate_chi2",
-                          [](auto& o) -> auto& { return o.linking.gap_gate_chi2; },
-                          DoubleRange::GreaterThan(0.0)));
-  f.push_back(DoubleField("linking", "reid_gate_chi2",
-                          [](auto& o) -> auto& { return o.linking.reid_gate_chi2; },
-                          DoubleRange::AtLeast(0.0)));
-  f.push_back(DoubleField("linking", "reid_margin_chi2",
-                          [](auto& o) -> auto& { return o.linking.reid_margin_chi2; },
-                          DoubleRange::AtLeast(0.0)));
-  f.push_back(DoubleField("linking", "max_reid_gap_s",
-                          [](auto& o) -> auto& { return o.linking.max_reid_gap_s; },
-                          DoubleRange::AtLeast(0.0)));
+  f.push_back(IntField(
+      "linking",
+      "strong_birth_cameras",
+      [](auto& o) -> auto& { return o.linking.strong_birth_cameras; },
+      2,
+      kIntMax));
+  f.push_back(DoubleField(
+      "linking",
+      "isolated_birth_distance_m",
+      [](auto& o) -> auto& { return o.linking.isolated_birth_distance_m; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "unshared_link_distance_m",
+      [](auto& o) -> auto& { return o.linking.unshared_link_distance_m; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "max_lost_s",
+      [](auto& o) -> auto& { return o.linking.max_lost_s; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "measurement_sigma_m",
+      [](auto& o) -> auto& { return o.linking.motion.measurement_sigma_m; },
+      DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "acceleration_sigma_mps2",
+      [](auto& o) -> auto& { return o.linking.motion.acceleration_sigma_mps2; },
+      DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "initial_speed_sigma_mps",
+      [](auto& o) -> auto& { return o.linking.motion.initial_speed_sigma_mps; },
+      DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "gap_gate_chi2",
+      [](auto& o) -> auto& { return o.linking.gap_gate_chi2; },
+      DoubleRange::GreaterThan(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "reid_gate_chi2",
+      [](auto& o) -> auto& { return o.linking.reid_gate_chi2; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "reid_margin_chi2",
+      [](auto& o) -> auto& { return o.linking.reid_margin_chi2; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "max_reid_gap_s",
+      [](auto& o) -> auto& { return o.linking.max_reid_gap_s; },
+      DoubleRange::AtLeast(0.0)));
   // refinement (triangulation::RefinementOptions::Validate; pose mode, after CMMT).
-  f.push_back(DoubleField("refinement", "merge_distance_m",
-                          [](auto& o) -> auto& { return o.refinement.merge_distance_m; },
-                          DoubleRange::AtLeast(0.0)));
-  f.push_back(IntField("refinement", "box_min_duplicate_frames",
-                       [](auto& o) -> auto& { return o.refinement.box_min_duplicate_frames; }, 1,
-                       kIntMax));
-  f.push_back(IntField("refinement", "min_duplicate_pairs",
-                       [](auto& o) -> auto& { return o.refinement.min_duplicate_pairs; }, 1,
-                       kIntMax));
-  f.push_back(DoubleField("refinement", "box_merge_distance_m",
-                          [](auto& o) -> auto& { return o.refinement.box_merge_distance_m; },
-                          DoubleRange::AtLeast(0.0)));
-  f.push_back(DoubleField("refinement", "box_min_height_m",
-                          [](auto& o) -> auto& { return o.refinement.box_min_height_m; },
-                          DoubleRange::Any()));
-  f.push_back(DoubleField("refinement", "box_max_height_m",
-                          [](auto& o) -> auto& { return o.refinement.box_max_height_m; },
-                          DoubleRange::Any()));
-  f.push_back(DoubleField("refinement", "box_bottom_min_height_m",
-                          [](auto& o) -> auto& { return o.refinement.box_bottom_min_height_m; },
-                          DoubleRange::Any()));
-  f.push_back(DoubleField("refinement", "box_bottom_max_height_m",
-                          [](auto& o) -> auto& { return o.refinement.box_bottom_max_height_m; },
-                          DoubleRange::Any()));
-  f.push_back(DoubleField("refinement", "box_top_min_height_m",
-                          [](auto& o) -> auto& { return o.refinement.box_top_min_height_m; },
-                          DoubleRange::Any()));
-  f.push_back(DoubleField("refinement", "box_top_max_height_m",
-                          [](auto& o) -> auto& { return o.refinement.box_top_max_height_m; },
-                          DoubleRange::Any()));
-  f.push_back(DoubleField("refinement", "jump_gate_chi2",
-                          [](auto& o) -> auto& { return o.refinement.jump_gate_chi2; },
-                          DoubleRange::AtLeast(0.0)));
-  f.push_back(DoubleField("refinement", "box_split_residual",
-                          [](auto& o) -> auto& { return o.refinement.box_split_residual; },
-                          DoubleRange::AtLeast(0.0)));
-  f.push_back(DoubleField("refinement", "min_person_point_fraction",
-                          [](auto& o) -> auto& { return o.refinement.min_person_point_fraction; },
-                          unit));
-  f.push_back(IntField("refinement", "outlier_half_window",
-                       [](auto& o) -> auto& { return o.refinement.outlier_half_window; }, 0,
-                       kIntMax));
-  f.push_back(DoubleField("refinement", "outlier_distance_m",
-                          [](auto& o) -> auto& { return o.refinement.outlier_distance_m; },
-                          DoubleRange::GreaterThan(0.0)));
-  f.push_back(IntField("refinement", "max_fill_gap",
-                       [](auto& o) -> auto& { return o.refinement.max_fill_gap; }, 0, kIntMax));
-  f.push_back(IntField("refinement", "fill_neighbors",
-                       [](auto& o) -> auto& { return o.refinement.fill_neighbors; }, 1, kIntMax));
-  f.push_back(IntField("refinement", "min_points_to_fill",
-                       [](auto& o) -> auto& { return o.refinement.min_points_to_fill; }, 1,
-                       kIntMax));
+  f.push_back(DoubleField(
+      "refinement",
+      "merge_distance_m",
+      [](auto& o) -> auto& { return o.refinement.merge_distance_m; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(IntField(
+      "refinement",
+      "box_min_duplicate_frames",
+      [](auto& o) -> auto& { return o.refinement.box_min_duplicate_frames; },
+      1,
+      kIntMax));
+  f.push_back(IntField(
+      "refinement",
+      "min_duplicate_pairs",
+      [](auto& o) -> auto& { return o.refinement.min_duplicate_pairs; },
+      1,
+      kIntMax));
+  f.push_back(DoubleField(
+      "refinement",
+      "box_merge_distance_m",
+      [](auto& o) -> auto& { return o.refinement.box_merge_distance_m; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "refinement",
+      "box_min_height_m",
+      [](auto& o) -> auto& { return o.refinement.box_min_height_m; },
+      DoubleRange::Any()));
+  f.push_back(DoubleField(
+      "refinement",
+      "box_max_height_m",
+      [](auto& o) -> auto& { return o.refinement.box_max_height_m; },
+      DoubleRange::Any()));
+  f.push_back(DoubleField(
+      "refinement",
+      "box_bottom_min_height_m",
+      [](auto& o) -> auto& { return o.refinement.box_bottom_min_height_m; },
+      DoubleRange::Any()));
+  f.push_back(DoubleField(
+      "refinement",
+      "box_bottom_max_height_m",
+      [](auto& o) -> auto& { return o.refinement.box_bottom_max_height_m; },
+      DoubleRange::Any()));
+  f.push_back(DoubleField(
+      "refinement",
+      "box_top_min_height_m",
+      [](auto& o) -> auto& { return o.refinement.box_top_min_height_m; },
+      DoubleRange::Any()));
+  f.push_back(DoubleField(
+      "refinement",
+      "box_top_max_height_m",
+      [](auto& o) -> auto& { return o.refinement.box_top_max_height_m; },
+      DoubleRange::Any()));
+  f.push_back(DoubleField(
+      "refinement",
+      "jump_gate_chi2",
+      [](auto& o) -> auto& { return o.refinement.jump_gate_chi2; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "refinement",
+      "box_split_residual",
+      [](auto& o) -> auto& { return o.refinement.box_split_residual; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "refinement",
+      "min_person_point_fraction",
+      [](auto& o) -> auto& { return o.refinement.min_person_point_fraction; },
+      unit));
+  f.push_back(IntField(
+      "refinement",
+      "outlier_half_window",
+      [](auto& o) -> auto& { return o.refinement.outlier_half_window; },
+      0,
+      kIntMax));
+  f.push_back(DoubleField(
+      "refinement",
+      "outlier_distance_m",
+      [](auto& o) -> auto& { return o.refinement.outlier_distance_m; },
+      DoubleRange::GreaterThan(0.0)));
+  f.push_back(IntField(
+      "refinement",
+      "max_fill_gap",
+      [](auto& o) -> auto& { return o.refinement.max_fill_gap; },
+      0,
+      kIntMax));
+  f.push_back(IntField(
+      "refinement",
+      "fill_neighbors",
+      [](auto& o) -> auto& { return o.refinement.fill_neighbors; },
+      1,
+      kIntMax));
+  f.push_back(IntField(
+      "refinement",
+      "min_points_to_fill",
+      [](auto& o) -> auto& { return o.refinement.min_points_to_fill; },
+      1,
+      kIntMax));
   return f;
 }
 
@@ -347,7 +481,8 @@ std::vector<std::string> KeysOf(std::string_view section) {
 }
 
 // Full key path of an option below the tracker map at `tracker_path`.
-std::string OptionPath(const std::string& tracker_path, const std::string& section,
+std::string OptionPath(const std::string& tracker_path,
+                       const std::string& section,
                        const std::string& key) {
   std::string path = tracker_path;
   for (const std::string& part : {section, key}) {
@@ -398,7 +533,8 @@ std::optional<std::size_t> FindWord(std::string_view text, std::string_view word
 // TrackerOptions::Validate failed with `why` ("<section>: <field> must ..." or
 // "<field> must ..."): report it at the key it names when the file sets that key, else at the
 // map of its section (or the tracker map).
-[[noreturn]] void FailValidation(const std::string& why, const MapRef& tracker_map,
+[[noreturn]] void FailValidation(const std::string& why,
+                                 const MapRef& tracker_map,
                                  const std::map<std::string, MapRef>& section_maps) {
   std::string section;
   std::string_view rest = why;
@@ -472,8 +608,8 @@ tracker::TrackerOptions ParseTrackerOptionsNode(const NodeRef& node) {
       FindField("", key)->parse(value, &options);
       continue;
     }
-    const MapRef section_map(value, KeysOf(key), /*null_is_empty=*/true,
-                             HintsFor(node.path(), key));
+    const MapRef section_map(
+        value, KeysOf(key), /*null_is_empty=*/true, HintsFor(node.path(), key));
     for (const std::string& option : section_map.keys()) {
       FindField(key, option)->parse(*section_map.Find(option), &options);
     }
@@ -516,8 +652,11 @@ tracker::TrackerOptions ParseTrackerOptions(std::string_view text, const std::st
     return internal::ParseTrackerOptionsNode(document.Get("tracker"));
   } catch (const YAML::Exception& e) {
     // Backstop: the helpers check types before touching yaml-cpp's throwing accessors.
-    throw ConfigError(source_name, e.mark.is_null() ? 0 : e.mark.line + 1,
-                      e.mark.is_null() ? 0 : e.mark.column + 1, "", e.msg);
+    throw ConfigError(source_name,
+                      e.mark.is_null() ? 0 : e.mark.line + 1,
+                      e.mark.is_null() ? 0 : e.mark.column + 1,
+                      "",
+                      e.msg);
   }
 }
 

@@ -118,10 +118,10 @@ DetectionCheck ValidateDetection(Detection2D* detection, const DetectionLimits& 
         box.y_max > region.y_hi) {
       return Rejected("box sticks out of the image by more than box_margin_fraction");
     }
-    const double visible_w = std::min(box.x_max, static_cast<double>(limits.image_width_px)) -
-                             std::max(box.x_min, 0.0);
-    const double visible_h = std::min(box.y_max, static_cast<double>(limits.image_height_px)) -
-                             std::max(box.y_min, 0.0);
+    const double visible_w =
+        std::min(box.x_max, static_cast<double>(limits.image_width_px)) - std::max(box.x_min, 0.0);
+    const double visible_h =
+        std::min(box.y_max, static_cast<double>(limits.image_height_px)) - std::max(box.y_min, 0.0);
     if (visible_w < limits.min_box_size_px || visible_h < limits.min_box_size_px) {
       return Rejected("box is (almost) entirely outside the image");
     }

@@ -73,9 +73,9 @@ struct DetectionLimits {
 
 /// What validation did to one detection.
 enum class DetectionVerdict {
-  kAccepted,            ///< used as is
-  kAcceptedRepaired,    ///< used; some keypoints were invalidated (confidence set to 0)
-  kRejected,            ///< not used; `reason` says why
+  kAccepted,          ///< used as is
+  kAcceptedRepaired,  ///< used; some keypoints were invalidated (confidence set to 0)
+  kRejected,          ///< not used; `reason` says why
 };
 
 struct DetectionCheck {

@@ -29,13 +29,43 @@ KeypointLayout MakeCoco17() {
   KeypointLayout l;
   l.id = KeypointLayoutId::kCoco17;
   l.name = "coco17";
-  l.joints = {"nose",       "l_eye",      "r_eye",   "l_ear",   "r_ear",   "l_shoulder",
-              "r_shoulder", "l_elbow",    "r_elbow", "l_wrist", "r_wrist", "l_hip",
-              "r_hip",      "l_knee",     "r_knee",  "l_ankle", "r_ankle"};
+  l.joints = {"nose",
+              "l_eye",
+              "r_eye",
+              "l_ear",
+              "r_ear",
+              "l_shoulder",
+              "r_shoulder",
+              "l_elbow",
+              "r_elbow",
+              "l_wrist",
+              "r_wrist",
+              "l_hip",
+              "r_hip",
+              "l_knee",
+              "r_knee",
+              "l_ankle",
+              "r_ankle"};
   // The COCO annotation "skeleton" (1-based there, 0-based here).
-  l.bones = {{15, 13}, {13, 11}, {16, 14}, {14, 12}, {11, 12}, {5, 11}, {6, 12},
-             {5, 6},   {5, 7},   {6, 8},   {7, 9},   {8, 10},  {1, 2},  {0, 1},
-             {0, 2},   {1, 3},   {2, 4},   {3, 5},   {4, 6}};
+  l.bones = {{15, 13},
+             {13, 11},
+             {16, 14},
+             {14, 12},
+             {11, 12},
+             {5, 11},
+             {6, 12},
+             {5, 6},
+             {5, 7},
+             {6, 8},
+             {7, 9},
+             {8, 10},
+             {1, 2},
+             {0, 1},
+             {0, 2},
+             {1, 3},
+             {2, 4},
+             {3, 5},
+             {4, 6}};
   return l;
 }
 
@@ -43,15 +73,15 @@ KeypointLayout MakeBody25() {
   KeypointLayout l;
   l.id = KeypointLayoutId::kBody25;
   l.name = "body25";
-  l.joints = {"nose",        "neck",      "r_shoulder", "r_elbow",     "r_wrist",
-              "l_shoulder",  "l_elbow",   "l_wrist",    "mid_hip",     "r_hip",
-              "r_knee",      "r_ankle",   "l_hip",      "l_knee",      "l_ankle",
-              "r_eye",       "l_eye",     "r_ear",      "l_ear",       "l_big_toe",
-              "l_small_toe", "l_heel",    "r_big_toe",  "r_small_toe", "r_heel"};
+  l.joints = {"nose",        "neck",    "r_shoulder", "r_elbow",     "r_wrist",
+              "l_shoulder",  "l_elbow", "l_wrist",    "mid_hip",     "r_hip",
+              "r_knee",      "r_ankle", "l_hip",      "l_knee",      "l_ankle",
+              "r_eye",       "l_eye",   "r_ear",      "l_ear",       "l_big_toe",
+              "l_small_toe", "l_heel",  "r_big_toe",  "r_small_toe", "r_heel"};
   // OpenPose's rendering pairs for BODY_25 (the PAF-only ear-shoulder pairs are not bones).
-  l.bones = {{1, 8},   {1, 2},   {1, 5},   {2, 3},   {3, 4},   {5, 6},   {6, 7},   {8, 9},
-             {9, 10},  {10, 11}, {8, 12},  {12, 13}, {13, 14}, {1, 0},   {0, 15},  {15, 17},
-             {0, 16},  {16, 18}, {14, 19}, {19, 20}, {14, 21}, {11, 22}, {22, 23}, {11, 24}};
+  l.bones = {{1, 8},  {1, 2},   {1, 5},   {2, 3},   {3, 4},   {5, 6},   {6, 7},   {8, 9},
+             {9, 10}, {10, 11}, {8, 12},  {12, 13}, {13, 14}, {1, 0},   {0, 15},  {15, 17},
+             {0, 16}, {16, 18}, {14, 19}, {19, 20}, {14, 21}, {11, 22}, {22, 23}, {11, 24}};
   return l;
 }
 
@@ -59,9 +89,20 @@ KeypointLayout MakeShelf14() {
   KeypointLayout l;
   l.id = KeypointLayoutId::kShelf14;
   l.name = "shelf14";
-  l.joints = {"r_ankle", "r_knee",     "r_hip",      "l_hip",   "l_knee",
-              "l_ankle", "r_wrist",    "r_elbow",    "r_shoulder", "l_shoulder",
-              "l_elbow", "l_wrist",    "head_bottom", "head_top"};
+  l.joints = {"r_ankle",
+              "r_knee",
+              "r_hip",
+              "l_hip",
+              "l_knee",
+              "l_ankle",
+              "r_wrist",
+              "r_elbow",
+              "r_shoulder",
+              "l_shoulder",
+              "l_elbow",
+              "l_wrist",
+              "head_bottom",
+              "head_top"};
   // The nine rigid parts of the Shelf/Campus PCP protocol, in the order the standard evaluation
   // (VoxelPose / MVPose) scores them: right lower leg, right upper leg, left upper leg, left
   // lower leg, right lower arm, right upper arm, left upper arm, left lower arm, head. The tenth
@@ -75,14 +116,45 @@ KeypointLayout MakePanoptic19() {
   KeypointLayout l;
   l.id = KeypointLayoutId::kPanoptic19;
   l.name = "panoptic19";
-  l.joints = {"neck",    "nose",    "mid_hip", "l_shoulder", "l_elbow",
-              "l_wrist", "l_hip",   "l_knee",  "l_ankle",    "r_shoulder",
-              "r_elbow", "r_wrist", "r_hip",   "r_knee",     "r_ankle",
-              "l_eye",   "l_ear",   "r_eye",   "r_ear"};
+  l.joints = {"neck",
+              "nose",
+              "mid_hip",
+              "l_shoulder",
+              "l_elbow",
+              "l_wrist",
+              "l_hip",
+              "l_knee",
+              "l_ankle",
+              "r_shoulder",
+              "r_elbow",
+              "r_wrist",
+              "r_hip",
+              "r_knee",
+              "r_ankle",
+              "l_eye",
+              "l_ear",
+              "r_eye",
+              "r_ear"};
   // panoptic-toolbox `body_edges` (1-based there), plus the four face edges nose-eye-ear on
   // each side, as COCO has them.
-  l.bones = {{0, 1},   {0, 3},   {3, 4},  {4, 5},  {0, 2},   {2, 6},  {6, 7},   {7, 8},  {2, 12},
-             {12, 13}, {13, 14}, {0, 9},  {9, 10}, {10, 11}, {1, 15}, {15, 16}, {1, 17}, {17, 18}};
+  l.bones = {{0, 1},
+             {0, 3},
+             {3, 4},
+             {4, 5},
+             {0, 2},
+             {2, 6},
+             {6, 7},
+             {7, 8},
+             {2, 12},
+             {12, 13},
+             {13, 14},
+             {0, 9},
+             {9, 10},
+             {10, 11},
+             {1, 15},
+             {15, 16},
+             {1, 17},
+             {17, 18}};
   return l;
 }
 

@@ -23,9 +23,9 @@ enum class KeypointLayoutId : int {
 /// A layout: ordered joint names (canonical snake_case names shared across layouts) and bones.
 struct KeypointLayout {
   KeypointLayoutId id = KeypointLayoutId::kNone;
-  std::string name;                       ///< "coco17", "body25", "shelf14", "panoptic19"
-  std::vector<std::string> joints;        ///< canonical joint names, in the layout's order
-  std::vector<std::pair<int, int>> bones; ///< limb segments as joint index pairs
+  std::string name;                        ///< "coco17", "body25", "shelf14", "panoptic19"
+  std::vector<std::string> joints;         ///< canonical joint names, in the layout's order
+  std::vector<std::pair<int, int>> bones;  ///< limb segments as joint index pairs
   int num_joints() const { return static_cast<int>(joints.size()); }
 };
 

@@ -53,7 +53,10 @@ struct SolverBuffers {
   std::vector<char>& used;
 };
 
-void SolveRowsNotMoreThanCols(const std::vector<LexCost>& a, int n, int m, SolverBuffers buf,
+void SolveRowsNotMoreThanCols(const std::vector<LexCost>& a,
+                              int n,
+                              int m,
+                              SolverBuffers buf,
                               std::vector<int>* col_of_row_out) {
   const auto at = [&](int i, int j) {
     return a[static_cast<std::size_t>(i) * static_cast<std::size_t>(m) +
@@ -135,7 +138,9 @@ Assignment SolveAssignment(const Eigen::MatrixXd& cost, double max_cost) {
   return result;
 }
 
-void SolveAssignment(const Eigen::MatrixXd& cost, double max_cost, AssignmentWorkspace* workspace,
+void SolveAssignment(const Eigen::MatrixXd& cost,
+                     double max_cost,
+                     AssignmentWorkspace* workspace,
                      Assignment* result_out) {
   MVTRACK_CHECK(workspace != nullptr && result_out != nullptr);
   AssignmentWorkspace& ws = *workspace;
@@ -219,10 +224,12 @@ void SolveAssignment(const Eigen::MatrixXd& cost, double max_cost, AssignmentWor
       }
     }
     std::vector<int>& solved = ws.solved_;
-    SolveRowsNotMoreThanCols(lex, n, m,
-                             SolverBuffers{ws.u_, ws.v_, ws.row_of_col_, ws.way_,
-                                           ws.min_reduced_, ws.used_},
-                             &solved);
+    SolveRowsNotMoreThanCols(
+        lex,
+        n,
+        m,
+        SolverBuffers{ws.u_, ws.v_, ws.row_of_col_, ws.way_, ws.min_reduced_, ws.used_},
+        &solved);
     for (int a = 0; a < n; ++a) {
       const int b = solved[static_cast<std::size_t>(a)];
       if (b < 0) continue;

@@ -41,8 +41,10 @@ class AssignmentWorkspace {
   AssignmentWorkspace() = default;
 
  private:
-  friend void SolveAssignment(const Eigen::MatrixXd& cost, double max_cost,
-                              AssignmentWorkspace* workspace, Assignment* result);
+  friend void SolveAssignment(const Eigen::MatrixXd& cost,
+                              double max_cost,
+                              AssignmentWorkspace* workspace,
+                              Assignment* result);
   std::vector<int> active_rows_;
   std::vector<int> active_cols_;
   std::vector<char> col_flag_;
@@ -59,7 +61,9 @@ class AssignmentWorkspace {
 
 /// SolveAssignment with caller-owned scratch space and result (its vectors are overwritten and
 /// keep their capacity). Identical results to the two-argument form.
-void SolveAssignment(const Eigen::MatrixXd& cost, double max_cost, AssignmentWorkspace* workspace,
+void SolveAssignment(const Eigen::MatrixXd& cost,
+                     double max_cost,
+                     AssignmentWorkspace* workspace,
                      Assignment* result);
 
 }  // namespace mvtrack::core

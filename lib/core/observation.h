@@ -26,8 +26,8 @@ struct Observation2D {
 struct Tracklet2D {
   CameraId camera_id = 0;
   TrackId2D track_id = 0;
-  std::vector<FrameIndex> frames;            ///< strictly increasing
-  std::vector<Observation2D> observations;   ///< parallel to `frames`
+  std::vector<FrameIndex> frames;           ///< strictly increasing
+  std::vector<Observation2D> observations;  ///< parallel to `frames`
 
   /// Index into frames/observations of `frame`, or -1.
   int IndexOf(FrameIndex frame) const {
@@ -51,11 +51,11 @@ struct TrackletMember {
 
 /// A short-term 3D tracklet of one person in one window (U_{k,p}).
 struct Tracklet3D {
-  std::vector<FrameIndex> frames;                        ///< strictly increasing
+  std::vector<FrameIndex> frames;  ///< strictly increasing
   /// points[f][k]: point k (box mode: k = 0) at frames[f], world frame, metres.
   std::vector<std::vector<std::optional<Vec3>>> points;
-  std::vector<CameraId> cameras;                         ///< cameras that supported it, sorted
-  std::vector<int> source_tracklets;                     ///< indices of its 2D tracklets
+  std::vector<CameraId> cameras;      ///< cameras that supported it, sorted
+  std::vector<int> source_tracklets;  ///< indices of its 2D tracklets
   /// The 2D tracklets of source_tracklets as (camera, 2D track) members, sorted by camera id
   /// then track id (filled by tracker::ProcessWindowJob; empty where no window job made it).
   std::vector<TrackletMember> members;

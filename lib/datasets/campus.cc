@@ -88,9 +88,16 @@ std::vector<geometry::CameraModel> LoadCampusCalibration(const std::filesystem::
       centre_m(r) = kCmToM * tw[static_cast<std::size_t>(4 * r + 3)];
     }
     const Mat3 rotation = world_from_cam.transpose();
-    if (!by_id.emplace(id, internal::MakeCamera(file.string(), "camera \"" + name + "\"", id,
-                                                width, height, K, rotation,
-                                                -(rotation * centre_m)))
+    if (!by_id
+             .emplace(id,
+                      internal::MakeCamera(file.string(),
+                                           "camera \"" + name + "\"",
+                                           id,
+                                           width,
+                                           height,
+                                           K,
+                                           rotation,
+                                           -(rotation * centre_m)))
              .second) {
       value.Fail("camera " + std::to_string(id) + " appears twice");
     }
@@ -122,8 +129,8 @@ Dataset LoadCampus(const std::filesystem::path& data_root, const CampusOptions& 
   if (image_wh.Size() != 2 || width <= 0 || height <= 0 || width > 100000 || height > 100000) {
     image_wh.Fail("expected [width, height] with positive sizes");
   }
-  ds.cameras = LoadCampusCalibration(dir / "calibration.json", static_cast<int>(width),
-                                     static_cast<int>(height));
+  ds.cameras = LoadCampusCalibration(
+      dir / "calibration.json", static_cast<int>(width), static_cast<int>(height));
   std::map<CameraId, std::size_t> camera_index;
   for (std::size_t c = 0; c < ds.cameras.size(); ++c) camera_index[ds.cameras[c].id] = c;
 
@@ -159,9 +166,9 @@ Dataset LoadCampus(const std::filesystem::path& data_root, const CampusOptions& 
   }
   for (std::size_t f = 0; f < frames.size(); ++f) {
     if (frames[f] != frames.front() + static_cast<FrameIndex>(f)) {
-      throw DatasetError(file_3d.string(), "frames are not consecutive (frame " +
-                                               std::to_string(frames[f]) + " follows " +
-                                               std::to_string(frames[f - 1]) + ")");
+      throw DatasetError(file_3d.string(),
+                         "frames are not consecutive (frame " + std::to_string(frames[f]) +
+                             " follows " + std::to_string(frames[f - 1]) + ")");
     }
   }
   internal::InitDetectionGrid(frames, ds.cameras, ds.fps, &ds.detections, &ds.source_ids);
@@ -213,9 +220,12 @@ Dataset LoadCampus(const std::filesystem::path& data_root, const CampusOptions& 
         pool.insert(pool.end(), frame[c].detections.begin(), frame[c].detections.end());
       }
       for (std::size_t f = 0; f < frames.size(); ++f) {
-        CorruptedFrame corrupted =
-            CorruptCameraFrame(ds.detections[f][c], ds.source_ids[f][c], pool,
-                               ds.cameras[c].width_px, ds.cameras[c].height_px, options.corruption);
+        CorruptedFrame corrupted = CorruptCameraFrame(ds.detections[f][c],
+                                                      ds.source_ids[f][c],
+                                                      pool,
+                                                      ds.cameras[c].width_px,
+                                                      ds.cameras[c].height_px,
+                                                      options.corruption);
         ds.detections[f][c] = std::move(corrupted.frame);
         ds.source_ids[f][c] = std::move(corrupted.source_ids);
       }

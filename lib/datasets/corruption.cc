@@ -107,11 +107,15 @@ bool CorruptionOptions::Validate(std::string* why) const {
 std::string DescribeCorruption(const CorruptionOptions& options) {
   if (!options.enabled) return "clean (no corruption)";
   char text[256];
-  std::snprintf(text, sizeof(text),
+  std::snprintf(text,
+                sizeof(text),
                 "corrupted: seed %llu, keypoint noise sigma %.3g px, joint dropout %.3g, miss rate "
                 "%.3g, false positives %.3g per camera-frame",
-                static_cast<unsigned long long>(options.seed), options.pixel_noise_px,
-                options.joint_dropout, options.miss_rate, options.false_positives_per_frame);
+                static_cast<unsigned long long>(options.seed),
+                options.pixel_noise_px,
+                options.joint_dropout,
+                options.miss_rate,
+                options.false_positives_per_frame);
   return text;
 }
 
@@ -151,8 +155,7 @@ CorruptedFrame CorruptCameraFrame(const core::CameraFrame& clean,
   for (std::size_t i = 0; i < clean.detections.size(); ++i) {
     const bool missed = miss.Uniform() < options.miss_rate;
     core::Detection2D d = clean.detections[i];
-    const bool alive =
-        PerturbPose(&d, &noise, &dropout, image_width_px, image_height_px, options);
+    const bool alive = PerturbPose(&d, &noise, &dropout, image_width_px, image_height_px, options);
     if (missed || !alive) continue;
     kept.emplace_back(std::move(d), clean_ids[i]);
   }

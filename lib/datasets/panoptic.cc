@@ -204,9 +204,12 @@ Dataset LoadPanoptic(const std::filesystem::path& data_root, const PanopticOptio
         pool.insert(pool.end(), frame[c].detections.begin(), frame[c].detections.end());
       }
       for (std::size_t i = 0; i < frames.size(); ++i) {
-        CorruptedFrame corrupted =
-            CorruptCameraFrame(ds.detections[i][c], ds.source_ids[i][c], pool,
-                               ds.cameras[c].width_px, ds.cameras[c].height_px, options.corruption);
+        CorruptedFrame corrupted = CorruptCameraFrame(ds.detections[i][c],
+                                                      ds.source_ids[i][c],
+                                                      pool,
+                                                      ds.cameras[c].width_px,
+                                                      ds.cameras[c].height_px,
+                                                      options.corruption);
         ds.detections[i][c] = std::move(corrupted.frame);
         ds.source_ids[i][c] = std::move(corrupted.source_ids);
       }

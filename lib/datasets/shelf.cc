@@ -49,10 +49,25 @@ enum Skel19 : int {
 };
 
 const std::vector<std::string>& Skel19JointNames() {
-  static const std::vector<std::string> names = {
-      "mid_hip",  "neck",    "r_hip",   "l_hip",    "nose",     "r_shoulder", "l_shoulder",
-      "r_knee",   "l_knee",  "r_ear",   "l_ear",    "r_elbow",  "l_elbow",    "r_ankle",
-      "l_ankle",  "r_wrist", "l_wrist", "l_big_toe", "r_big_toe"};
+  static const std::vector<std::string> names = {"mid_hip",
+                                                 "neck",
+                                                 "r_hip",
+                                                 "l_hip",
+                                                 "nose",
+                                                 "r_shoulder",
+                                                 "l_shoulder",
+                                                 "r_knee",
+                                                 "l_knee",
+                                                 "r_ear",
+                                                 "l_ear",
+                                                 "r_elbow",
+                                                 "l_elbow",
+                                                 "r_ankle",
+                                                 "l_ankle",
+                                                 "r_wrist",
+                                                 "l_wrist",
+                                                 "l_big_toe",
+                                                 "r_big_toe"};
   return names;
 }
 
@@ -83,9 +98,14 @@ std::vector<geometry::CameraModel> LoadShelfCalibration(const std::filesystem::p
       for (int c = 0; c < 3; ++c) rotation(r, c) = rt[static_cast<std::size_t>(4 * r + c)];
       translation(r) = rt[static_cast<std::size_t>(4 * r + 3)];
     }
-    by_id[id] = internal::MakeCamera(file.string(), "camera \"" + key + "\"", id,
-                                     static_cast<int>(width), static_cast<int>(height),
-                                     internal::Mat3FromRowMajor(k), rotation, translation);
+    by_id[id] = internal::MakeCamera(file.string(),
+                                     "camera \"" + key + "\"",
+                                     id,
+                                     static_cast<int>(width),
+                                     static_cast<int>(height),
+                                     internal::Mat3FromRowMajor(k),
+                                     rotation,
+                                     translation);
   }
   if (by_id.empty()) throw DatasetError(file.string(), "no cameras");
   std::vector<geometry::CameraModel> cameras;
@@ -104,8 +124,8 @@ std::vector<std::vector<core::Detection2D>> LoadShelfPersons(const std::filesyst
   const JsonValue size = root["image_size"];
   if (size.Size() != 2 || size.At(0).AsInt() != camera.width_px ||
       size.At(1).AsInt() != camera.height_px) {
-    size.Fail("image size differs from the calibration's " + std::to_string(camera.width_px) +
-              "x" + std::to_string(camera.height_px));
+    size.Fail("image size differs from the calibration's " + std::to_string(camera.width_px) + "x" +
+              std::to_string(camera.height_px));
   }
   const JsonValue frames = root["frames"];
   std::vector<std::vector<core::Detection2D>> out(frames.Size());
@@ -155,9 +175,18 @@ std::vector<std::optional<Vec3>> PresentJoints(const internal::SkelTextPerson& p
 // 4D Association's `MappingToShelf` (evaluate_shelf/main.cpp) from SKEL19 to shelf14 (its 15th
 // output joint, the pelvis, is not part of shelf14).
 std::vector<std::optional<Vec3>> Skel19ToShelf14(const std::vector<std::optional<Vec3>>& s) {
-  static constexpr std::array<int, 12> kLimbs = {kRAnkle,    kRKnee,     kRHip,   kLHip,
-                                                 kLKnee,     kLAnkle,    kRWrist, kRElbow,
-                                                 kRShoulder, kLShoulder, kLElbow, kLWrist};
+  static constexpr std::array<int, 12> kLimbs = {kRAnkle,
+                                                 kRKnee,
+                                                 kRHip,
+                                                 kLHip,
+                                                 kLKnee,
+                                                 kLAnkle,
+                                                 kRWrist,
+                                                 kRElbow,
+                                                 kRShoulder,
+                                                 kLShoulder,
+                                                 kLElbow,
+                                                 kLWrist};
   std::vector<std::optional<Vec3>> out(14);
   for (std::size_t j = 0; j < kLimbs.size(); ++j) out[j] = s[static_cast<std::size_t>(kLimbs[j])];
   const auto has = [&](std::initializer_list<int> joints) {
@@ -173,8 +202,8 @@ std::vector<std::optional<Vec3>> Skel19ToShelf14(const std::vector<std::optional
     const Vec3 head_bottom = shoulder_centre + 0.5 * (head_centre - shoulder_centre);
     out[12] = head_bottom;
     if (has({kNeck, kMidHip})) {
-      out[13] = eval::FourDAssociationHeadTop(head_bottom, at(kNeck), at(kMidHip),
-                                              at(kRShoulder), at(kLShoulder));
+      out[13] = eval::FourDAssociationHeadTop(
+          head_bottom, at(kNeck), at(kMidHip), at(kRShoulder), at(kLShoulder));
     }
   }
   return out;
@@ -220,9 +249,9 @@ Dataset LoadShelf(const std::filesystem::path& data_root, const ShelfOptions& op
         dir / "derived" / ("persons2d_body25_cam" + std::to_string(ds.cameras[c].id) + ".json");
     std::vector<std::vector<core::Detection2D>> persons = LoadShelfPersons(file, ds.cameras[c]);
     if (persons.size() != num_frames) {
-      throw DatasetError(file.string(), std::to_string(persons.size()) +
-                                            " frames, but gt.txt has " +
-                                            std::to_string(num_frames));
+      throw DatasetError(
+          file.string(),
+          std::to_string(persons.size()) + " frames, but gt.txt has " + std::to_string(num_frames));
     }
     for (std::size_t f = 0; f < num_frames; ++f) {
       ds.source_ids[f][c].assign(persons[f].size(), kUnknownSourceId);

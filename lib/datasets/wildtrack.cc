@@ -100,10 +100,15 @@ std::vector<geometry::CameraModel> LoadWildtrackCalibration(const std::filesyste
     distortion.p1 = dist[2];
     distortion.p2 = dist[3];
     distortion.k3 = dist[4];
-    cameras.push_back(internal::MakeCamera(
-        file.string(), "camera " + std::to_string(i), static_cast<CameraId>(i),
-        static_cast<int>(width), static_cast<int>(height), K, rotation,
-        kCmToM * Vec3(tvec[0], tvec[1], tvec[2]), distortion));
+    cameras.push_back(internal::MakeCamera(file.string(),
+                                           "camera " + std::to_string(i),
+                                           static_cast<CameraId>(i),
+                                           static_cast<int>(width),
+                                           static_cast<int>(height),
+                                           K,
+                                           rotation,
+                                           kCmToM * Vec3(tvec[0], tvec[1], tvec[2]),
+                                           distortion));
   }
   if (cameras.empty()) throw DatasetError(file.string(), "no cameras");
   return cameras;
@@ -158,7 +163,8 @@ bool HasWildtrackGroundTruth(const std::filesystem::path& data_root) {
   return std::filesystem::is_regular_file(data_root / "wildtrack" / "mvdet" / "gt.txt", ec);
 }
 
-eval::EvalSequence WildtrackGroundTruth(const std::filesystem::path& data_root, FrameIndex first,
+eval::EvalSequence WildtrackGroundTruth(const std::filesystem::path& data_root,
+                                        FrameIndex first,
                                         FrameIndex last) {
   const std::filesystem::path file = data_root / "wildtrack" / "mvdet" / "gt.txt";
   const std::string name = file.string();
@@ -179,27 +185,31 @@ eval::EvalSequence WildtrackGroundTruth(const std::filesystem::path& data_root, 
     }
     if (image_frame < 0 || image_frame % kImageFramesPerAnnotatedFrame != 0 ||
         image_frame > 1'000'000'000) {
-      throw DatasetError(name, at + ": image frame " + std::to_string(image_frame) +
-                                   " is not a non-negative multiple of 5");
+      throw DatasetError(name,
+                         at + ": image frame " + std::to_string(image_frame) +
+                             " is not a non-negative multiple of 5");
     }
     if (gx < 0 || gx >= kGridWidth || gy < 0 || gy >= kGridHeight) {
-      throw DatasetError(name, at + ": grid cell (" + std::to_string(gx) + ", " +
-                                   std::to_string(gy) + ") outside the 480 x 1440 grid");
+      throw DatasetError(name,
+                         at + ": grid cell (" + std::to_string(gx) + ", " + std::to_string(gy) +
+                             ") outside the 480 x 1440 grid");
     }
     const FrameIndex frame = image_frame / kImageFramesPerAnnotatedFrame;
     std::vector<eval::EvalObject>& objects = by_frame[frame];
     eval::EvalObject o;
     o.id = static_cast<std::int64_t>(objects.size());
     o.position = Vec3(WildtrackArea::kMinX + kGridCellM * static_cast<double>(gx),
-                      WildtrackArea::kMinY + kGridCellM * static_cast<double>(gy), 0.0);
+                      WildtrackArea::kMinY + kGridCellM * static_cast<double>(gy),
+                      0.0);
     objects.push_back(o);
   }
   if (by_frame.empty()) throw DatasetError(name, "no positions");
   if (first > last || first < by_frame.begin()->first || last > by_frame.rbegin()->first) {
-    throw DatasetError(name, "frames " + std::to_string(first) + "-" + std::to_string(last) +
-                                 " are not within the file's annotated frames " +
-                                 std::to_string(by_frame.begin()->first) + "-" +
-                                 std::to_string(by_frame.rbegin()->first));
+    throw DatasetError(name,
+                       "frames " + std::to_string(first) + "-" + std::to_string(last) +
+                           " are not within the file's annotated frames " +
+                           std::to_string(by_frame.begin()->first) + "-" +
+                           std::to_string(by_frame.rbegin()->first));
   }
   eval::EvalSequence out;
   for (FrameIndex f = first; f <= last; ++f) {
@@ -226,8 +236,7 @@ std::vector<Mat3> WildtrackHomographies(const std::filesystem::path& data_root) 
   const JsonValue list = seq["homography"];
   const std::int64_t cam_nbr = seq["cam_nbr"].AsInt();
   if (static_cast<std::int64_t>(list.Size()) != cam_nbr) {
-    list.Fail(std::to_string(list.Size()) + " homographies for cam_nbr " +
-              std::to_string(cam_nbr));
+    list.Fail(std::to_string(list.Size()) + " homographies for cam_nbr " + std::to_string(cam_nbr));
   }
   std::vector<Mat3> out;
   for (std::size_t i = 0; i < list.Size(); ++i) {
@@ -328,11 +337,11 @@ std::vector<WildtrackGroundPoint> MergeGroundPoints(const std::vector<Vec2>& poi
     p.num_views = clusters[i].count;
     out.push_back(p);
   }
-  std::sort(out.begin(), out.end(),
-            [](const WildtrackGroundPoint& a, const WildtrackGroundPoint& b) {
-              if (a.position_m.x() != b.position_m.x()) return a.position_m.x() < b.position_m.x();
-              return a.position_m.y() < b.position_m.y();
-            });
+  std::sort(
+      out.begin(), out.end(), [](const WildtrackGroundPoint& a, const WildtrackGroundPoint& b) {
+        if (a.position_m.x() != b.position_m.x()) return a.position_m.x() < b.position_m.x();
+        return a.position_m.y() < b.position_m.y();
+      });
   return out;
 }
 
@@ -358,8 +367,9 @@ std::vector<WildtrackGroundFrame> WildtrackGroundPoints(const std::filesystem::p
       const Vec2 foot = b.box.bottom_center();
       const Vec3 g = ground_from_image[b.camera] * Vec3(foot.x(), foot.y(), 1.0);
       if (!(std::abs(g.z()) > 0.0)) {
-        throw DatasetError(box_file.string(), "frame " + std::to_string(frame) +
-                                                  ": a box's bottom centre maps to infinity");
+        throw DatasetError(
+            box_file.string(),
+            "frame " + std::to_string(frame) + ": a box's bottom centre maps to infinity");
       }
       points.push_back(kCmToM * g.head<2>() / g.z());
       cameras.push_back(static_cast<int>(b.camera));

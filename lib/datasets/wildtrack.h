@@ -44,7 +44,8 @@ struct WildtrackArea {
 /// person ids: detection metrics only). The range must lie within the file's frames.
 /// @throws DatasetError on a missing or malformed file (a non-integer field, an image frame
 /// that is not a multiple of 5, a cell outside the grid) or a range outside the file.
-eval::EvalSequence WildtrackGroundTruth(const std::filesystem::path& data_root, FrameIndex first,
+eval::EvalSequence WildtrackGroundTruth(const std::filesystem::path& data_root,
+                                        FrameIndex first,
                                         FrameIndex last);
 
 /// Whether `<data_root>`/wildtrack/mvdet/gt.txt exists.

@@ -19,7 +19,8 @@ int JointIndex(const core::KeypointLayout& layout, std::string_view name) {
 
 /// Joint `name` of a BODY25 skeleton derived from `source` (layout `mapping.from`) with the
 /// mapping's rule; std::nullopt when a source joint it needs is missing or it is not derivable.
-std::optional<Vec3> Derived(const core::KeypointMapping& mapping, std::string_view name,
+std::optional<Vec3> Derived(const core::KeypointMapping& mapping,
+                            std::string_view name,
                             const std::vector<std::optional<Vec3>>& source) {
   const int j = JointIndex(core::GetKeypointLayout(mapping.to), name);
   MVTRACK_CHECK_MSG(j >= 0, "joint missing from the target layout");
@@ -53,8 +54,10 @@ std::optional<HeadRule> HeadRuleFromName(std::string_view name) {
   return std::nullopt;
 }
 
-std::optional<Vec3> FourDAssociationHeadTop(const Vec3& head_bottom, const Vec3& neck,
-                                            const Vec3& mid_hip, const Vec3& r_shoulder,
+std::optional<Vec3> FourDAssociationHeadTop(const Vec3& head_bottom,
+                                            const Vec3& neck,
+                                            const Vec3& mid_hip,
+                                            const Vec3& r_shoulder,
                                             const Vec3& l_shoulder) {
   const Vec3 face = (neck - mid_hip).cross(r_shoulder - l_shoulder);
   const double n = face.norm();
@@ -62,7 +65,8 @@ std::optional<Vec3> FourDAssociationHeadTop(const Vec3& head_bottom, const Vec3&
   return head_bottom + 0.125 * (face / n) + 0.145 * Vec3::UnitZ();
 }
 
-void ApplyHeadRule(HeadRule rule, core::KeypointLayoutId from,
+void ApplyHeadRule(HeadRule rule,
+                   core::KeypointLayoutId from,
                    const std::vector<std::optional<Vec3>>& source,
                    std::vector<std::optional<Vec3>>* shelf14) {
   MVTRACK_CHECK(shelf14 != nullptr);

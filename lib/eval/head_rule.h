@@ -35,8 +35,10 @@ std::optional<HeadRule> HeadRuleFromName(std::string_view name);
 
 /// 4D Association's head top: head_bottom + 0.125 m * unit((neck - mid_hip) x (r_shoulder -
 /// l_shoulder)) + 0.145 m * z. std::nullopt when that cross product is zero or not finite.
-std::optional<Vec3> FourDAssociationHeadTop(const Vec3& head_bottom, const Vec3& neck,
-                                            const Vec3& mid_hip, const Vec3& r_shoulder,
+std::optional<Vec3> FourDAssociationHeadTop(const Vec3& head_bottom,
+                                            const Vec3& neck,
+                                            const Vec3& mid_hip,
+                                            const Vec3& r_shoulder,
                                             const Vec3& l_shoulder);
 
 /// Re-derives head_top of `shelf14` (joints already mapped to core::KeypointLayoutId::kShelf14
@@ -46,7 +48,8 @@ std::optional<Vec3> FourDAssociationHeadTop(const Vec3& head_bottom, const Vec3&
 /// shoulder midpoint) and head_bottom from `shelf14`; head_top becomes std::nullopt when any of
 /// them is missing. Nothing changes when `from` is shelf14 itself (its head joints are data).
 /// `shelf14` must have the 14 joints of shelf14 and `source` the joints of `from`.
-void ApplyHeadRule(HeadRule rule, core::KeypointLayoutId from,
+void ApplyHeadRule(HeadRule rule,
+                   core::KeypointLayoutId from,
                    const std::vector<std::optional<Vec3>>& source,
                    std::vector<std::optional<Vec3>>* shelf14);
 

@@ -39,14 +39,15 @@ Eigen::MatrixXd Similarity(const AlignedFrame& f, DistanceKind distance, double 
 double Mean(const std::vector<double>& v) {
   double sum = 0.0;
   for (double x : v) sum += x;
-  return v.empty() ? std::numeric_limits<double>::quiet_NaN()
-                   : sum / static_cast<double>(v.size());
+  return v.empty() ? std::numeric_limits<double>::quiet_NaN() : sum / static_cast<double>(v.size());
 }
 
 }  // namespace
 
-HotaMetrics EvaluateHota(const EvalSequence& ground_truth, const EvalSequence& predictions,
-                         DistanceKind distance, double threshold_m,
+HotaMetrics EvaluateHota(const EvalSequence& ground_truth,
+                         const EvalSequence& predictions,
+                         DistanceKind distance,
+                         double threshold_m,
                          const std::vector<FrameRange>& ranges) {
   MVTRACK_CHECK_MSG(std::isfinite(threshold_m) && threshold_m > 0.0,
                     "EvaluateHota: threshold_m must be finite and > 0");

@@ -48,8 +48,10 @@ struct HotaMetrics {
 /// Like TrackEval, a sequence without predictions (or without ground truth) scores every
 /// ground-truth object (prediction) as FN (FP) with LocA 1. O(frames * n^3) for the
 /// per-frame assignments; memory O(distinct id pairs that ever overlap).
-HotaMetrics EvaluateHota(const EvalSequence& ground_truth, const EvalSequence& predictions,
-                         DistanceKind distance, double threshold_m,
+HotaMetrics EvaluateHota(const EvalSequence& ground_truth,
+                         const EvalSequence& predictions,
+                         DistanceKind distance,
+                         double threshold_m,
                          const std::vector<FrameRange>& ranges);
 
 }  // namespace mvtrack::eval

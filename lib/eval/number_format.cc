@@ -15,9 +15,8 @@ std::string FormatFixed(double value, int precision) {
   if (std::abs(value) < 0.5 * std::pow(10.0, -p)) value = 0.0;
   // Enough for 309 integer digits, the point and 17 decimals.
   std::array<char, 340> buffer{};
-  const auto [end, ec] =
-      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
-                    std::chars_format::fixed, p);
+  const auto [end, ec] = std::to_chars(
+      buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed, p);
   if (ec != std::errc()) return "nan";
   std::string text(buffer.data(), end);
   // Rounding can still produce "-0.00" for values just above the cut-off in magnitude.

@@ -115,8 +115,9 @@ bool PcpProtocol::Validate(int num_joints, std::string* why) const {
       double sum = 0.0;
       for (const WeightedJoint& t : *endpoint) {
         if (t.joint < 0 || t.joint >= num_joints) {
-          return Fail(why, at + ": joint " + std::to_string(t.joint) + " outside [0, " +
-                               std::to_string(num_joints) + ")");
+          return Fail(why,
+                      at + ": joint " + std::to_string(t.joint) + " outside [0, " +
+                          std::to_string(num_joints) + ")");
         }
         if (!std::isfinite(t.weight)) return Fail(why, at + ": non-finite weight");
         sum += t.weight;
@@ -127,8 +128,9 @@ bool PcpProtocol::Validate(int num_joints, std::string* why) const {
   for (std::size_t g = 0; g < groups.size(); ++g) {
     for (const int b : groups[g].bones) {
       if (b < 0 || static_cast<std::size_t>(b) >= bones.size()) {
-        return Fail(why, "PCP group " + std::to_string(g) + " (" + groups[g].name +
-                             "): bone index " + std::to_string(b) + " out of range");
+        return Fail(why,
+                    "PCP group " + std::to_string(g) + " (" + groups[g].name + "): bone index " +
+                        std::to_string(b) + " out of range");
       }
     }
   }
@@ -156,8 +158,12 @@ PcpProtocol ShelfCampusPcpProtocol() {
   torso.a = {{j("l_hip"), 0.5}, {j("r_hip"), 0.5}};
   torso.b = {{j("head_bottom"), 1.0}};
   protocol.bones.push_back(torso);
-  protocol.groups = {{"head", {8}},       {"torso", {9}},      {"upper_arms", {5, 6}},
-                     {"lower_arms", {4, 7}}, {"upper_legs", {1, 2}}, {"lower_legs", {0, 3}}};
+  protocol.groups = {{"head", {8}},
+                     {"torso", {9}},
+                     {"upper_arms", {5, 6}},
+                     {"lower_arms", {4, 7}},
+                     {"upper_legs", {1, 2}},
+                     {"lower_legs", {0, 3}}};
   return protocol;
 }
 
@@ -244,8 +250,9 @@ PcpResult EvaluatePcp(const EvalSequence& ground_truth,
     if (const auto it = pred_frames.find(index); it != pred_frames.end()) {
       for (const EvalObject& p : it->second->objects) candidates.push_back(&p);
     }
-    std::sort(candidates.begin(), candidates.end(),
-              [](const EvalObject* a, const EvalObject* b) { return a->id < b->id; });
+    std::sort(candidates.begin(), candidates.end(), [](const EvalObject* a, const EvalObject* b) {
+      return a->id < b->id;
+    });
 
     bool scored_any = false;
     for (const EvalObject& gt : gt_frame->objects) {

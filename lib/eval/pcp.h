@@ -95,9 +95,9 @@ struct PcpActorResult {
   std::int64_t correct_parts = 0;
   std::int64_t total_parts = 0;  ///< parts scored (parts with a missing GT endpoint are skipped)
   double pcp = std::numeric_limits<double>::quiet_NaN();  ///< correct / total
-  std::vector<std::int64_t> bone_correct;  ///< per protocol bone
-  std::vector<std::int64_t> bone_total;    ///< per protocol bone
-  std::vector<double> group_pcp;           ///< per protocol group (NaN when never scored)
+  std::vector<std::int64_t> bone_correct;                 ///< per protocol bone
+  std::vector<std::int64_t> bone_total;                   ///< per protocol bone
+  std::vector<double> group_pcp;  ///< per protocol group (NaN when never scored)
 };
 
 /// Everything EvaluatePcp computes. Averages are NaN when no actor was scored.
@@ -115,8 +115,8 @@ struct PcpResult {
   double average_pcp = std::numeric_limits<double>::quiet_NaN();
   /// Per group, mean over actors of the actor's group PCP (actors where it is defined).
   std::vector<double> average_group_pcp;
-  std::int64_t recall_total = 0;     ///< scored actor-frames
-  std::int64_t recall_matched = 0;   ///< of those, selected mean error < recall_threshold_m
+  std::int64_t recall_total = 0;    ///< scored actor-frames
+  std::int64_t recall_matched = 0;  ///< of those, selected mean error < recall_threshold_m
   double recall = std::numeric_limits<double>::quiet_NaN();  ///< matched / total
 };
 

@@ -30,8 +30,7 @@ std::string Protocol(const PointComparisonOptions& options, std::int64_t num_fra
             internal::FormatFixed(options.area->min_x, 2) + ", " +
             internal::FormatFixed(options.area->max_x, 2) + "] m, y in [" +
             internal::FormatFixed(options.area->min_y, 2) + ", " +
-            internal::FormatFixed(options.area->max_y, 2) +
-            "] m are dropped before matching. ";
+            internal::FormatFixed(options.area->max_y, 2) + "] m are dropped before matching. ";
   } else {
     text += "Area: everywhere. ";
   }
@@ -47,9 +46,9 @@ bool PointComparisonOptions::Validate(std::string* why) const {
     if (why != nullptr) *why = "gate_m must be finite and > 0";
     return false;
   }
-  if (area && !(std::isfinite(area->min_x) && std::isfinite(area->max_x) &&
-                std::isfinite(area->min_y) && std::isfinite(area->max_y) &&
-                area->min_x < area->max_x && area->min_y < area->max_y)) {
+  if (area &&
+      !(std::isfinite(area->min_x) && std::isfinite(area->max_x) && std::isfinite(area->min_y) &&
+        std::isfinite(area->max_y) && area->min_x < area->max_x && area->min_y < area->max_y)) {
     if (why != nullptr) *why = "area must be finite with min < max on both axes";
     return false;
   }

@@ -76,8 +76,9 @@ void Write(const Json& json, int precision, int indent, std::string* out) {
     }
     std::vector<const std::pair<std::string, Json>*> members;
     for (const auto& m : *o) members.push_back(&m);
-    std::sort(members.begin(), members.end(),
-              [](const auto* x, const auto* y) { return x->first < y->first; });
+    std::sort(members.begin(), members.end(), [](const auto* x, const auto* y) {
+      return x->first < y->first;
+    });
     *out += "{\n";
     for (std::size_t k = 0; k < members.size(); ++k) {
       *out += pad;
@@ -150,31 +151,33 @@ Json TrackingJson(const TrackingEvaluation& t) {
                            {"prediction_id", Int(m.prediction_id)},
                            {"frames_within_gate", Int(m.frames_within_gate)}}));
   }
-  o.emplace_back("identity", Obj({{"idf1", Num(id.idf1)},
-                                  {"idp", Num(id.idp)},
-                                  {"idr", Num(id.idr)},
-                                  {"idtp", Int(id.idtp)},
-                                  {"idfp", Int(id.idfp)},
-                                  {"idfn", Int(id.idfn)},
-                                  {"matches", Arr(std::move(matches))}}));
+  o.emplace_back("identity",
+                 Obj({{"idf1", Num(id.idf1)},
+                      {"idp", Num(id.idp)},
+                      {"idr", Num(id.idr)},
+                      {"idtp", Int(id.idtp)},
+                      {"idfp", Int(id.idfp)},
+                      {"idfn", Int(id.idfn)},
+                      {"matches", Arr(std::move(matches))}}));
 
   const HotaMetrics& h = t.hota;
-  o.emplace_back("hota", Obj({{"hota", Num(h.mean_hota)},
-                              {"det_a", Num(h.mean_det_a)},
-                              {"ass_a", Num(h.mean_ass_a)},
-                              {"loc_a", Num(h.mean_loc_a)},
-                              {"alphas", NumArray(h.alphas)},
-                              {"hota_per_alpha", NumArray(h.hota)},
-                              {"det_a_per_alpha", NumArray(h.det_a)},
-                              {"ass_a_per_alpha", NumArray(h.ass_a)},
-                              {"det_re_per_alpha", NumArray(h.det_re)},
-                              {"det_pr_per_alpha", NumArray(h.det_pr)},
-                              {"ass_re_per_alpha", NumArray(h.ass_re)},
-                              {"ass_pr_per_alpha", NumArray(h.ass_pr)},
-                              {"loc_a_per_alpha", NumArray(h.loc_a)},
-                              {"tp_per_alpha", IntArray(h.tp)},
-                              {"fn_per_alpha", IntArray(h.fn)},
-                              {"fp_per_alpha", IntArray(h.fp)}}));
+  o.emplace_back("hota",
+                 Obj({{"hota", Num(h.mean_hota)},
+                      {"det_a", Num(h.mean_det_a)},
+                      {"ass_a", Num(h.mean_ass_a)},
+                      {"loc_a", Num(h.mean_loc_a)},
+                      {"alphas", NumArray(h.alphas)},
+                      {"hota_per_alpha", NumArray(h.hota)},
+                      {"det_a_per_alpha", NumArray(h.det_a)},
+                      {"ass_a_per_alpha", NumArray(h.ass_a)},
+                      {"det_re_per_alpha", NumArray(h.det_re)},
+                      {"det_pr_per_alpha", NumArray(h.det_pr)},
+                      {"ass_re_per_alpha", NumArray(h.ass_re)},
+                      {"ass_pr_per_alpha", NumArray(h.ass_pr)},
+                      {"loc_a_per_alpha", NumArray(h.loc_a)},
+                      {"tp_per_alpha", IntArray(h.tp)},
+                      {"fn_per_alpha", IntArray(h.fn)},
+                      {"fp_per_alpha", IntArray(h.fp)}}));
 
   const IdentityCoverage& cov = t.coverage;
   JsonArray transfers;
@@ -187,20 +190,21 @@ Json TrackingJson(const TrackingEvaluation& t) {
     fragmentations.push_back(
         Obj({{"gt_id", Int(x.gt_id)}, {"prediction_ids", IntArray(x.prediction_ids)}}));
   }
-  o.emplace_back("coverage", Obj({{"cover_min_frames", Int(cov.cover_min_frames)},
-                                  {"num_id_transfers", Int(static_cast<std::int64_t>(
-                                                           cov.transfers.size()))},
-                                  {"num_id_fragmentations",
-                                   Int(static_cast<std::int64_t>(cov.fragmentations.size()))},
-                                  {"transfers", Arr(std::move(transfers))},
-                                  {"fragmentations", Arr(std::move(fragmentations))}}));
+  o.emplace_back(
+      "coverage",
+      Obj({{"cover_min_frames", Int(cov.cover_min_frames)},
+           {"num_id_transfers", Int(static_cast<std::int64_t>(cov.transfers.size()))},
+           {"num_id_fragmentations", Int(static_cast<std::int64_t>(cov.fragmentations.size()))},
+           {"transfers", Arr(std::move(transfers))},
+           {"fragmentations", Arr(std::move(fragmentations))}}));
 
   const PoseErrorMetrics& p = t.pose;
-  o.emplace_back("pose", Obj({{"mpjpe_m", Num(p.mpjpe_m)},
-                              {"num_pairs", Int(p.num_pairs)},
-                              {"num_joints", Int(p.num_joints)},
-                              {"per_joint_mpjpe_m", NumArray(p.per_joint_mpjpe_m)},
-                              {"per_joint_count", IntArray(p.per_joint_count)}}));
+  o.emplace_back("pose",
+                 Obj({{"mpjpe_m", Num(p.mpjpe_m)},
+                      {"num_pairs", Int(p.num_pairs)},
+                      {"num_joints", Int(p.num_joints)},
+                      {"per_joint_mpjpe_m", NumArray(p.per_joint_mpjpe_m)},
+                      {"per_joint_count", IntArray(p.per_joint_count)}}));
 
   JsonArray objects;
   for (const ObjectCoverage& obj : t.objects) {
@@ -285,10 +289,11 @@ Json PointsJson(const PointComparison& r) {
   o.emplace_back("modp", Num(r.modp));
   o.emplace_back("modp_m", Num(r.mean_distance_m));
   if (r.area) {
-    o.emplace_back("area", Obj({{"min_x", Num(r.area->min_x)},
-                                {"max_x", Num(r.area->max_x)},
-                                {"min_y", Num(r.area->min_y)},
-                                {"max_y", Num(r.area->max_y)}}));
+    o.emplace_back("area",
+                   Obj({{"min_x", Num(r.area->min_x)},
+                        {"max_x", Num(r.area->max_x)},
+                        {"min_y", Num(r.area->min_y)},
+                        {"max_y", Num(r.area->max_y)}}));
   }
   o.emplace_back("num_reference_outside", Int(r.num_reference_outside));
   o.emplace_back("num_predicted_outside", Int(r.num_predicted_outside));
@@ -339,21 +344,48 @@ std::string TrackingTable(const TrackingEvaluation& t) {
   if (!t.valid) return out + "  invalid input: " + t.error + "\n";
   const ClearMotMetrics& c = t.clear;
   const IdentityMetrics& id = t.identity;
-  out += Columns({{"MOTA%", "MOTP[m]", "IDF1%", "IDP%", "IDR%", "FP", "FN", "IDSW", "FM", "MT",
-                   "PT", "ML", "GT", "GT ids", "Pred", "Pred ids", "Frames"},
-                  {Percent(c.mota), Metres(c.motp_m), Percent(id.idf1), Percent(id.idp),
-                   Percent(id.idr), std::to_string(c.num_false_positives),
-                   std::to_string(c.num_misses), std::to_string(c.num_switches),
-                   std::to_string(c.num_fragmentations), std::to_string(c.mostly_tracked),
-                   std::to_string(c.partially_tracked), std::to_string(c.mostly_lost),
-                   std::to_string(c.num_objects), std::to_string(c.num_unique_objects),
-                   std::to_string(c.num_predictions), std::to_string(c.num_unique_predictions),
+  out += Columns({{"MOTA%",
+                   "MOTP[m]",
+                   "IDF1%",
+                   "IDP%",
+                   "IDR%",
+                   "FP",
+                   "FN",
+                   "IDSW",
+                   "FM",
+                   "MT",
+                   "PT",
+                   "ML",
+                   "GT",
+                   "GT ids",
+                   "Pred",
+                   "Pred ids",
+                   "Frames"},
+                  {Percent(c.mota),
+                   Metres(c.motp_m),
+                   Percent(id.idf1),
+                   Percent(id.idp),
+                   Percent(id.idr),
+                   std::to_string(c.num_false_positives),
+                   std::to_string(c.num_misses),
+                   std::to_string(c.num_switches),
+                   std::to_string(c.num_fragmentations),
+                   std::to_string(c.mostly_tracked),
+                   std::to_string(c.partially_tracked),
+                   std::to_string(c.mostly_lost),
+                   std::to_string(c.num_objects),
+                   std::to_string(c.num_unique_objects),
+                   std::to_string(c.num_predictions),
+                   std::to_string(c.num_unique_predictions),
                    std::to_string(c.num_frames)}});
   const HotaMetrics& h = t.hota;
   const IdentityCoverage& cov = t.coverage;
   out += Columns({{"HOTA%", "DetA%", "AssA%", "LocA%", "IDTR", "IDFRAG"},
-                  {Percent(h.mean_hota), Percent(h.mean_det_a), Percent(h.mean_ass_a),
-                   Percent(h.mean_loc_a), std::to_string(cov.transfers.size()),
+                  {Percent(h.mean_hota),
+                   Percent(h.mean_det_a),
+                   Percent(h.mean_ass_a),
+                   Percent(h.mean_loc_a),
+                   std::to_string(cov.transfers.size()),
                    std::to_string(cov.fragmentations.size())}});
   // The transfers by name (they are the errors that break visit counts), at most 10.
   if (!cov.transfers.empty()) {
@@ -384,7 +416,8 @@ std::string PcpTable(const PcpResult& r) {
   for (const std::string& g : r.group_names) header.push_back(g + "%");
   rows.push_back(header);
   for (const PcpActorResult& a : r.actors) {
-    std::vector<std::string> row = {std::to_string(a.actor_id), std::to_string(a.num_frames),
+    std::vector<std::string> row = {std::to_string(a.actor_id),
+                                    std::to_string(a.num_frames),
                                     std::to_string(a.num_frames_without_prediction),
                                     Percent(a.pcp)};
     for (const double g : a.group_pcp) row.push_back(Percent(g));
@@ -405,30 +438,51 @@ std::string PointsTable(const PointComparison& r) {
                     " m, frames " + DescribeFrameRanges(r.frame_ranges) + ")\n";
   if (!r.valid) return out + "  invalid input: " + r.error + "\n";
   const auto frames = static_cast<std::int64_t>(r.frames.size());
-  out += Columns({{"Frames", "Ref", "Pred", "Matched", "Prec%", "Rec%", "equal count",
-                   "mean |dN|", "mean dN", "max |dN|", "median[m]", "mean[m]", "p90[m]",
-                   "max[m]"},
-                  {std::to_string(frames), std::to_string(r.num_reference),
-                   std::to_string(r.num_predicted), std::to_string(r.num_matched),
-                   Percent(r.precision), Percent(r.recall),
-                   std::to_string(r.frames_with_equal_count) + "/" + std::to_string(frames),
-                   std::isnan(r.mean_abs_count_difference)
-                       ? "n/a"
-                       : internal::FormatFixed(r.mean_abs_count_difference, 2),
-                   std::isnan(r.mean_count_difference)
-                       ? "n/a"
-                       : internal::FormatFixed(r.mean_count_difference, 2),
-                   std::to_string(r.max_abs_count_difference), Metres(r.median_distance_m),
-                   Metres(r.mean_distance_m), Metres(r.p90_distance_m),
-                   Metres(r.max_distance_m)}});
-  out += Columns({{"MODA%", "MODP%", "MODP[m]", "TP", "FP", "FN", "Prec%", "Rec%",
-                   "outside area (ref/pred)"},
-                  {Percent(r.moda), Percent(r.modp), Metres(r.mean_distance_m),
-                   std::to_string(r.num_matched), std::to_string(r.false_positives),
-                   std::to_string(r.misses), Percent(r.precision), Percent(r.recall),
-                   r.area ? std::to_string(r.num_reference_outside) + "/" +
-                                std::to_string(r.num_predicted_outside)
-                          : std::string("no area")}});
+  out += Columns(
+      {{"Frames",
+        "Ref",
+        "Pred",
+        "Matched",
+        "Prec%",
+        "Rec%",
+        "equal count",
+        "mean |dN|",
+        "mean dN",
+        "max |dN|",
+        "median[m]",
+        "mean[m]",
+        "p90[m]",
+        "max[m]"},
+       {std::to_string(frames),
+        std::to_string(r.num_reference),
+        std::to_string(r.num_predicted),
+        std::to_string(r.num_matched),
+        Percent(r.precision),
+        Percent(r.recall),
+        std::to_string(r.frames_with_equal_count) + "/" + std::to_string(frames),
+        std::isnan(r.mean_abs_count_difference)
+            ? "n/a"
+            : internal::FormatFixed(r.mean_abs_count_difference, 2),
+        std::isnan(r.mean_count_difference) ? "n/a"
+                                            : internal::FormatFixed(r.mean_count_difference, 2),
+        std::to_string(r.max_abs_count_difference),
+        Metres(r.median_distance_m),
+        Metres(r.mean_distance_m),
+        Metres(r.p90_distance_m),
+        Metres(r.max_distance_m)}});
+  out += Columns(
+      {{"MODA%", "MODP%", "MODP[m]", "TP", "FP", "FN", "Prec%", "Rec%", "outside area (ref/pred)"},
+       {Percent(r.moda),
+        Percent(r.modp),
+        Metres(r.mean_distance_m),
+        std::to_string(r.num_matched),
+        std::to_string(r.false_positives),
+        std::to_string(r.misses),
+        Percent(r.precision),
+        Percent(r.recall),
+        r.area ? std::to_string(r.num_reference_outside) + "/" +
+                     std::to_string(r.num_predicted_outside)
+               : std::string("no area")}});
   out += "  Protocol: " + r.protocol + "\n";
   return out;
 }

@@ -39,9 +39,9 @@ std::string DescribeFrameRanges(const std::vector<FrameRange>& ranges) {
 bool ValidateFrameRanges(const std::vector<FrameRange>& ranges, std::string* why) {
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     if (ranges[i].first > ranges[i].last) {
-      SetWhy(why, "frame range " + std::to_string(i) + " has first > last (" +
-                      std::to_string(ranges[i].first) + " > " + std::to_string(ranges[i].last) +
-                      ")");
+      SetWhy(why,
+             "frame range " + std::to_string(i) + " has first > last (" +
+                 std::to_string(ranges[i].first) + " > " + std::to_string(ranges[i].last) + ")");
       return false;
     }
   }
@@ -77,8 +77,9 @@ bool ValidateSequence(const EvalSequence& sequence, const std::string& name, std
       if (!num_joints.has_value()) {
         num_joints = object.joints.size();
       } else if (*num_joints != object.joints.size()) {
-        SetWhy(why, at + ": has " + std::to_string(object.joints.size()) + " joints, expected " +
-                        std::to_string(*num_joints) + " as for the first object");
+        SetWhy(why,
+               at + ": has " + std::to_string(object.joints.size()) + " joints, expected " +
+                   std::to_string(*num_joints) + " as for the first object");
         return false;
       }
     }
@@ -101,9 +102,10 @@ bool ValidateSequencePair(const EvalSequence& ground_truth,
   const std::optional<std::size_t> gt_joints = first_count(ground_truth);
   const std::optional<std::size_t> pred_joints = first_count(predictions);
   if (gt_joints.has_value() && pred_joints.has_value() && *gt_joints != *pred_joints) {
-    SetWhy(why, "ground truth has " + std::to_string(*gt_joints) +
-                    " joints per object, predictions " + std::to_string(*pred_joints) +
-                    " (map both to one layout with core::MakeKeypointMapping first)");
+    SetWhy(why,
+           "ground truth has " + std::to_string(*gt_joints) + " joints per object, predictions " +
+               std::to_string(*pred_joints) +
+               " (map both to one layout with core::MakeKeypointMapping first)");
     return false;
   }
   if (num_joints != nullptr) {
@@ -151,8 +153,9 @@ std::vector<const EvalObject*> SortedById(const EvalFrame* frame) {
   if (frame == nullptr) return objects;
   objects.reserve(frame->objects.size());
   for (const EvalObject& o : frame->objects) objects.push_back(&o);
-  std::sort(objects.begin(), objects.end(),
-            [](const EvalObject* a, const EvalObject* b) { return a->id < b->id; });
+  std::sort(objects.begin(), objects.end(), [](const EvalObject* a, const EvalObject* b) {
+    return a->id < b->id;
+  });
   return objects;
 }
 

@@ -145,8 +145,8 @@ TrackingEvaluation EvaluateTracking(const EvalSequence& ground_truth,
     for (const EvalObject* p : f.pred) ++pred_frames[p->id];
 
     // Gated distances: +inf where the pair can never be matched in this frame.
-    Eigen::MatrixXd dist = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(n_gt),
-                                                     static_cast<Eigen::Index>(n_pred), kInf);
+    Eigen::MatrixXd dist = Eigen::MatrixXd::Constant(
+        static_cast<Eigen::Index>(n_gt), static_cast<Eigen::Index>(n_pred), kInf);
     for (std::size_t i = 0; i < n_gt; ++i) {
       for (std::size_t j = 0; j < n_pred; ++j) {
         const std::optional<double> d = ObjectDistance(options.distance, *f.gt[i], *f.pred[j]);
@@ -361,8 +361,8 @@ TrackingEvaluation EvaluateTracking(const EvalSequence& ground_truth,
       cov.fragmentations.push_back(std::move(fr));
     }
   }
-  result.hota = EvaluateHota(ground_truth, predictions, options.distance, gate,
-                             options.frame_ranges);
+  result.hota =
+      EvaluateHota(ground_truth, predictions, options.distance, gate, options.frame_ranges);
 
   result.protocol = Protocol(options, clear.num_frames);
   result.valid = true;

@@ -53,9 +53,9 @@ struct ClearMotMetrics {
   /// Matched pairs, switches included (TP; py-motmetrics calls this num_detections, its
   /// num_matches excludes the switches).
   std::int64_t num_matches = 0;
-  std::int64_t num_false_positives = 0;     ///< FP: unmatched predicted object-frames
-  std::int64_t num_misses = 0;              ///< FN: unmatched GT object-frames
-  std::int64_t num_switches = 0;            ///< IDSW: GT matched to other id than its last match
+  std::int64_t num_false_positives = 0;  ///< FP: unmatched predicted object-frames
+  std::int64_t num_misses = 0;           ///< FN: unmatched GT object-frames
+  std::int64_t num_switches = 0;         ///< IDSW: GT matched to other id than its last match
   /// FM (py-motmetrics num_fragmentations): tracked -> missed transitions of a GT between its
   /// first and last matched frame.
   std::int64_t num_fragmentations = 0;
@@ -77,9 +77,9 @@ const char* TrackCoverageName(TrackCoverage coverage);
 
 /// Per-GT-trajectory coverage.
 struct ObjectCoverage {
-  std::int64_t id = 0;                ///< GT id
-  std::int64_t frames_present = 0;    ///< frames in which the GT object exists
-  std::int64_t frames_matched = 0;    ///< of those, frames in which it was matched
+  std::int64_t id = 0;              ///< GT id
+  std::int64_t frames_present = 0;  ///< frames in which the GT object exists
+  std::int64_t frames_matched = 0;  ///< of those, frames in which it was matched
   TrackCoverage coverage = TrackCoverage::kMostlyLost;
 };
 
@@ -103,8 +103,8 @@ struct IdentityMetrics {
   std::int64_t idtp = 0;  ///< object-frames where the GT is within the gate of its assigned track
   std::int64_t idfp = 0;  ///< predicted object-frames not counted as IDTP
   std::int64_t idfn = 0;  ///< GT object-frames not counted as IDTP
-  double idp = std::numeric_limits<double>::quiet_NaN();   ///< IDTP / (IDTP + IDFP)
-  double idr = std::numeric_limits<double>::quiet_NaN();   ///< IDTP / (IDTP + IDFN)
+  double idp = std::numeric_limits<double>::quiet_NaN();  ///< IDTP / (IDTP + IDFP)
+  double idr = std::numeric_limits<double>::quiet_NaN();  ///< IDTP / (IDTP + IDFN)
   /// 2 IDTP / (num_objects + num_predictions).
   double idf1 = std::numeric_limits<double>::quiet_NaN();
   /// Assigned pairs with at least one frame within the gate, sorted by GT id. (Pairs of the

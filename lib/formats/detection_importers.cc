@@ -108,10 +108,11 @@ std::optional<FrameIndex> FrameFromFileName(const std::string& name) {
 
 class CocoChecker : public json::Checker {
  public:
-  CocoChecker(const CocoOptions& options, ImportedDetections* out)
-      : options_(options), out_(out) {}
+  CocoChecker(const CocoOptions& options, ImportedDetections* out) : options_(options), out_(out) {}
 
-  bool Record(const json::Value& v, const std::string& path, FrameIndex* frame,
+  bool Record(const json::Value& v,
+              const std::string& path,
+              FrameIndex* frame,
               core::Detection2D* d) {
     if (!ExpectKind(v, path, json::Value::Kind::kObject)) return false;
     const json::Value* image_id = nullptr;
@@ -137,38 +138,50 @@ class CocoChecker : public json::Checker {
     }
     // frame
     if (image_id != nullptr && frame_value != nullptr) {
-      return Fail(*frame_value, Join(path, "frame"),
+      return Fail(*frame_value,
+                  Join(path, "frame"),
                   "a record has both \"image_id\" and \"frame\" (give one)");
     }
     if (image_id == nullptr && frame_value == nullptr) {
       return Fail(v, path, "missing key \"image_id\" (or \"frame\")");
     }
     if (frame_value != nullptr) {
-      if (!GetInt(*frame_value, Join(path, "frame"), 0, std::numeric_limits<FrameIndex>::max(),
+      if (!GetInt(*frame_value,
+                  Join(path, "frame"),
+                  0,
+                  std::numeric_limits<FrameIndex>::max(),
                   frame)) {
         return false;
       }
     } else if (image_id->kind == json::Value::Kind::kString) {
       const std::optional<FrameIndex> f = FrameFromFileName(image_id->string);
       if (!f.has_value()) {
-        return Fail(*image_id, Join(path, "image_id"),
+        return Fail(*image_id,
+                    Join(path, "image_id"),
                     "\"" + image_id->string +
                         "\" does not end in a frame number (expected e.g. \"000123.jpg\")");
       }
       *frame = *f;
-    } else if (!GetInt(*image_id, Join(path, "image_id"), 0,
-                       std::numeric_limits<FrameIndex>::max(), frame)) {
+    } else if (!GetInt(*image_id,
+                       Join(path, "image_id"),
+                       0,
+                       std::numeric_limits<FrameIndex>::max(),
+                       frame)) {
       return false;
     }
     // category
     if (category != nullptr) {
       std::int64_t c = 0;
-      if (!GetInt(*category, Join(path, "category_id"), std::numeric_limits<std::int64_t>::min(),
-                  std::numeric_limits<std::int64_t>::max(), &c)) {
+      if (!GetInt(*category,
+                  Join(path, "category_id"),
+                  std::numeric_limits<std::int64_t>::min(),
+                  std::numeric_limits<std::int64_t>::max(),
+                  &c)) {
         return false;
       }
       if (c != 1) {
-        return Fail(*category, Join(path, "category_id"),
+        return Fail(*category,
+                    Join(path, "category_id"),
                     std::to_string(c) + " is not 1 (person, the only COCO keypoint category)");
       }
     }
@@ -180,7 +193,8 @@ class CocoChecker : public json::Checker {
       const std::string score_path = Join(path, "score");
       if (!GetReal(*score, score_path, &d->score)) return false;
       if (!UnitOrClamp(&d->score, options_.clamp_scores, &out_->clamped)) {
-        return Fail(*score, score_path,
+        return Fail(*score,
+                    score_path,
                     "score " + std::string(score->number) +
                         " is outside [0, 1] (--clamp-scores clamps it)");
       }
@@ -196,7 +210,8 @@ class CocoChecker : public json::Checker {
         if (!GetReal(box->items[i], Index(box_path, i), &b[i])) return false;
       }
       if (!(b[2] > 0.0) || !(b[3] > 0.0)) {
-        return Fail(*box, box_path,
+        return Fail(*box,
+                    box_path,
                     "width " + std::string(box->items[2].number) + " and height " +
                         std::string(box->items[3].number) + " must be > 0");
       }
@@ -204,7 +219,8 @@ class CocoChecker : public json::Checker {
     } else {
       const std::optional<core::BoxPx> from_keypoints = datasets::BoxFromKeypoints(d->keypoints);
       if (!from_keypoints.has_value()) {
-        return Fail(*keypoints, Join(path, "keypoints"),
+        return Fail(*keypoints,
+                    Join(path, "keypoints"),
                     "no \"bbox\" and fewer than 2 keypoints with confidence > 0 to derive one");
       }
       d->box = *from_keypoints;
@@ -217,13 +233,15 @@ class CocoChecker : public json::Checker {
     const std::size_t n = kCocoNumKeypoints;
     const bool nested = !v.items.empty() && v.items.front().kind == json::Value::Kind::kArray;
     if (!nested && v.items.size() != 3 * n) {
-      return Fail(v, path,
+      return Fail(v,
+                  path,
                   "expected " + std::to_string(3 * n) + " numbers (17 COCO keypoints x, y, v) or " +
                       std::to_string(n) + " [x, y, v] arrays, found " +
                       std::to_string(v.items.size()) + " values");
     }
     if (nested && v.items.size() != n) {
-      return Fail(v, path,
+      return Fail(v,
+                  path,
                   "expected " + std::to_string(n) +
                       " [x, y, v] arrays (17 COCO keypoints), found " +
                       std::to_string(v.items.size()));
@@ -253,14 +271,15 @@ class CocoChecker : public json::Checker {
       }
       if (options_.keypoint_score == CocoKeypointScore::kVisibility) {
         if (c != 0.0 && c != 1.0 && c != 2.0) {
-          return Fail(*xyv[2], at[2],
-                      "visibility " + std::string(xyv[2]->number) +
-                          " of keypoint " + std::to_string(j) +
-                          " is not 0, 1 or 2 (--keypoint-score visibility)");
+          return Fail(*xyv[2],
+                      at[2],
+                      "visibility " + std::string(xyv[2]->number) + " of keypoint " +
+                          std::to_string(j) + " is not 0, 1 or 2 (--keypoint-score visibility)");
         }
         c = c > 0.0 ? 1.0 : 0.0;
       } else if (!UnitOrClamp(&c, options_.clamp_scores, &out_->clamped)) {
-        return Fail(*xyv[2], at[2],
+        return Fail(*xyv[2],
+                    at[2],
                     "confidence " + std::string(xyv[2]->number) + " of keypoint " +
                         std::to_string(j) +
                         " is outside [0, 1] (use --keypoint-score visibility for COCO "
@@ -364,14 +383,16 @@ ImportedDetections ReadCocoKeypoints(std::string_view text,
       if (m.key == "annotations") records = m.value.get();
     }
     if (records == nullptr) {
-      fail({root->column, "",
+      fail({root->column,
+            "",
             "expected an array of records or an object with \"annotations\", found an object "
             "without \"annotations\""});
     }
     path = "annotations";
   }
   if (records->kind != json::Value::Kind::kArray) {
-    fail({records->column, path,
+    fail({records->column,
+          path,
           std::string("expected an array of records, found ") + json::KindName(records->kind)});
   }
   CocoChecker checker(options, &out);

@@ -130,8 +130,9 @@ class SchemaChecker : public json::Checker {
   bool Line(const json::Value& root, ParsedLine* out) {
     std::map<std::string, const json::Value*> m;
     if (root.kind != json::Value::Kind::kObject) {
-      return Fail(
-          root, "", std::string("a line must be a JSON object, found ") + json::KindName(root.kind));
+      return Fail(root,
+                  "",
+                  std::string("a line must be a JSON object, found ") + json::KindName(root.kind));
     }
     if (!Members(root,
                  "",
@@ -184,7 +185,6 @@ class SchemaChecker : public json::Checker {
     }
     return true;
   }
-
 };
 
 // Parses and checks one line; on failure fills `error`.

@@ -43,8 +43,11 @@ bool StartsWithLcmSyncWord(const std::string& path) {
 }
 
 // Checks the per-frame invariants shared by both formats and appends the frame.
-void AddFrame(tracker::Frame3D frame, core::KeypointLayoutId layout, std::int64_t source,
-              const std::string& where, std::map<FrameIndex, std::int64_t>* seen,
+void AddFrame(tracker::Frame3D frame,
+              core::KeypointLayoutId layout,
+              std::int64_t source,
+              const std::string& where,
+              std::map<FrameIndex, std::int64_t>* seen,
               TrackFile* file) {
   if (file->layout && *file->layout != layout) {
     throw TrackFileError(where + ": layout " + LayoutName(layout) + " differs from layout " +
@@ -56,8 +59,10 @@ void AddFrame(tracker::Frame3D frame, core::KeypointLayoutId layout, std::int64_
                          (file->format == TrackFileFormat::kJsonl ? "line " : "event ") +
                          std::to_string(it->second) + ")");
   }
-  std::stable_sort(frame.tracks.begin(), frame.tracks.end(),
-                   [](const tracker::Track3D& a, const tracker::Track3D& b) { return a.id < b.id; });
+  std::stable_sort(
+      frame.tracks.begin(),
+      frame.tracks.end(),
+      [](const tracker::Track3D& a, const tracker::Track3D& b) { return a.id < b.id; });
   for (std::size_t i = 1; i < frame.tracks.size(); ++i) {
     if (frame.tracks[i].id == frame.tracks[i - 1].id) {
       throw TrackFileError(where + ": frame " + std::to_string(frame.frame) + ": track id " +
@@ -119,8 +124,12 @@ void ReadLcmLog(TrackFile* file) {
       throw TrackFileError(where + ": " + transport::ToString(decoded.status) + ": " +
                            decoded.reason);
     }
-    AddFrame(std::move(decoded.message.frame), decoded.message.layout, event->event_number, where,
-             &seen, file);
+    AddFrame(std::move(decoded.message.frame),
+             decoded.message.layout,
+             event->event_number,
+             where,
+             &seen,
+             file);
   }
   if (reader->end() != transport::LogEnd::kEndOfLog) {
     throw TrackFileError(file->path + ": " + transport::ToString(reader->end()) + ": " +

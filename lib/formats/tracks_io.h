@@ -56,7 +56,7 @@ struct TrackFileFrame {
 
 /// A whole track output.
 struct TrackFile {
-  std::string path;                                ///< as given
+  std::string path;                                  ///< as given
   TrackFileFormat format = TrackFileFormat::kJsonl;  ///< detected from the content
   /// The keypoint layout shared by every frame (kNone in box mode); nullopt without frames.
   std::optional<core::KeypointLayoutId> layout;

@@ -33,9 +33,9 @@ struct CameraModel {
   CameraId id = 0;
   int width_px = 0;
   int height_px = 0;
-  Mat3 K = Mat3::Identity();   ///< intrinsics (fx, fy, cx, cy, optional skew)
+  Mat3 K = Mat3::Identity();  ///< intrinsics (fx, fy, cx, cy, optional skew)
   Distortion distortion;
-  Rigid3 cam_from_world;       ///< world -> camera (z forward)
+  Rigid3 cam_from_world;  ///< world -> camera (z forward)
 
   /// Checks finite values, positive focal lengths and image size, orthonormal rotation.
   bool Validate(std::string* why) const;

@@ -11,8 +11,9 @@ CameraRig::CameraRig(std::vector<CameraModel> cameras, std::string* why) {
     if (why != nullptr) *why = "the camera rig has no cameras";
     return;
   }
-  std::sort(cameras.begin(), cameras.end(),
-            [](const CameraModel& a, const CameraModel& b) { return a.id < b.id; });
+  std::sort(cameras.begin(), cameras.end(), [](const CameraModel& a, const CameraModel& b) {
+    return a.id < b.id;
+  });
   for (std::size_t i = 0; i < cameras.size(); ++i) {
     std::string reason;
     if (!cameras[i].Validate(&reason)) {

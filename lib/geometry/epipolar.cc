@@ -20,9 +20,9 @@ Mat3 FundamentalMatrix(const CameraModel& from, const CameraModel& to) {
   // to_from_from = to_from_world * world_from_from; E = [t]x R; F = K_to^-T E K_from^-1.
   const Rigid3 to_from_from = [&] {
     const Rigid3 world_from_from = from.cam_from_world.Inverse();
-    return Rigid3{to.cam_from_world.rotation * world_from_from.rotation,
-                  to.cam_from_world.rotation * world_from_from.translation +
-                      to.cam_from_world.translation};
+    return Rigid3{
+        to.cam_from_world.rotation * world_from_from.rotation,
+        to.cam_from_world.rotation * world_from_from.translation + to.cam_from_world.translation};
   }();
   // Without a baseline there is no epipolar geometry: return 0, whose lines are all "at
   // infinity", so every epipolar distance is +inf instead of round-off noise scaled to unit norm.
@@ -46,11 +46,8 @@ double SymmetricEpipolarDistance(const Vec2& x_i, const Vec2& x_j, const Mat3& f
   return PointLineDistance(x_i, line_in_i) + PointLineDistance(x_j, line_in_j);
 }
 
-double NormalizedEpipolarDistance(const Vec2& x_i,
-                                  double scale_i_px,
-                                  const Vec2& x_j,
-                                  double scale_j_px,
-                                  const Mat3& f_i_to_j) {
+double NormalizedEpipolarDistance(
+    const Vec2& x_i, double scale_i_px, const Vec2& x_j, double scale_j_px, const Mat3& f_i_to_j) {
   const Vec3 line_in_j = f_i_to_j * x_i.homogeneous();
   const Vec3 line_in_i = f_i_to_j.transpose() * x_j.homogeneous();
   return PointLineDistance(x_i, line_in_i) / std::abs(scale_i_px) +

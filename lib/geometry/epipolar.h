@@ -22,10 +22,7 @@ double SymmetricEpipolarDistance(const Vec2& x_i, const Vec2& x_j, const Mat3& f
 
 /// Normalized epipolar distance of Eq. 2: each one-sided distance divided by the person's
 /// scale |w + h| in that view, which makes it independent of the person-to-camera distance.
-double NormalizedEpipolarDistance(const Vec2& x_i,
-                                  double scale_i_px,
-                                  const Vec2& x_j,
-                                  double scale_j_px,
-                                  const Mat3& f_i_to_j);
+double NormalizedEpipolarDistance(
+    const Vec2& x_i, double scale_i_px, const Vec2& x_j, double scale_j_px, const Mat3& f_i_to_j);
 
 }  // namespace mvtrack::geometry

@@ -48,7 +48,9 @@ std::optional<Vec3> SolveNormalEquations(const Mat3& m, const Vec3& rhs) {
 
 }  // namespace
 
-std::optional<Vec3> TriangulateTwoView(const Mat34& p_a, const Vec2& x_a, const Mat34& p_b,
+std::optional<Vec3> TriangulateTwoView(const Mat34& p_a,
+                                       const Vec2& x_a,
+                                       const Mat34& p_b,
                                        const Vec2& x_b) {
   return TriangulateTwoView(MakeTwoViewRows(p_a, x_a), MakeTwoViewRows(p_b, x_b));
 }

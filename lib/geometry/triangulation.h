@@ -11,7 +11,9 @@ namespace mvtrack::geometry {
 
 /// Two-view DLT in undistorted pixels. nullopt if degenerate (rank deficiency, point at
 /// infinity) or non-finite.
-std::optional<Vec3> TriangulateTwoView(const Mat34& p_a, const Vec2& x_a, const Mat34& p_b,
+std::optional<Vec3> TriangulateTwoView(const Mat34& p_a,
+                                       const Vec2& x_a,
+                                       const Mat34& p_b,
                                        const Vec2& x_b);
 
 /// The two rows one view contributes to the two-view DLT (Eq. 5), unit-normalised: everything

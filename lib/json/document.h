@@ -6,9 +6,8 @@
 /// JSONL, the eval report) format numbers themselves and quote with json::Quote (json.h).
 /// Including this header brings in nlohmann/json.hpp (heavy: include it only in .cc files).
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace mvtrack::json {
 

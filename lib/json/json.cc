@@ -1,7 +1,5 @@
 #include "json/json.h"
 
-#include "json/document.h"
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -11,6 +9,7 @@
 #include <unordered_set>
 #include <utility>
 
+#include "json/document.h"
 
 namespace mvtrack::json {
 namespace {
@@ -99,9 +98,7 @@ class TreeBuilder {
     return true;
   }
   bool number_integer(Json::number_integer_t value) { return Number(static_cast<double>(value)); }
-  bool number_unsigned(Json::number_unsigned_t value) {
-    return Number(static_cast<double>(value));
-  }
+  bool number_unsigned(Json::number_unsigned_t value) { return Number(static_cast<double>(value)); }
   bool number_float(Json::number_float_t value, const std::string& /*literal*/) {
     return Number(value);
   }
@@ -379,7 +376,8 @@ bool Checker::GetDouble(const Value& v, const std::string& path, double* out) {
 bool Checker::GetReal(const Value& v, const std::string& path, double* out) {
   if (!GetDouble(v, path, out)) return false;
   if (std::abs(*out) > static_cast<double>(std::numeric_limits<float>::max())) {
-    return Fail(v, path, std::string(v.number) + " is beyond the float range of the detections log");
+    return Fail(
+        v, path, std::string(v.number) + " is beyond the float range of the detections log");
   }
   return true;
 }
@@ -408,10 +406,10 @@ bool Checker::ExpectArray(
                     std::to_string(v.items.size()) + " values");
   }
   if (n < 0 && v.items.size() > max) {
-    return Fail(v,
-                path,
-                std::to_string(v.items.size()) + " entries, more than the limit of " +
-                    std::to_string(max));
+    return Fail(
+        v,
+        path,
+        std::to_string(v.items.size()) + " entries, more than the limit of " + std::to_string(max));
   }
   return true;
 }

@@ -25,9 +25,9 @@ struct Value;
 
 /// One member of a JSON object.
 struct Member {
-  std::string key;              ///< the decoded key
-  std::size_t key_column = 0;   ///< 1-based byte offset of the key's opening quote
-  std::unique_ptr<Value> value; ///< the value (never null once parsed)
+  std::string key;               ///< the decoded key
+  std::size_t key_column = 0;    ///< 1-based byte offset of the key's opening quote
+  std::unique_ptr<Value> value;  ///< the value (never null once parsed)
 };
 
 /// A parsed JSON value. Numbers keep their literal (a view into the parsed text, which must

@@ -121,7 +121,8 @@ std::optional<FootprintSpan> SpanOf(const core::Tracklet3D& tracklet,
 
 // The smallest footprint distance between `a` and `b` over their common frames, nullopt
 // without a common frame with footprints on both sides.
-std::optional<double> ClosestApproach(const core::Tracklet3D& a, const core::Tracklet3D& b,
+std::optional<double> ClosestApproach(const core::Tracklet3D& a,
+                                      const core::Tracklet3D& b,
                                       const std::vector<int>& footprint_points) {
   std::optional<double> closest;
   std::size_t j = 0;
@@ -241,7 +242,8 @@ int SharedMembers(const std::vector<TrackMember>& members, const core::Tracklet3
 
 std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
                                          const LinkerContext& context,
-                                         const MotionOptions& options, double seconds_per_frame) {
+                                         const MotionOptions& options,
+                                         double seconds_per_frame) {
   std::optional<FloorMotion> motion;
   FrameIndex at = 0;
   for (std::size_t f = tracklet.frames.size(); f-- > 0;) {
@@ -281,7 +283,8 @@ FloorMotion WindowLinker::PredictedMotion(const LinkedTrack& track, FrameIndex f
   return m;
 }
 
-void WindowLinker::Absorb(LinkedTrack* track, const core::Tracklet3D& tracklet,
+void WindowLinker::Absorb(LinkedTrack* track,
+                          const core::Tracklet3D& tracklet,
                           std::int64_t window_id) {
   ++track->hits;
   if (track->hits >= options_.min_hits) track->confirmed = true;
@@ -309,13 +312,15 @@ void WindowLinker::Absorb(LinkedTrack* track, const core::Tracklet3D& tracklet,
   std::size_t j = 0;
   while (i < track->members.size() || j < tracklet.members.size()) {
     if (j == tracklet.members.size() ||
-        (i < track->members.size() &&
-         MemberLess(track->members[i].camera_id, track->members[i].track_id,
-                    tracklet.members[j].camera_id, tracklet.members[j].track_id))) {
+        (i < track->members.size() && MemberLess(track->members[i].camera_id,
+                                                 track->members[i].track_id,
+                                                 tracklet.members[j].camera_id,
+                                                 tracklet.members[j].track_id))) {
       merged.push_back(track->members[i++]);
-    } else if (i == track->members.size() ||
-               MemberLess(tracklet.members[j].camera_id, tracklet.members[j].track_id,
-                          track->members[i].camera_id, track->members[i].track_id)) {
+    } else if (i == track->members.size() || MemberLess(tracklet.members[j].camera_id,
+                                                        tracklet.members[j].track_id,
+                                                        track->members[i].camera_id,
+                                                        track->members[i].track_id)) {
       const core::TrackletMember& m = tracklet.members[j++];
       merged.push_back({m.camera_id, m.track_id, m.last_frame});
     } else {
@@ -324,13 +329,13 @@ void WindowLinker::Absorb(LinkedTrack* track, const core::Tracklet3D& tracklet,
       merged.push_back(m);
     }
   }
-  const FrameIndex newest = tracklet.frames.empty() ? track->last_seen_frame
-                                                    : tracklet.frames.back();
+  const FrameIndex newest =
+      tracklet.frames.empty() ? track->last_seen_frame : tracklet.frames.back();
   const double horizon_s = options_.max_lost_s + options_.max_reid_gap_s + 1.0;
-  merged.erase(std::remove_if(merged.begin(), merged.end(),
-                              [&](const TrackMember& m) {
-                                return Seconds(m.last_frame, newest) > horizon_s;
-                              }),
+  merged.erase(std::remove_if(
+                   merged.begin(),
+                   merged.end(),
+                   [&](const TrackMember& m) { return Seconds(m.last_frame, newest) > horizon_s; }),
                merged.end());
   track->members = std::move(merged);
   track->last_tracklet = tracklet;
@@ -344,7 +349,8 @@ std::vector<EndedTrack> WindowLinker::EndStream() {
   return ended;
 }
 
-LinkResult WindowLinker::Link(std::int64_t window_id, FrameIndex window_begin,
+LinkResult WindowLinker::Link(std::int64_t window_id,
+                              FrameIndex window_begin,
                               double seconds_per_frame,
                               const std::vector<core::Tracklet3D>& tracklets,
                               const std::vector<core::TrackletMember>& live_tracks) {
@@ -366,8 +372,8 @@ LinkResult WindowLinker::Link(std::int64_t window_id, FrameIndex window_begin,
   // Skipped window ids are windows without tracklets: every track misses them.
   if (last_window_.has_value()) {
     // Unsigned arithmetic: the difference of two int64 values always fits in a uint64.
-    const std::uint64_t skipped = static_cast<std::uint64_t>(window_id) -
-                                  static_cast<std::uint64_t>(*last_window_) - 1U;
+    const std::uint64_t skipped =
+        static_cast<std::uint64_t>(window_id) - static_cast<std::uint64_t>(*last_window_) - 1U;
     if (skipped > 0) {
       for (LinkedTrack& t : tracks_) AddMisses(&t, skipped);
     }
@@ -406,7 +412,8 @@ LinkResult WindowLinker::Link(std::int64_t window_id, FrameIndex window_begin,
   }
   if (!ended.empty()) {
     std::size_t e = 0;
-    tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
+    tracks_.erase(std::remove_if(tracks_.begin(),
+                                 tracks_.end(),
                                  [&](const LinkedTrack& t) {
                                    if (e < ended.size() && ended[e].id == t.id) {
                                      ++e;
@@ -460,9 +467,8 @@ LinkResult WindowLinker::Link(std::int64_t window_id, FrameIndex window_begin,
     std::vector<int> cols;
     unmatched(&rows, &cols);
     if (rows.empty() || cols.empty()) return;
-    Eigen::MatrixXd m = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rows.size()),
-                                                  static_cast<Eigen::Index>(cols.size()),
-                                                  kForbidden);
+    Eigen::MatrixXd m = Eigen::MatrixXd::Constant(
+        static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()), kForbidden);
     bool any = false;
     for (std::size_t i = 0; i < rows.size(); ++i) {
       for (std::size_t j = 0; j < cols.size(); ++j) {
@@ -543,9 +549,8 @@ LinkResult WindowLinker::Link(std::int64_t window_id, FrameIndex window_begin,
     std::vector<int> rows;
     std::vector<int> cols;
     unmatched(&rows, &cols);
-    Eigen::MatrixXd d2 = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rows.size()),
-                                                   static_cast<Eigen::Index>(cols.size()),
-                                                   kForbidden);
+    Eigen::MatrixXd d2 = Eigen::MatrixXd::Constant(
+        static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()), kForbidden);
     for (std::size_t i = 0; i < rows.size(); ++i) {
       for (std::size_t j = 0; j < cols.size(); ++j) {
         if (shared(rows[i], cols[j]) > 0) continue;

@@ -191,7 +191,8 @@ int SharedMembers(const std::vector<TrackMember>& members, const core::Tracklet3
 /// with its uncertainty. nullopt without a footprint.
 std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
                                          const LinkerContext& context,
-                                         const MotionOptions& options, double seconds_per_frame);
+                                         const MotionOptions& options,
+                                         double seconds_per_frame);
 
 /// Online track-to-track data association across sliding windows (paper Sec. "Link Sliding
 /// Windows", Eq. 8-9) with the track management of the mature online trackers (tentative,
@@ -228,7 +229,9 @@ class WindowLinker {
   /// Window ids must be strictly increasing (checked); a skipped id counts as a window with no
   /// tracklets. Tracklets must be well formed (checked); a tracklet without any valid point cannot
   /// be linked and is born.
-  LinkResult Link(std::int64_t window_id, FrameIndex window_begin, double seconds_per_frame,
+  LinkResult Link(std::int64_t window_id,
+                  FrameIndex window_begin,
+                  double seconds_per_frame,
                   const std::vector<core::Tracklet3D>& tracklets,
                   const std::vector<core::TrackletMember>& live_tracks);
 

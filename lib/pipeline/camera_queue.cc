@@ -9,8 +9,10 @@ namespace mvtrack::pipeline {
 
 const char* ToString(OverflowPolicy policy) {
   switch (policy) {
-    case OverflowPolicy::kDropOldest: return "drop_oldest";
-    case OverflowPolicy::kBlock: return "block";
+    case OverflowPolicy::kDropOldest:
+      return "drop_oldest";
+    case OverflowPolicy::kBlock:
+      return "block";
   }
   return "?";
 }

@@ -32,11 +32,11 @@ const char* ToString(OverflowPolicy policy);
 
 /// One admitted camera-frame waiting for its camera thread.
 struct CameraWork {
-  std::uint64_t seq = 0;              ///< position in the pipeline's input sequence
-  tracker::FrameEvents events;        ///< the FrameGate's decisions for it
-  std::int64_t stream_epoch = 0;      ///< the FrameGate's stream epoch for it
-  core::CameraFrame frame;            ///< detections emptied when dropped
-  bool dropped = false;               ///< overflow: detections discarded, header kept
+  std::uint64_t seq = 0;          ///< position in the pipeline's input sequence
+  tracker::FrameEvents events;    ///< the FrameGate's decisions for it
+  std::int64_t stream_epoch = 0;  ///< the FrameGate's stream epoch for it
+  core::CameraFrame frame;        ///< detections emptied when dropped
+  bool dropped = false;           ///< overflow: detections discarded, header kept
 };
 
 /// A FIFO of CameraWork holding at most `capacity` items with detections (dropped headers do

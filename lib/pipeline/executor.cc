@@ -43,7 +43,8 @@ bool CompleteGuarded(const Executor::Completion& completion, const JobOutcome& o
 
 // --- Executor ----------------------------------------------------------------------------------
 
-void Executor::ParallelFor(int caller_worker, int n,
+void Executor::ParallelFor(int caller_worker,
+                           int n,
                            const std::function<void(int index, int worker)>& fn) {
   for (int i = 0; i < n; ++i) fn(i, caller_worker);
 }
@@ -115,8 +116,8 @@ bool ThreadPoolExecutor::Submit(Job job, Completion completion) {
     std::unique_lock<std::mutex> lock(mu_);
     space_cv_.wait(lock, [&] {
       // ParallelFor helpers do not take up room.
-      return stopping_ || queue_.size() - queued_helpers_ <
-                              static_cast<std::size_t>(options_.queue_capacity);
+      return stopping_ ||
+             queue_.size() - queued_helpers_ < static_cast<std::size_t>(options_.queue_capacity);
     });
     if (stopping_) return false;
     queue_.push_back(Task{next_seq_++, std::move(job), std::move(completion), nullptr});
@@ -136,8 +137,8 @@ struct ThreadPoolExecutor::ForState {
   std::atomic<int> next{0};
   std::mutex mu;
   std::condition_variable done_cv;
-  int done = 0;                // guarded by mu
-  std::exception_ptr error;    // first exception of a call, guarded by mu
+  int done = 0;              // guarded by mu
+  std::exception_ptr error;  // first exception of a call, guarded by mu
 
   // Claims and runs indices until none is left.
   void Work(int worker) {
@@ -157,7 +158,8 @@ struct ThreadPoolExecutor::ForState {
   }
 };
 
-void ThreadPoolExecutor::ParallelFor(int caller_worker, int n,
+void ThreadPoolExecutor::ParallelFor(int caller_worker,
+                                     int n,
                                      const std::function<void(int index, int worker)>& fn) {
   if (n <= 0) return;
   const int helpers = std::min(n - 1, options_.num_workers - 1);

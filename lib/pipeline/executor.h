@@ -27,21 +27,21 @@ enum class JobStatus {
 
 /// The outcome of one executed job, handed to its completion.
 struct JobOutcome {
-  std::uint64_t job_seq = 0;  ///< submission number within the executor, from 0
-  int worker = 0;             ///< index of the worker that ran the job, in [0, num_workers)
+  std::uint64_t job_seq = 0;          ///< submission number within the executor, from 0
+  int worker = 0;                     ///< index of the worker that ran the job, in [0, num_workers)
   JobStatus status = JobStatus::kOk;  ///< ok or failed
-  std::string error;  ///< kFailed: the exception's what(), or "unknown exception"
+  std::string error;                  ///< kFailed: the exception's what(), or "unknown exception"
 };
 
 /// Counters and queue depth of an executor (a consistent snapshot).
 struct ExecutorStats {
-  int num_workers = 0;               ///< worker threads (1 for InlineExecutor)
-  std::size_t queue_capacity = 0;    ///< bounded queue size (0 for InlineExecutor: no queue)
-  std::size_t queued = 0;            ///< jobs waiting for a worker
-  int running = 0;                   ///< jobs being run (or their completions)
-  std::int64_t submitted = 0;        ///< jobs accepted by Submit
-  std::int64_t completed = 0;        ///< jobs finished, ok or failed
-  std::int64_t failed = 0;           ///< jobs that threw
+  int num_workers = 0;                 ///< worker threads (1 for InlineExecutor)
+  std::size_t queue_capacity = 0;      ///< bounded queue size (0 for InlineExecutor: no queue)
+  std::size_t queued = 0;              ///< jobs waiting for a worker
+  int running = 0;                     ///< jobs being run (or their completions)
+  std::int64_t submitted = 0;          ///< jobs accepted by Submit
+  std::int64_t completed = 0;          ///< jobs finished, ok or failed
+  std::int64_t failed = 0;             ///< jobs that threw
   std::int64_t completion_errors = 0;  ///< completions that threw (caught and counted)
 };
 
@@ -75,7 +75,8 @@ class Executor {
   /// stays exclusive. Never waits for a busy worker (no deadlock when every worker fans out).
   /// The first exception thrown by a call is rethrown once all calls have returned. This default
   /// runs every call in index order on the caller.
-  virtual void ParallelFor(int caller_worker, int n,
+  virtual void ParallelFor(int caller_worker,
+                           int n,
                            const std::function<void(int index, int worker)>& fn);
   /// A snapshot of the counters; thread-safe.
   virtual ExecutorStats stats() const = 0;
@@ -153,7 +154,8 @@ class ThreadPoolExecutor final : public Executor {
   /// Queues up to num_workers - 1 helper tasks ahead of every waiting job (beyond the queue's
   /// capacity; they are not counted as jobs) and takes part itself: each taker claims the next
   /// index until none is left; a helper that starts after that returns at once.
-  void ParallelFor(int caller_worker, int n,
+  void ParallelFor(int caller_worker,
+                   int n,
                    const std::function<void(int index, int worker)>& fn) override;
   /// A consistent snapshot (taken under the queue's lock).
   ExecutorStats stats() const override;

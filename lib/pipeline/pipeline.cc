@@ -43,15 +43,22 @@ std::unique_ptr<Pipeline> Pipeline::Create(geometry::CameraRig rig,
   }
   if (executor == nullptr) return fail("the pipeline needs an executor");
   if (!on_frame) return fail("the pipeline needs an output callback");
-  std::unique_ptr<Pipeline> p(new Pipeline(std::move(rig), std::move(options), pipeline_options,
-                                           std::move(executor), clock, std::move(on_frame)));
+  std::unique_ptr<Pipeline> p(new Pipeline(std::move(rig),
+                                           std::move(options),
+                                           pipeline_options,
+                                           std::move(executor),
+                                           clock,
+                                           std::move(on_frame)));
   p->Start();
   return p;
 }
 
-Pipeline::Pipeline(geometry::CameraRig rig, tracker::TrackerOptions options,
-                   PipelineOptions pipeline_options, std::unique_ptr<Executor> executor,
-                   const Clock& clock, FrameCallback on_frame)
+Pipeline::Pipeline(geometry::CameraRig rig,
+                   tracker::TrackerOptions options,
+                   PipelineOptions pipeline_options,
+                   std::unique_ptr<Executor> executor,
+                   const Clock& clock,
+                   FrameCallback on_frame)
     : rig_(std::move(rig)),
       options_(std::move(options)),
       pipeline_options_(pipeline_options),
@@ -64,8 +71,8 @@ Pipeline::Pipeline(geometry::CameraRig rig, tracker::TrackerOptions options,
       steps_(static_cast<std::size_t>(pipeline_options_.finalizer_queue_capacity)),
       finalizer_(options_) {
   for (int c = 0; c < rig_.size(); ++c) {
-    camera_queues_.push_back(std::make_unique<CameraQueue>(
-        pipeline_options_.camera_queue_capacity, pipeline_options_.camera_overflow));
+    camera_queues_.push_back(std::make_unique<CameraQueue>(pipeline_options_.camera_queue_capacity,
+                                                           pipeline_options_.camera_overflow));
     stages_.push_back(std::make_unique<tracker::CameraStage>(rig_.camera(c), c, options_));
   }
   camera_counters_.resize(static_cast<std::size_t>(rig_.size()));
@@ -234,8 +241,8 @@ void Pipeline::DispatchOutput(tracker::BuilderOutput* output) {
     steps_.Push(std::move(step));
     return;
   }
-  auto job = std::make_shared<const tracker::WindowJob>(
-      std::move(std::get<tracker::WindowJob>(*output)));
+  auto job =
+      std::make_shared<const tracker::WindowJob>(std::move(std::get<tracker::WindowJob>(*output)));
   step.kind = Step::Kind::kWindow;
   step.window_id = job->window_id;
   step.close_time_us = clock_.NowMicros();
@@ -259,9 +266,8 @@ void Pipeline::DispatchOutput(tracker::BuilderOutput* output) {
             task(i, &workspaces_[static_cast<std::size_t>(w)]);
           });
         };
-        *slot = tracker::ProcessWindowJob(rig_, options_, *job,
-                                          &workspaces_[static_cast<std::size_t>(worker)],
-                                          person_loop);
+        *slot = tracker::ProcessWindowJob(
+            rig_, options_, *job, &workspaces_[static_cast<std::size_t>(worker)], person_loop);
       },
       [this, job, slot](const JobOutcome& outcome) {
         FinishWindow(*job, std::move(*slot), outcome);
@@ -269,7 +275,8 @@ void Pipeline::DispatchOutput(tracker::BuilderOutput* output) {
   MVTRACK_CHECK_MSG(submitted, "the pipeline's executor was stopped while running");
 }
 
-void Pipeline::FinishWindow(const tracker::WindowJob& job, tracker::WindowResult result,
+void Pipeline::FinishWindow(const tracker::WindowJob& job,
+                            tracker::WindowResult result,
                             const JobOutcome& outcome) {
   FinishedWindow finished;
   if (outcome.status == JobStatus::kOk) {

@@ -43,8 +43,8 @@
 ///
 /// Thread safety: Submit, Flush, Stop and Status may be called from any threads. The output
 /// callback runs on the finalizer thread, one frame at a time, and must not call Submit, Flush
-/// or Stop (deadlock; Flush and Stop check). Exceptions thrown by the callback are caught and counted;
-/// a window job that throws becomes a failed window (counted, it links as a window without
+/// or Stop (deadlock; Flush and Stop check). Exceptions thrown by the callback are caught and
+/// counted; a window job that throws becomes a failed window (counted, it links as a window without
 /// persons) — no exception leaves a pipeline thread.
 ///
 /// Shutdown: Stop() (also run by the destructor) refuses further input, then drains: every
@@ -119,7 +119,7 @@ struct SubmitResult {
 /// Window latency: from the window's job being built (its last frame closed) to its result
 /// being linked and its frames handed to the callback, measured with the pipeline's Clock.
 struct LatencyStats {
-  std::int64_t count = 0;   ///< windows measured
+  std::int64_t count = 0;    ///< windows measured
   std::int64_t last_us = 0;  ///< latest window, µs
   std::int64_t max_us = 0;   ///< maximum, µs
   std::int64_t sum_us = 0;   ///< sum over the measured windows, µs
@@ -131,10 +131,10 @@ struct LatencyStats {
 
 /// Per-camera counters and queue depth.
 struct CameraStatus {
-  CameraId camera_id = 0;          ///< the camera
-  std::size_t queue_depth = 0;     ///< camera-frames waiting (dropped headers included)
-  std::int64_t frames_processed = 0;  ///< camera-frames run through the CameraStage
-  std::int64_t frames_dropped = 0;    ///< camera-frames whose detections overflow discarded
+  CameraId camera_id = 0;                ///< the camera
+  std::size_t queue_depth = 0;           ///< camera-frames waiting (dropped headers included)
+  std::int64_t frames_processed = 0;     ///< camera-frames run through the CameraStage
+  std::int64_t frames_dropped = 0;       ///< camera-frames whose detections overflow discarded
   std::int64_t detections_rejected = 0;  ///< this camera's detections that failed validation
 };
 
@@ -243,14 +243,18 @@ class Pipeline {
     std::int64_t detections_rejected = 0;
   };
 
-  Pipeline(geometry::CameraRig rig, tracker::TrackerOptions options,
-           PipelineOptions pipeline_options, std::unique_ptr<Executor> executor,
-           const Clock& clock, FrameCallback on_frame);
+  Pipeline(geometry::CameraRig rig,
+           tracker::TrackerOptions options,
+           PipelineOptions pipeline_options,
+           std::unique_ptr<Executor> executor,
+           const Clock& clock,
+           FrameCallback on_frame);
   void Start();
   void CameraLoop(int camera_index);
   void SchedulerLoop();
   void DispatchOutput(tracker::BuilderOutput* output);
-  void FinishWindow(const tracker::WindowJob& job, tracker::WindowResult result,
+  void FinishWindow(const tracker::WindowJob& job,
+                    tracker::WindowResult result,
                     const JobOutcome& outcome);
   void FinalizerLoop();
   void Emit(std::vector<tracker::Frame3D>* frames);

@@ -41,8 +41,8 @@ constexpr std::array<std::pair<ChannelMode, std::string_view>, 3> kChannelModeNa
     {ChannelMode::kShared, "shared"},
     {ChannelMode::kBoth, "both"},
 }};
-const std::vector<std::string> kLogLevels = {"trace", "debug", "info", "warn",
-                                             "error", "critical", "off"};
+const std::vector<std::string> kLogLevels = {
+    "trace", "debug", "info", "warn", "error", "critical", "off"};
 
 std::optional<pipeline::OverflowPolicy> OverflowFromName(std::string_view name) {
   if (name == "drop_oldest") return pipeline::OverflowPolicy::kDropOldest;
@@ -69,8 +69,8 @@ void CheckChannelName(const NodeRef& node, const std::string& channel) {
 }
 
 void CheckUrl(const NodeRef& node, const std::string& url) {
-  static const std::array<std::string_view, 4> kSchemes = {"udpm://", "file://", "memq://",
-                                                           "tcpq://"};
+  static const std::array<std::string_view, 4> kSchemes = {
+      "udpm://", "file://", "memq://", "tcpq://"};
   for (std::string_view scheme : kSchemes) {
     if (url.rfind(scheme, 0) == 0) return;
   }
@@ -83,7 +83,9 @@ std::string ResolvePath(const std::string& base_dir, const std::string& path) {
   return (std::filesystem::path(base_dir) / p).lexically_normal().string();
 }
 
-void ParseCameras(const MapRef& root, const std::string& base_dir, const std::string& override_path,
+void ParseCameras(const MapRef& root,
+                  const std::string& base_dir,
+                  const std::string& override_path,
                   DaemonConfig* c) {
   const MapRef cams(root.Get("cameras"), {"calibration", "ids"});
   const NodeRef cal_node = cams.Get("calibration");
@@ -100,8 +102,8 @@ void ParseCameras(const MapRef& root, const std::string& base_dir, const std::st
     for (const NodeRef& id_node : GetSequence(*ids_node)) {
       const CameraId id = GetInt(id_node, 0, std::numeric_limits<CameraId>::max());
       if (!ids.insert(id).second) id_node.Fail("camera id " + std::to_string(id) + " listed twice");
-      const auto it = std::find_if(all.begin(), all.end(),
-                                   [&](const geometry::CameraModel& m) { return m.id == id; });
+      const auto it = std::find_if(
+          all.begin(), all.end(), [&](const geometry::CameraModel& m) { return m.id == id; });
       if (it == all.end()) {
         id_node.Fail("camera id " + std::to_string(id) + " is not in " + c->calibration_path);
       }
@@ -110,10 +112,10 @@ void ParseCameras(const MapRef& root, const std::string& base_dir, const std::st
   } else {
     c->cameras = std::move(all);
   }
-  std::sort(c->cameras.begin(), c->cameras.end(),
-            [](const geometry::CameraModel& a, const geometry::CameraModel& b) {
-              return a.id < b.id;
-            });
+  std::sort(
+      c->cameras.begin(),
+      c->cameras.end(),
+      [](const geometry::CameraModel& a, const geometry::CameraModel& b) { return a.id < b.id; });
   if (c->cameras.size() < 2) {
     cams.ref().Fail("at least 2 cameras are needed to triangulate (have " +
                     std::to_string(c->cameras.size()) + ")");
@@ -126,15 +128,17 @@ void ParseCameras(const MapRef& root, const std::string& base_dir, const std::st
 void ParseInput(const MapRef& root, DaemonConfig* c) {
   const std::optional<NodeRef> node = root.Find("input");
   if (!node) return;
-  const MapRef m(*node,
-                 {"lcm_url", "channels", "max_message_bytes", "max_detections", "lcm_queue_capacity"},
-                 true);
+  const MapRef m(
+      *node,
+      {"lcm_url", "channels", "max_message_bytes", "max_detections", "lcm_queue_capacity"},
+      true);
   if (auto v = m.Find("lcm_url")) {
     c->input_url = GetString(*v);
     CheckUrl(*v, c->input_url);
   }
   if (auto v = m.Find("channels")) {
-    c->channel_mode = GetEnum<ChannelMode>(*v, ChannelModeFromName, {"per_camera", "shared", "both"});
+    c->channel_mode =
+        GetEnum<ChannelMode>(*v, ChannelModeFromName, {"per_camera", "shared", "both"});
   }
   if (auto v = m.Find("max_message_bytes")) c->max_message_bytes = GetInt64(*v, 64, INT32_MAX);
   if (auto v = m.Find("max_detections")) c->max_detections_per_message = GetInt(*v, 1, 1000000);
@@ -144,10 +148,10 @@ void ParseInput(const MapRef& root, DaemonConfig* c) {
 void ParseOutput(const MapRef& root, DaemonConfig* c) {
   const std::optional<NodeRef> node = root.Find("output");
   if (!node) return;
-  const MapRef m(*node,
-                 {"lcm_url", "tracks_channel", "status_channel", "status_period_s",
-                  "latency_limit_us"},
-                 true);
+  const MapRef m(
+      *node,
+      {"lcm_url", "tracks_channel", "status_channel", "status_period_s", "latency_limit_us"},
+      true);
   if (auto v = m.Find("lcm_url")) {
     c->output_url = GetString(*v, /*allow_empty=*/true);
     if (!c->output_url.empty()) CheckUrl(*v, c->output_url);
@@ -159,7 +163,8 @@ void ParseOutput(const MapRef& root, DaemonConfig* c) {
   if (auto v = m.Find("status_channel")) {
     c->status_channel = GetString(*v);
     CheckChannelName(*v, c->status_channel);
-    if (c->status_channel == c->tracks_channel) v->Fail("status and tracks need different channels");
+    if (c->status_channel == c->tracks_channel)
+      v->Fail("status and tracks need different channels");
   }
   if (auto v = m.Find("status_period_s")) {
     c->status_period_s = GetDouble(*v, DoubleRange::Closed(0.05, 3600.0));
@@ -171,14 +176,23 @@ void ParseSync(const MapRef& root, DaemonConfig* c) {
   const std::optional<NodeRef> node = root.Find("sync");
   if (!node) return;
   const MapRef m(*node,
-                 {"mode", "tolerance_us", "deadline_us", "silent_after_us", "max_future_us",
-                  "max_frame_ahead", "clock_tolerance_us", "max_frame_offset",
-                  "min_frame_interval_us", "resync_after_rejections",
-                  "max_pending_frames", "idle_flush_s"},
+                 {"mode",
+                  "tolerance_us",
+                  "deadline_us",
+                  "silent_after_us",
+                  "max_future_us",
+                  "max_frame_ahead",
+                  "clock_tolerance_us",
+                  "max_frame_offset",
+                  "min_frame_interval_us",
+                  "resync_after_rejections",
+                  "max_pending_frames",
+                  "idle_flush_s"},
                  true);
   SyncOptions& s = c->sync;
   constexpr std::int64_t kHour = std::int64_t{3600} * 1000000;
-  if (auto v = m.Find("mode")) s.mode = GetEnum<SyncMode>(*v, SyncModeFromName, {"frame_index", "utime"});
+  if (auto v = m.Find("mode"))
+    s.mode = GetEnum<SyncMode>(*v, SyncModeFromName, {"frame_index", "utime"});
   if (auto v = m.Find("tolerance_us")) s.tolerance_us = GetInt64(*v, 0, kHour);
   if (auto v = m.Find("deadline_us")) s.deadline_us = GetInt64(*v, 1, kHour);
   if (auto v = m.Find("silent_after_us")) s.silent_after_us = GetInt64(*v, 1, kHour);
@@ -191,10 +205,12 @@ void ParseSync(const MapRef& root, DaemonConfig* c) {
     s.resync_after_rejections = GetInt(*v, 1, 1000000);
   }
   if (auto v = m.Find("max_pending_frames")) s.max_pending_frames = GetInt(*v, 1, 100000);
-  if (auto v = m.Find("idle_flush_s")) s.idle_flush_s = GetDouble(*v, DoubleRange::Closed(0.0, 86400.0));
+  if (auto v = m.Find("idle_flush_s"))
+    s.idle_flush_s = GetDouble(*v, DoubleRange::Closed(0.0, 86400.0));
   if (s.mode == SyncMode::kUtime && s.tolerance_us >= s.deadline_us) {
-    m.KeyRef("tolerance_us").Fail("tolerance_us must be smaller than deadline_us (" +
-                                  std::to_string(s.deadline_us) + ")");
+    m.KeyRef("tolerance_us")
+        .Fail("tolerance_us must be smaller than deadline_us (" + std::to_string(s.deadline_us) +
+              ")");
   }
 }
 
@@ -233,7 +249,8 @@ void ParseLogging(const MapRef& root, DaemonConfig* c) {
   const std::optional<NodeRef> node = root.Find("logging");
   if (!node) return;
   const MapRef m(*node, {"level", "repeat_interval_s"}, true);
-  if (auto v = m.Find("level")) c->log_level = GetEnum<std::string>(*v, LogLevelFromName, kLogLevels);
+  if (auto v = m.Find("level"))
+    c->log_level = GetEnum<std::string>(*v, LogLevelFromName, kLogLevels);
   if (auto v = m.Find("repeat_interval_s")) {
     c->log_repeat_interval_s = GetDouble(*v, DoubleRange::LeftOpen(0.0, 86400.0));
   }
@@ -286,7 +303,8 @@ int DaemonConfig::EffectiveWorkers() const {
   return cores == 0 ? 1 : static_cast<int>(std::min(cores, 256U));
 }
 
-DaemonConfig ParseDaemonConfig(std::string_view text, const std::string& source_name,
+DaemonConfig ParseDaemonConfig(std::string_view text,
+                               const std::string& source_name,
                                const std::string& base_dir,
                                const std::string& calibration_override) {
   const NodeRef root_node = config::internal::ParseDocument(text, source_name);
@@ -296,12 +314,21 @@ DaemonConfig ParseDaemonConfig(std::string_view text, const std::string& source_
   DaemonConfig c;
   c.source = source_name;
   try {
-    const MapRef root(root_node, {"format", "cameras", "input", "output", "sync", "threads",
-                                  "queues", "state", "logging", "tracker"});
+    const MapRef root(root_node,
+                      {"format",
+                       "cameras",
+                       "input",
+                       "output",
+                       "sync",
+                       "threads",
+                       "queues",
+                       "state",
+                       "logging",
+                       "tracker"});
     const NodeRef format = root.Get("format");
     if (GetString(format) != kDaemonConfigFormat) {
-      format.Fail("expected '" + std::string(kDaemonConfigFormat) + "', not '" +
-                  GetString(format) + "'");
+      format.Fail("expected '" + std::string(kDaemonConfigFormat) + "', not '" + GetString(format) +
+                  "'");
     }
     ParseCameras(root, base_dir, calibration_override, &c);
     ParseInput(root, &c);
@@ -314,8 +341,11 @@ DaemonConfig ParseDaemonConfig(std::string_view text, const std::string& source_
       c.tracker = config::internal::ParseTrackerOptionsNode(*tracker);
     }
   } catch (const YAML::Exception& e) {
-    throw ConfigError(source_name, e.mark.is_null() ? 0 : e.mark.line + 1,
-                      e.mark.is_null() ? 0 : e.mark.column + 1, "", e.msg);
+    throw ConfigError(source_name,
+                      e.mark.is_null() ? 0 : e.mark.line + 1,
+                      e.mark.is_null() ? 0 : e.mark.column + 1,
+                      "",
+                      e.msg);
   }
   return c;
 }
@@ -346,7 +376,8 @@ std::string DaemonConfigToYaml(const DaemonConfig& c) {
   line("cameras:");
   line("  calibration: " + QuoteString(c.calibration_path));
   std::string ids;
-  for (const geometry::CameraModel& m : c.cameras) ids += (ids.empty() ? "" : ", ") + std::to_string(m.id);
+  for (const geometry::CameraModel& m : c.cameras)
+    ids += (ids.empty() ? "" : ", ") + std::to_string(m.id);
   line("  ids: [" + ids + "]");
   line("input:");
   line("  lcm_url: " + QuoteString(c.input_url));

@@ -42,14 +42,22 @@ std::int64_t LowerMedian(std::vector<std::int64_t>* v) {
 
 const char* ToString(SyncRejection rejection) {
   switch (rejection) {
-    case SyncRejection::kNone: return "accepted";
-    case SyncRejection::kUnknownCamera: return "unknown camera";
-    case SyncRejection::kBackwards: return "time backwards";
-    case SyncRejection::kDuplicate: return "duplicate";
-    case SyncRejection::kFarFuture: return "far future";
-    case SyncRejection::kLate: return "late";
-    case SyncRejection::kFlood: return "flood";
-    case SyncRejection::kClockOffset: return "clock offset";
+    case SyncRejection::kNone:
+      return "accepted";
+    case SyncRejection::kUnknownCamera:
+      return "unknown camera";
+    case SyncRejection::kBackwards:
+      return "time backwards";
+    case SyncRejection::kDuplicate:
+      return "duplicate";
+    case SyncRejection::kFarFuture:
+      return "far future";
+    case SyncRejection::kLate:
+      return "late";
+    case SyncRejection::kFlood:
+      return "flood";
+    case SyncRejection::kClockOffset:
+      return "clock offset";
   }
   return "?";
 }
@@ -137,15 +145,17 @@ void FrameSynchronizer::UpdateClock(const core::CameraFrame& f, int index, SyncR
   }
 }
 
-SyncRejection FrameSynchronizer::Check(const core::CameraFrame& f, int camera_index,
-                                       std::string* reason, std::int64_t* key) const {
+SyncRejection FrameSynchronizer::Check(const core::CameraFrame& f,
+                                       int camera_index,
+                                       std::string* reason,
+                                       std::int64_t* key) const {
   const Camera& cam = cameras_[static_cast<std::size_t>(camera_index)];
   const std::string who = "camera " + std::to_string(f.camera_id) + " frame " +
                           std::to_string(f.frame) + " utime " + std::to_string(f.utime);
   const bool by_frame = options_.mode == SyncMode::kFrameIndex;
   if (cam.status.clock_flagged) {
-    *reason = who + ": the camera's clock is " + std::to_string(cam.status.offset_us) +
-              " us (" + std::to_string(cam.status.offset_frames) +
+    *reason = who + ": the camera's clock is " + std::to_string(cam.status.offset_us) + " us (" +
+              std::to_string(cam.status.offset_frames) +
               " frames) off the other cameras' (clock_tolerance_us " +
               std::to_string(options_.clock_tolerance_us) + ")";
     return SyncRejection::kClockOffset;
@@ -287,14 +297,27 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
   }
   if (why != SyncRejection::kNone) {
     switch (why) {
-      case SyncRejection::kBackwards: ++cam.status.backwards; break;
-      case SyncRejection::kDuplicate: ++cam.status.duplicates; break;
-      case SyncRejection::kFarFuture: ++cam.status.far_future; break;
-      case SyncRejection::kLate: ++cam.status.late; break;
-      case SyncRejection::kFlood: ++cam.status.flood; break;
-      case SyncRejection::kClockOffset: ++cam.status.clock_offset; break;
+      case SyncRejection::kBackwards:
+        ++cam.status.backwards;
+        break;
+      case SyncRejection::kDuplicate:
+        ++cam.status.duplicates;
+        break;
+      case SyncRejection::kFarFuture:
+        ++cam.status.far_future;
+        break;
+      case SyncRejection::kLate:
+        ++cam.status.late;
+        break;
+      case SyncRejection::kFlood:
+        ++cam.status.flood;
+        break;
+      case SyncRejection::kClockOffset:
+        ++cam.status.clock_offset;
+        break;
       case SyncRejection::kNone:
-      case SyncRejection::kUnknownCamera: break;
+      case SyncRejection::kUnknownCamera:
+        break;
     }
     cam.status.detections_rejected += static_cast<std::int64_t>(frame.detections.size());
     result.rejection = why;
@@ -305,14 +328,16 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
   return result;
 }
 
-void FrameSynchronizer::Accept(core::CameraFrame frame, int camera_index, std::int64_t key,
+void FrameSynchronizer::Accept(core::CameraFrame frame,
+                               int camera_index,
+                               std::int64_t key,
                                SyncResult* result) {
   Camera& cam = cameras_[static_cast<std::size_t>(camera_index)];
   if (cam.status.has_data) {
     const std::int64_t step = SatSub(frame.utime, cam.status.last_utime);  // > 0 (Check)
     if (options_.mode == SyncMode::kFrameIndex) {
-      cam.status.lost = SatAdd(cam.status.lost, std::max<std::int64_t>(
-                                                    0, SatSub(frame.frame, cam.last_frame) - 1));
+      cam.status.lost = SatAdd(cam.status.lost,
+                               std::max<std::int64_t>(0, SatSub(frame.frame, cam.last_frame) - 1));
     } else if (cam.num_steps >= cam.steps.size()) {
       std::vector<std::int64_t> steps(cam.steps.begin(), cam.steps.end());
       const std::int64_t period = LowerMedian(&steps);
@@ -401,11 +426,10 @@ void FrameSynchronizer::Release(std::vector<SyncAction>* actions, bool force_all
     }
     // The deadline counts in the stream's time, and a frame ahead of the quorum's (one camera
     // early) is never released before the quorum gets there.
-    const bool ahead = options_.mode == SyncMode::kFrameIndex
-                           ? now_frame_ && key > *now_frame_
-                           : now_utime_ && key > *now_utime_;
-    const bool deadline = now_utime_ && !ahead &&
-                          SatSub(*now_utime_, g.reference_utime) >= options_.deadline_us;
+    const bool ahead = options_.mode == SyncMode::kFrameIndex ? now_frame_ && key > *now_frame_
+                                                              : now_utime_ && key > *now_utime_;
+    const bool deadline =
+        now_utime_ && !ahead && SatSub(*now_utime_, g.reference_utime) >= options_.deadline_us;
     const bool bound = pending_.size() > static_cast<std::size_t>(options_.max_pending_frames);
     if (complete) {
       ++counters_.released_complete;

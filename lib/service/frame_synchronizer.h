@@ -63,8 +63,8 @@ struct SyncAction {
     kSubmit,     ///< hand `frame` to the tracker
     kEndStream,  ///< the stream restarted: end the tracker's stream (Pipeline::Flush) here
   };
-  Kind kind = Kind::kSubmit;            ///< what to do
-  core::CameraFrame frame;              ///< kSubmit: the camera-frame (frame index final)
+  Kind kind = Kind::kSubmit;  ///< what to do
+  core::CameraFrame frame;    ///< kSubmit: the camera-frame (frame index final)
 };
 
 /// A camera's exclusion or clock state changed (for logging and flags).
@@ -77,7 +77,7 @@ struct CameraTransition {
   CameraId camera_id = 0;  ///< the camera
   bool excluded = false;   ///< see Kind
   Kind kind = Kind::kSilence;
-  std::int64_t offset_us = 0;     ///< kClock: the camera's offset to the quorum, µs
+  std::int64_t offset_us = 0;      ///< kClock: the camera's offset to the quorum, µs
   std::int64_t offset_frames = 0;  ///< kClock, by frame index: its frame offset
 };
 
@@ -89,48 +89,48 @@ struct SyncResult {
   /// actions then contain the release of every pending frame and a kEndStream, after which the
   /// camera-frame was accepted into a new stream.
   bool resynced = false;
-  std::vector<SyncAction> actions;          ///< releases (and stream ends), in order
+  std::vector<SyncAction> actions;            ///< releases (and stream ends), in order
   std::vector<CameraTransition> transitions;  ///< exclusions and re-inclusions, in order
 };
 
 /// Per-camera state and counters.
 struct SyncCameraStatus {
-  CameraId camera_id = 0;        ///< the camera
-  bool has_data = false;         ///< delivered an accepted camera-frame since start
+  CameraId camera_id = 0;  ///< the camera
+  bool has_data = false;   ///< delivered an accepted camera-frame since start
   /// Silent: frames do not wait for it. A camera not yet seen is waited for until
   /// silent_after_us of capture time has passed since the stream's first camera-frame.
   bool excluded = false;
-  Utime last_utime = 0;          ///< newest accepted capture utime (0 before any)
-  std::int64_t accepted = 0;     ///< camera-frames accepted
-  std::int64_t backwards = 0;    ///< rejected: time backwards
-  std::int64_t duplicates = 0;   ///< rejected: duplicate
-  std::int64_t far_future = 0;   ///< rejected: far future
-  std::int64_t late = 0;         ///< rejected: frame already released
-  std::int64_t flood = 0;        ///< dropped: flooding
+  Utime last_utime = 0;           ///< newest accepted capture utime (0 before any)
+  std::int64_t accepted = 0;      ///< camera-frames accepted
+  std::int64_t backwards = 0;     ///< rejected: time backwards
+  std::int64_t duplicates = 0;    ///< rejected: duplicate
+  std::int64_t far_future = 0;    ///< rejected: far future
+  std::int64_t late = 0;          ///< rejected: frame already released
+  std::int64_t flood = 0;         ///< dropped: flooding
   std::int64_t clock_offset = 0;  ///< rejected: clock (or frame counter) off the quorum's
   bool clock_flagged = false;     ///< its clock is flagged now (CLOCK_OFFSET)
   /// Median offset of its capture times to the quorum's, µs (0 before 8 samples).
   std::int64_t offset_us = 0;
   std::int64_t offset_frames = 0;  ///< by frame index: median frame offset
-  std::int64_t restarts = 0;      ///< times it restarted alone
+  std::int64_t restarts = 0;       ///< times it restarted alone
   /// Frames it never sent: gaps in its frame indices (frame_index mode), or steps of more than
   /// 1.5 of its frame periods in its capture times (utime mode), over accepted camera-frames.
   std::int64_t lost = 0;
   std::int64_t detections_rejected = 0;  ///< detections in this camera's rejected frames
-  std::int64_t missed = 0;       ///< released frames this active camera did not deliver to
+  std::int64_t missed = 0;               ///< released frames this active camera did not deliver to
 };
 
 /// Global counters.
 struct SyncStatus {
-  std::vector<SyncCameraStatus> cameras;     ///< by ascending camera id
-  std::int64_t unknown_camera = 0;           ///< camera-frames of unconfigured cameras
-  std::int64_t frames_released = 0;          ///< synchronized frames released
-  std::int64_t released_complete = 0;        ///< ... with every active camera
-  std::int64_t released_by_deadline = 0;     ///< ... at the late-camera deadline
-  std::int64_t released_by_bound = 0;        ///< ... because max_pending_frames was reached
-  std::int64_t released_by_flush = 0;        ///< ... by Flush() or a resync
-  std::int64_t resyncs = 0;                  ///< stream restarts detected
-  std::size_t pending_frames = 0;            ///< frames waiting now
+  std::vector<SyncCameraStatus> cameras;  ///< by ascending camera id
+  std::int64_t unknown_camera = 0;        ///< camera-frames of unconfigured cameras
+  std::int64_t frames_released = 0;       ///< synchronized frames released
+  std::int64_t released_complete = 0;     ///< ... with every active camera
+  std::int64_t released_by_deadline = 0;  ///< ... at the late-camera deadline
+  std::int64_t released_by_bound = 0;     ///< ... because max_pending_frames was reached
+  std::int64_t released_by_flush = 0;     ///< ... by Flush() or a resync
+  std::int64_t resyncs = 0;               ///< stream restarts detected
+  std::size_t pending_frames = 0;         ///< frames waiting now
 };
 
 /// The synchronizer; see the file comment.
@@ -181,7 +181,9 @@ class FrameSynchronizer {
     std::vector<std::optional<core::CameraFrame>> members;  // by camera index
   };
 
-  SyncRejection Check(const core::CameraFrame& frame, int camera_index, std::string* reason,
+  SyncRejection Check(const core::CameraFrame& frame,
+                      int camera_index,
+                      std::string* reason,
                       std::int64_t* key) const;
   // Whether camera `c` counts for the quorum (with data, not silent, clock not flagged).
   bool InQuorum(const Camera& c) const;
@@ -201,7 +203,7 @@ class FrameSynchronizer {
 
   SyncOptions options_;
   std::map<CameraId, int> index_of_;
-  std::vector<Camera> cameras_;  // by ascending id
+  std::vector<Camera> cameras_;            // by ascending id
   std::map<std::int64_t, Group> pending_;  // key: frame index, or reference utime (kUtime)
   std::optional<std::int64_t> last_released_key_;
   // The stream's time: the quorum's newest utime and frame (see the file comment).

@@ -18,7 +18,8 @@ constexpr std::int64_t kMaxId = std::numeric_limits<std::int64_t>::max() / 2;
 
 }  // namespace
 
-bool IdReservation::Open(const std::filesystem::path& directory, std::int64_t block,
+bool IdReservation::Open(const std::filesystem::path& directory,
+                         std::int64_t block,
                          std::string* why) {
   file_ = directory / "track_ids";
   block_ = block < 1 ? 1 : block;
@@ -68,8 +69,7 @@ bool IdReservation::Extend(TrackId3D next_id, std::string* why) {
 
 bool IdReservation::Store(TrackId3D end, std::string* why) {
   const std::filesystem::path tmp = file_.string() + ".tmp";
-  const std::string text =
-      std::string(kFormat) + "\nreserved_end=" + std::to_string(end) + "\n";
+  const std::string text = std::string(kFormat) + "\nreserved_end=" + std::to_string(end) + "\n";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {
     *why = tmp.string() + ": " + std::strerror(errno);

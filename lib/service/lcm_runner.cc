@@ -1,9 +1,9 @@
 #include "service/lcm_runner.h"
 
-#include <lcm/lcm-cpp.hpp>
 #include <spdlog/spdlog.h>
 
 #include <exception>
+#include <lcm/lcm-cpp.hpp>
 #include <utility>
 
 #include "transport/channels.h"
@@ -14,7 +14,8 @@ namespace {
 // Raw-bytes handler (free function: LCM 1.3.1's member-function subscribe crashes under UBSan).
 void OnRawMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Service* service) {
   try {
-    service->OnMessage(channel, static_cast<const std::uint8_t*>(rbuf->data),
+    service->OnMessage(channel,
+                       static_cast<const std::uint8_t*>(rbuf->data),
                        static_cast<std::size_t>(rbuf->data_size));
   } catch (const std::exception& e) {
     spdlog::error("message on {}: {}", channel, e.what());

@@ -62,17 +62,19 @@ ReceiveBufferCheck CheckReceiveBuffer(const std::string& url, const std::string&
     return c;
   }
   if (!requested) {
-    c.message = "input: no recv_buf_size in the URL: the kernel's default UDP receive buffer "
-                "applies (a burst larger than it is lost, counted as kernel_drops; e.g. "
-                "?recv_buf_size=8388608 with net.core.rmem_max >= 8388608, docs/DAEMON.md)";
+    c.message =
+        "input: no recv_buf_size in the URL: the kernel's default UDP receive buffer "
+        "applies (a burst larger than it is lost, counted as kernel_drops; e.g. "
+        "?recv_buf_size=8388608 with net.core.rmem_max >= 8388608, docs/DAEMON.md)";
     return c;
   }
   if (*requested > *rmem_max) {
     c.capped = true;
-    c.message = "input: recv_buf_size " + std::to_string(*requested) +
-                " bytes, but the kernel caps it at net.core.rmem_max = " +
-                std::to_string(*rmem_max) + ": set `sysctl -w net.core.rmem_max=" +
-                std::to_string(*requested) + "` (and in /etc/sysctl.d/) or lower recv_buf_size";
+    c.message =
+        "input: recv_buf_size " + std::to_string(*requested) +
+        " bytes, but the kernel caps it at net.core.rmem_max = " + std::to_string(*rmem_max) +
+        ": set `sysctl -w net.core.rmem_max=" + std::to_string(*requested) +
+        "` (and in /etc/sysctl.d/) or lower recv_buf_size";
     return c;
   }
   c.message = "input: UDP receive buffer " + std::to_string(*requested) +
@@ -88,9 +90,8 @@ std::int64_t SumUdpDrops(std::string_view table, const std::vector<std::uint64_t
   std::size_t begin = table.find('\n');  // the header line
   while (begin != std::string_view::npos && begin < table.size()) {
     const std::size_t end = table.find('\n', begin + 1);
-    std::istringstream row(std::string(table.substr(begin + 1, end == std::string_view::npos
-                                                                      ? std::string_view::npos
-                                                                      : end - begin - 1)));
+    std::istringstream row(std::string(table.substr(
+        begin + 1, end == std::string_view::npos ? std::string_view::npos : end - begin - 1)));
     begin = end;
     std::vector<std::string> cols;
     for (std::string col; row >> col && cols.size() <= kDrops;) cols.push_back(col);

@@ -16,17 +16,16 @@ namespace mvtrack::service {
 
 /// What ReceiveBufferAdvice found.
 struct ReceiveBufferCheck {
-  bool applies = false;     ///< a udpm:// URL (other providers have no such buffer)
-  bool capped = false;      ///< the kernel limit is below the requested size: warn
-  std::string message;      ///< one line for the log (empty when !applies)
+  bool applies = false;  ///< a udpm:// URL (other providers have no such buffer)
+  bool capped = false;   ///< the kernel limit is below the requested size: warn
+  std::string message;   ///< one line for the log (empty when !applies)
 };
 
 /// For `url`: its `recv_buf_size` (bytes; absent: the kernel's default, net.core.rmem_default)
 /// against the kernel's net.core.rmem_max, read from `rmem_max_path` (normally
 /// /proc/sys/net/core/rmem_max; unreadable: the check says so). Pure apart from that read.
-ReceiveBufferCheck CheckReceiveBuffer(const std::string& url,
-                                      const std::string& rmem_max_path =
-                                          "/proc/sys/net/core/rmem_max");
+ReceiveBufferCheck CheckReceiveBuffer(
+    const std::string& url, const std::string& rmem_max_path = "/proc/sys/net/core/rmem_max");
 
 /// The datagrams the kernel dropped because a receive buffer was full, summed over the UDP
 /// sockets this process holds: the `drops` column of `proc_root`/self/net/udp and udp6 for the

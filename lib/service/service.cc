@@ -71,7 +71,8 @@ std::vector<CameraId> CameraIds(const DaemonConfig& config) {
 
 }  // namespace
 
-std::unique_ptr<Service> Service::Create(DaemonConfig config, ServiceHooks hooks,
+std::unique_ptr<Service> Service::Create(DaemonConfig config,
+                                         ServiceHooks hooks,
                                          std::string* why) {
   std::unique_ptr<Service> s(new Service(std::move(config), std::move(hooks)));
   std::string reason;
@@ -90,7 +91,8 @@ std::unique_ptr<Service> Service::Create(DaemonConfig config, ServiceHooks hooks
     s->id_offset_ = s->reservation_->first_id() - 1;
     s->reserved_end_.store(s->reservation_->reserved_end());
     spdlog::info("track ids start at {} (reserved below {} in {})",
-                 s->reservation_->first_id(), s->reservation_->reserved_end(),
+                 s->reservation_->first_id(),
+                 s->reservation_->reserved_end(),
                  s->config_.state_directory);
   }
   if (!s->hooks_.record_path.empty()) {
@@ -115,8 +117,9 @@ Service::Service(DaemonConfig config, ServiceHooks hooks)
     camera_index_[config_.cameras[i].id] = static_cast<int>(i);
   }
   inputs_.resize(config_.cameras.size());
-  output_layout_ = config_.tracker.mode == tracker::InputMode::kPoses ? config_.tracker.layout
-                                                                      : core::KeypointLayoutId::kNone;
+  output_layout_ = config_.tracker.mode == tracker::InputMode::kPoses
+                       ? config_.tracker.layout
+                       : core::KeypointLayoutId::kNone;
   period_start_us_ = start_us_;
   next_status_us_ = start_us_ + Seconds(config_.status_period_s);
   last_message_us_ = start_us_;
@@ -145,8 +148,13 @@ std::unique_ptr<pipeline::Pipeline> Service::MakePipeline(const tracker::Tracker
   po.reorder_capacity = config_.reorder_capacity;
   po.finalizer_queue_capacity = config_.finalizer_queue_capacity;
   return pipeline::Pipeline::Create(
-      std::move(rig), options, po, std::make_unique<pipeline::ThreadPoolExecutor>(pool),
-      steady_clock_, [this](tracker::Frame3D frame) { OnFrame(std::move(frame)); }, why);
+      std::move(rig),
+      options,
+      po,
+      std::make_unique<pipeline::ThreadPoolExecutor>(pool),
+      steady_clock_,
+      [this](tracker::Frame3D frame) { OnFrame(std::move(frame)); },
+      why);
 }
 
 void Service::Warn(const std::string& kind, const std::string& message) {
@@ -159,7 +167,9 @@ void Service::Warn(const std::string& kind, const std::string& message) {
   }
 }
 
-void Service::Record(const std::string& channel, const std::uint8_t* data, std::size_t size,
+void Service::Record(const std::string& channel,
+                     const std::uint8_t* data,
+                     std::size_t size,
                      std::int64_t time_us) {
   if (!record_) return;
   std::string why;
@@ -171,7 +181,8 @@ void Service::Record(const std::string& channel, const std::uint8_t* data, std::
   }
 }
 
-void Service::Publish(const std::string& channel, const std::vector<std::uint8_t>& data,
+void Service::Publish(const std::string& channel,
+                      const std::vector<std::uint8_t>& data,
                       std::int64_t time_us) {
   std::lock_guard<std::mutex> lock(out_mu_);
   if (hooks_.publish) hooks_.publish(channel, data);
@@ -217,8 +228,9 @@ void Service::OnMessage(const std::string& channel, const std::uint8_t* data, st
       ++counters_.decode_errors_by_kind[kind];
       if (channel_index) ++inputs_[static_cast<std::size_t>(*channel_index)].decode_errors;
     }
-    Warn("decode:" + kind, "bad message on " + channel + " (" + std::to_string(size) +
-                               " bytes): " + kind + ": " + decoded.reason);
+    Warn("decode:" + kind,
+         "bad message on " + channel + " (" + std::to_string(size) + " bytes): " + kind + ": " +
+             decoded.reason);
     return;
   }
   core::CameraFrame& frame = decoded.frame;
@@ -228,8 +240,9 @@ void Service::OnMessage(const std::string& channel, const std::uint8_t* data, st
       ++counters_.channel_mismatches;
       if (channel_index) ++inputs_[static_cast<std::size_t>(*channel_index)].decode_errors;
     }
-    Warn("channel-mismatch", "message on " + channel + " carries camera_id " +
-                                 std::to_string(frame.camera_id) + "; dropped");
+    Warn("channel-mismatch",
+         "message on " + channel + " carries camera_id " + std::to_string(frame.camera_id) +
+             "; dropped");
     return;
   }
   const auto known = camera_index_.find(frame.camera_id);
@@ -335,8 +348,8 @@ void Service::Apply(std::vector<SyncAction>* actions) {
         ++counters_.gate_rejected;
       }
       Warn(std::string("gate:") + tracker::ToString(r.rejection) + ":" + std::to_string(camera),
-           std::string("tracker rejected camera-frame: ") + tracker::ToString(r.rejection) +
-               ": " + r.reason);
+           std::string("tracker rejected camera-frame: ") + tracker::ToString(r.rejection) + ": " +
+               r.reason);
     }
   }
 }
@@ -374,7 +387,8 @@ void Service::OnFrame(tracker::Frame3D frame) {
       spdlog::error("cannot extend the track id reservation: {}", why);
     }
   }
-  const std::vector<std::uint8_t> bytes = transport::EncodeTracks(frame, output_layout_, now, latency);
+  const std::vector<std::uint8_t> bytes =
+      transport::EncodeTracks(frame, output_layout_, now, latency);
   Publish(config_.tracks_channel, bytes, now);
   if (hooks_.on_frame) hooks_.on_frame(frame, output_layout_);
   std::lock_guard<std::mutex> lock(mu_);
@@ -566,15 +580,15 @@ std::vector<std::uint8_t> Service::BuildStatus() {
       const SyncCameraStatus& sc = ss.cameras[i];
       mvtrack::camera_status_t cs;
       cs.camera_id = config_.cameras[i].id;
-      cs.rate_hz = static_cast<float>(static_cast<double>(in.received - in.received_at_period_start) /
-                                      period_s);
+      cs.rate_hz = static_cast<float>(
+          static_cast<double>(in.received - in.received_at_period_start) / period_s);
       cs.last_utime = in.last_utime;
       cs.last_receive_utime = in.last_receive_us;
       cs.received = in.received;
       cs.late = sc.late;
       cs.dropped = sc.flood + (i < ps.cameras.size() ? ps.cameras[i].frames_dropped : 0);
-      cs.rejected = sc.detections_rejected +
-                    (i < ps.cameras.size() ? ps.cameras[i].detections_rejected : 0);
+      cs.rejected =
+          sc.detections_rejected + (i < ps.cameras.size() ? ps.cameras[i].detections_rejected : 0);
       cs.decode_errors = in.decode_errors;
       cs.lost = sc.lost;
       cs.clock_offset_us = sc.offset_us;
@@ -593,7 +607,8 @@ std::vector<std::uint8_t> Service::BuildStatus() {
       if (sc.clock_flagged) f |= mvtrack::camera_status_t::FLAG_CLOCK_OFFSET;
       if (cs.lost > in.lost_at_period_start) f |= mvtrack::camera_status_t::FLAG_LOSING;
       cs.flags = f;
-      if ((f & (mvtrack::camera_status_t::FLAG_NO_DATA | mvtrack::camera_status_t::FLAG_STALE)) != 0) {
+      if ((f & (mvtrack::camera_status_t::FLAG_NO_DATA | mvtrack::camera_status_t::FLAG_STALE)) !=
+          0) {
         flags |= mvtrack::tracker_status_t::FLAG_CAMERA_MISSING;
       }
       if ((f & (mvtrack::camera_status_t::FLAG_LATE | mvtrack::camera_status_t::FLAG_DROPPING |
@@ -634,11 +649,16 @@ std::vector<std::uint8_t> Service::BuildStatus() {
     msg.flags = flags;
     period_start_us_ = now;
   }
-  spdlog::debug("status: {} frame(s) published, latency p50 {} us p99 {} us; window latency "
-                "p50 {} us p99 {} us over {} window(s); flags {}",
-                msg.num_latency_samples, msg.latency_p50_us, msg.latency_p99_us,
-                NearestRankPercentile(&window_latencies, 0.5),
-                NearestRankPercentile(&window_latencies, 0.99), window_latencies.size(), msg.flags);
+  spdlog::debug(
+      "status: {} frame(s) published, latency p50 {} us p99 {} us; window latency "
+      "p50 {} us p99 {} us over {} window(s); flags {}",
+      msg.num_latency_samples,
+      msg.latency_p50_us,
+      msg.latency_p99_us,
+      NearestRankPercentile(&window_latencies, 0.5),
+      NearestRankPercentile(&window_latencies, 0.99),
+      window_latencies.size(),
+      msg.flags);
   std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
   const int written = msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   if (written < 0) bytes.clear();

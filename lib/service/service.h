@@ -79,25 +79,25 @@ struct ServiceHooks {
 
 /// Cumulative counters of the service (for the exit summary, tests and the status message).
 struct ServiceCounters {
-  std::int64_t messages = 0;             ///< messages handed to OnMessage
-  std::int64_t foreign_messages = 0;     ///< not on a detections channel
-  std::int64_t decode_errors = 0;        ///< detections messages that failed to decode
+  std::int64_t messages = 0;          ///< messages handed to OnMessage
+  std::int64_t foreign_messages = 0;  ///< not on a detections channel
+  std::int64_t decode_errors = 0;     ///< detections messages that failed to decode
   std::map<std::string, std::int64_t> decode_errors_by_kind;  ///< by DecodeStatus name
-  std::int64_t channel_mismatches = 0;   ///< camera id differs from a per-camera channel
+  std::int64_t channel_mismatches = 0;     ///< camera id differs from a per-camera channel
   std::int64_t image_size_mismatches = 0;  ///< image size differs from the calibration
   std::int64_t camera_frames_decoded = 0;  ///< decoded camera-frames given to the synchronizer
-  std::int64_t sync_rejected = 0;        ///< refused by the synchronizer (any reason)
+  std::int64_t sync_rejected = 0;          ///< refused by the synchronizer (any reason)
   std::map<std::string, std::int64_t> sync_rejections;  ///< by SyncRejection name
-  std::int64_t submitted = 0;            ///< camera-frames submitted to the pipeline
-  std::int64_t gate_rejected = 0;        ///< rejected by the tracker's FrameGate
-  std::int64_t frames_published = 0;     ///< tracks messages published
-  std::int64_t status_published = 0;     ///< status messages published
-  std::int64_t idle_flushes = 0;         ///< idle flushes (all cameras silent)
-  std::int64_t stream_restarts = 0;      ///< synchronizer resyncs
-  std::int64_t reloads = 0;              ///< successful configuration reloads
-  std::int64_t record_errors = 0;        ///< record-log write failures (recording then stops)
-  std::int64_t log_suppressed = 0;       ///< warnings suppressed by rate limiting
-  std::int64_t max_latency_us = 0;       ///< largest processing latency_us published
+  std::int64_t submitted = 0;                           ///< camera-frames submitted to the pipeline
+  std::int64_t gate_rejected = 0;                       ///< rejected by the tracker's FrameGate
+  std::int64_t frames_published = 0;                    ///< tracks messages published
+  std::int64_t status_published = 0;                    ///< status messages published
+  std::int64_t idle_flushes = 0;                        ///< idle flushes (all cameras silent)
+  std::int64_t stream_restarts = 0;                     ///< synchronizer resyncs
+  std::int64_t reloads = 0;                             ///< successful configuration reloads
+  std::int64_t record_errors = 0;   ///< record-log write failures (recording then stops)
+  std::int64_t log_suppressed = 0;  ///< warnings suppressed by rate limiting
+  std::int64_t max_latency_us = 0;  ///< largest processing latency_us published
   /// Receive-to-publish latency of the frames published in steady state, µs, in publish order
   /// (at most kMaxReceiveLatencySamples, the first ones): publish time minus the time the
   /// frame's first camera-frame was received (frame_index mode; in utime mode, minus its
@@ -108,8 +108,8 @@ struct ServiceCounters {
   std::int64_t frames_published_by_flush = 0;  ///< frames published during a flush
   /// Input datagrams the kernel dropped (ServiceHooks::kernel_drops); -1 when not measured.
   std::int64_t kernel_drops = -1;
-  SyncStatus sync;                       ///< synchronizer counters
-  pipeline::PipelineStatus pipeline;     ///< pipeline counters (current pipeline)
+  SyncStatus sync;                    ///< synchronizer counters
+  pipeline::PipelineStatus pipeline;  ///< pipeline counters (current pipeline)
 };
 
 /// Bound on ServiceCounters::receive_to_publish_us (8 MB).
@@ -120,8 +120,7 @@ class Service {
  public:
   /// Builds the rig, the synchronizer and the pipeline and opens the record log. Returns
   /// nullptr and sets `why` on failure (invalid rig or options, record log not writable).
-  static std::unique_ptr<Service> Create(DaemonConfig config, ServiceHooks hooks,
-                                         std::string* why);
+  static std::unique_ptr<Service> Create(DaemonConfig config, ServiceHooks hooks, std::string* why);
   /// Stop()s.
   ~Service();
   Service(const Service&) = delete;
@@ -166,8 +165,8 @@ class Service {
   std::int64_t KernelDrops() const;
 
   struct CameraInput {
-    std::int64_t received = 0;            // decoded messages
-    std::int64_t decode_errors = 0;       // on this camera's channel
+    std::int64_t received = 0;       // decoded messages
+    std::int64_t decode_errors = 0;  // on this camera's channel
     std::int64_t received_at_period_start = 0;
     std::int64_t late_at_period_start = 0;
     std::int64_t dropped_at_period_start = 0;
@@ -185,9 +184,12 @@ class Service {
   // pipeline_->Flush() with flushing_ set (frames it outputs are not latency-sampled).
   void FlushPipeline();
   void OnFrame(tracker::Frame3D frame);
-  void Publish(const std::string& channel, const std::vector<std::uint8_t>& data,
+  void Publish(const std::string& channel,
+               const std::vector<std::uint8_t>& data,
                std::int64_t time_us);
-  void Record(const std::string& channel, const std::uint8_t* data, std::size_t size,
+  void Record(const std::string& channel,
+              const std::uint8_t* data,
+              std::size_t size,
               std::int64_t time_us);
   void Warn(const std::string& kind, const std::string& message);
   std::int64_t Now() const { return wall_clock_->NowMicros(); }
@@ -216,16 +218,16 @@ class Service {
   // Shared between the control and the finalizer thread (guarded by mu_).
   mutable std::mutex mu_;
   ServiceCounters counters_;
-  std::vector<CameraInput> inputs_;              // by camera index
-  std::map<FrameIndex, std::int64_t> release_us_;  // frame -> wall time of its last release
+  std::vector<CameraInput> inputs_;                      // by camera index
+  std::map<FrameIndex, std::int64_t> release_us_;        // frame -> wall time of its last release
   std::map<FrameIndex, std::int64_t> first_receive_us_;  // frame -> first camera-frame received
-  std::vector<std::int64_t> latency_samples_;    // latency_us published this period
-  TrackId3D id_offset_ = 0;                      // added to pipeline ids (reloads)
+  std::vector<std::int64_t> latency_samples_;            // latency_us published this period
+  TrackId3D id_offset_ = 0;                              // added to pipeline ids (reloads)
   TrackId3D max_published_id_ = 0;
   FrameIndex last_frame_ = -1;
   int active_tracks_ = 0;
   int confirmed_tracks_ = 0;
-  std::int64_t windows_before_ = 0;   // windows processed by earlier pipelines (reloads)
+  std::int64_t windows_before_ = 0;  // windows processed by earlier pipelines (reloads)
   std::int64_t jobs_failed_before_ = 0;
   std::int64_t jobs_failed_at_period_start_ = 0;
   // Largest value hooks_.kernel_drops returned (it never decreases, even if a socket closed);

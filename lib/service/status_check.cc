@@ -53,8 +53,7 @@ HealthReport AssessStatus(const transport::TrackerStatus& status) {
   std::vector<std::string> warning;
   const int delivering = CamerasDelivering(status);
   if (delivering < 2) {
-    critical.push_back(std::to_string(delivering) + " of " +
-                       std::to_string(status.cameras.size()) +
+    critical.push_back(std::to_string(delivering) + " of " + std::to_string(status.cameras.size()) +
                        " cameras deliver (2 are needed to triangulate)");
   }
   if ((status.flags & kTrackerBacklog) != 0) {
@@ -64,8 +63,8 @@ HealthReport AssessStatus(const transport::TrackerStatus& status) {
     critical.push_back("JOB_FAILURES: " + std::to_string(status.jobs_failed) +
                        " window jobs failed since start");
   }
-  for (const std::string& f : transport::TrackerFlagNames(
-           status.flags & ~(kTrackerBacklog | kTrackerJobFailures))) {
+  for (const std::string& f :
+       transport::TrackerFlagNames(status.flags & ~(kTrackerBacklog | kTrackerJobFailures))) {
     warning.push_back(f);
   }
   for (const transport::CameraStatus& c : status.cameras) {
@@ -74,7 +73,7 @@ HealthReport AssessStatus(const transport::TrackerStatus& status) {
       warning.push_back("camera " + std::to_string(c.camera_id) + " " + Join(names, ","));
     }
   }
-  r.health = !critical.empty() ? Health::kCritical
+  r.health = !critical.empty()  ? Health::kCritical
              : !warning.empty() ? Health::kWarning
                                 : Health::kOk;
   r.reasons = critical;
@@ -83,8 +82,8 @@ HealthReport AssessStatus(const transport::TrackerStatus& status) {
 }
 
 double FrameRateMeter::Add(const transport::TrackerStatus& status) {
-  if (!history_.empty() && (status.utime <= history_.back().first ||
-                            status.last_frame < history_.back().second)) {
+  if (!history_.empty() &&
+      (status.utime <= history_.back().first || status.last_frame < history_.back().second)) {
     history_.clear();  // a restart, or a clock step: start over
   }
   if (status.last_frame < 0) return FramesPerSecond(status);  // no output yet
@@ -97,8 +96,7 @@ double FrameRateMeter::Add(const transport::TrackerStatus& status) {
     ++base;
   }
   history_.erase(history_.begin(), history_.begin() + static_cast<std::ptrdiff_t>(base));
-  const double dt =
-      static_cast<double>(status.utime) - static_cast<double>(history_.front().first);
+  const double dt = static_cast<double>(status.utime) - static_cast<double>(history_.front().first);
   if (dt < 1e6) return FramesPerSecond(status);
   return (static_cast<double>(status.last_frame) - static_cast<double>(history_.front().second)) *
          1e6 / dt;

@@ -13,8 +13,23 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 // COCO-17 indices.
 enum Joint : int {
-  kNose = 0, kLEye, kREye, kLEar, kREar, kLShoulder, kRShoulder, kLElbow, kRElbow, kLWrist,
-  kRWrist, kLHip, kRHip, kLKnee, kRKnee, kLAnkle, kRAnkle,
+  kNose = 0,
+  kLEye,
+  kREye,
+  kLEar,
+  kREar,
+  kLShoulder,
+  kRShoulder,
+  kLElbow,
+  kRElbow,
+  kLWrist,
+  kRWrist,
+  kLHip,
+  kRHip,
+  kLKnee,
+  kRKnee,
+  kLAnkle,
+  kRAnkle,
 };
 
 // Plain 3-vector for the per-joint arithmetic: this code runs for every person every frame, and
@@ -100,7 +115,8 @@ std::array<Vec3, kNumCocoJoints> Coco17Joints(const BodyState& body) {
 Vec3 HeadTop(const BodyState& body) {
   const double s = body.height_m / 1.75;
   const double c = std::cos(body.heading_rad), sn = std::sin(body.heading_rad);
-  return Vec3(body.footprint_m.x() - 0.01 * s * c, body.footprint_m.y() - 0.01 * s * sn,
+  return Vec3(body.footprint_m.x() - 0.01 * s * c,
+              body.footprint_m.y() - 0.01 * s * sn,
               body.footprint_m.z() + body.height_m);
 }
 

@@ -23,8 +23,8 @@ std::vector<geometry::CameraModel> RingCameras(const SceneOptions& o) {
     // Start at the corner (0, 0), i.e. angle -135 deg, and go counter-clockwise.
     const double angle = -0.75 * std::numbers::pi + 2.0 * std::numbers::pi * i / o.num_cameras;
     const Vec3 center(cx + ax * std::cos(angle), cy + ay * std::sin(angle), o.camera_height_m);
-    cameras.push_back(MakeCamera(i, o.image_width_px, o.image_height_px, o.horizontal_fov_deg,
-                                 center, target - center));
+    cameras.push_back(MakeCamera(
+        i, o.image_width_px, o.image_height_px, o.horizontal_fov_deg, center, target - center));
   }
   return cameras;
 }
@@ -50,10 +50,14 @@ std::vector<geometry::CameraModel> GridCameras(const SceneOptions& o) {
       if (rows > 1 && r == 0) dy = 1.0;
       if (rows > 1 && r == rows - 1) dy = -1.0;
       const double yaw = std::atan2(dy, dx);
-      const Vec3 forward(std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw),
-                         -std::sin(pitch));
-      cameras.push_back(MakeCamera(id++, o.image_width_px, o.image_height_px,
-                                   o.horizontal_fov_deg, Vec3(x, y, o.camera_height_m), forward));
+      const Vec3 forward(
+          std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), -std::sin(pitch));
+      cameras.push_back(MakeCamera(id++,
+                                   o.image_width_px,
+                                   o.image_height_px,
+                                   o.horizontal_fov_deg,
+                                   Vec3(x, y, o.camera_height_m),
+                                   forward));
     }
   }
   return cameras;
@@ -96,8 +100,7 @@ geometry::CameraModel MakeCamera(CameraId id,
 std::vector<geometry::CameraModel> MakeCameras(const SceneOptions& options) {
   std::string why;
   MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
-  return options.camera_layout == CameraLayout::kRing ? RingCameras(options)
-                                                      : GridCameras(options);
+  return options.camera_layout == CameraLayout::kRing ? RingCameras(options) : GridCameras(options);
 }
 
 }  // namespace mvtrack::sim

@@ -19,7 +19,7 @@ using internal::Random;
 using internal::Stream;
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kMaxSubstepS = 0.05;       // integration step bound (see the class comment)
+constexpr double kMaxSubstepS = 0.05;        // integration step bound (see the class comment)
 constexpr double kInteractionRadiusM = 2.0;  // social-force neighbourhood
 constexpr double kRepulsionMps = 1.2;        // social-force strength A
 constexpr double kRepulsionRangeM = 0.3;     // social-force range B
@@ -28,12 +28,12 @@ constexpr double kMaxTurnRateRadps = 6.0;
 constexpr double kArrivalRadiusM = 0.2;
 constexpr double kSlowdownRadiusM = 0.6;
 constexpr double kBlockedTimeoutS = 2.0;
-constexpr double kWallClearanceM = 0.2;     // people inside keep their footprint this far in
-constexpr double kOutsideBandM = 1.5;       // entering/leaving people stay within this band
-constexpr double kSpawnDistanceM = 0.5;     // spawn this far outside a wall
-constexpr double kExitDistanceM = 0.8;      // exit goals this far outside a wall
-constexpr double kDespawnDistanceM = 0.4;   // leaving people vanish this far outside the room
-constexpr double kCornerAvoidanceM = 0.5;   // doors keep this far from the corners
+constexpr double kWallClearanceM = 0.2;    // people inside keep their footprint this far in
+constexpr double kOutsideBandM = 1.5;      // entering/leaving people stay within this band
+constexpr double kSpawnDistanceM = 0.5;    // spawn this far outside a wall
+constexpr double kExitDistanceM = 0.8;     // exit goals this far outside a wall
+constexpr double kDespawnDistanceM = 0.4;  // leaving people vanish this far outside the room
+constexpr double kCornerAvoidanceM = 0.5;  // doors keep this far from the corners
 
 enum class Mode { kEntering, kInside, kLeaving };
 
@@ -185,10 +185,10 @@ struct CrowdSimulator::State {
 
   // --- neighbour grid ------------------------------------------------------------------------
   std::pair<int, int> CellOf(const Vec2& p) const {
-    const int cx = std::clamp(static_cast<int>(std::floor((p.x() - grid_x0) / cell_m)), 0,
-                              grid_nx - 1);
-    const int cy = std::clamp(static_cast<int>(std::floor((p.y() - grid_y0) / cell_m)), 0,
-                              grid_ny - 1);
+    const int cx =
+        std::clamp(static_cast<int>(std::floor((p.x() - grid_x0) / cell_m)), 0, grid_nx - 1);
+    const int cy =
+        std::clamp(static_cast<int>(std::floor((p.y() - grid_y0) / cell_m)), 0, grid_ny - 1);
     return {cx, cy};
   }
 
@@ -263,8 +263,8 @@ struct CrowdSimulator::State {
     const Vec2 closest(std::clamp(w->position.x(), 0.0, o.room_width_m),
                        std::clamp(w->position.y(), 0.0, o.room_depth_m));
     const Vec2 out = w->position - closest;
-    w->goal = w->position + kExitDistanceM * (out.norm() > 1e-9 ? Vec2(out.normalized())
-                                                                 : Vec2(0.0, -1.0));
+    w->goal = w->position +
+              kExitDistanceM * (out.norm() > 1e-9 ? Vec2(out.normalized()) : Vec2(0.0, -1.0));
   }
 
   void StepWalker(Walker* w, double dt) {
@@ -369,8 +369,8 @@ struct CrowdSimulator::State {
 
     // Gait and facing.
     const double speed = chosen.norm();
-    w->phase_rad = std::fmod(w->phase_rad + 2.0 * kPi * step.norm() / (0.8 * w->height_m),
-                             2.0 * kPi);
+    w->phase_rad =
+        std::fmod(w->phase_rad + 2.0 * kPi * step.norm() / (0.8 * w->height_m), 2.0 * kPi);
     w->amplitude += (std::min(1.0, speed / 1.1) - w->amplitude) * amplitude_rate;
     if (speed > 0.05) {
       const double turn = WrapAngle(std::atan2(chosen.y(), chosen.x()) - w->heading_rad);
@@ -436,8 +436,9 @@ struct CrowdSimulator::State {
       p.height_m = w.height_m;
       t.people.push_back(std::move(p));
     }
-    std::sort(t.people.begin(), t.people.end(),
-              [](const PersonTruth& a, const PersonTruth& b) { return a.id < b.id; });
+    std::sort(t.people.begin(), t.people.end(), [](const PersonTruth& a, const PersonTruth& b) {
+      return a.id < b.id;
+    });
     return t;
   }
 

@@ -16,20 +16,20 @@ namespace mvtrack::sim {
 
 /// Ground truth of one person at one frame.
 struct PersonTruth {
-  int id = 0;                          ///< unique per person (a re-entering person gets a new id)
-  Vec3 footprint_m = Vec3::Zero();     ///< ground point under the pelvis (z = 0), world frame
-  std::vector<Vec3> joints_m;          ///< 17 COCO joints (core::KeypointLayoutId::kCoco17), world
-  Vec3 head_top_m = Vec3::Zero();      ///< top of the head, world
-  Vec3 velocity_mps = Vec3::Zero();    ///< footprint velocity over the last frame (z = 0)
-  double heading_rad = 0.0;            ///< facing direction, counter-clockwise from world +x
-  double height_m = 0.0;               ///< standing height
+  int id = 0;                        ///< unique per person (a re-entering person gets a new id)
+  Vec3 footprint_m = Vec3::Zero();   ///< ground point under the pelvis (z = 0), world frame
+  std::vector<Vec3> joints_m;        ///< 17 COCO joints (core::KeypointLayoutId::kCoco17), world
+  Vec3 head_top_m = Vec3::Zero();    ///< top of the head, world
+  Vec3 velocity_mps = Vec3::Zero();  ///< footprint velocity over the last frame (z = 0)
+  double heading_rad = 0.0;          ///< facing direction, counter-clockwise from world +x
+  double height_m = 0.0;             ///< standing height
 };
 
 /// Ground truth of one frame.
 struct FrameTruth {
   FrameIndex frame = 0;
-  Utime utime = 0;                   ///< µs
-  std::vector<PersonTruth> people;   ///< sorted by id; only people inside the room [0,W]x[0,D]
+  Utime utime = 0;                  ///< µs
+  std::vector<PersonTruth> people;  ///< sorted by id; only people inside the room [0,W]x[0,D]
 };
 
 /// The box-bounding points of `person` (see BoxPoints in body.h).

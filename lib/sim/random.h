@@ -30,7 +30,9 @@ using core::Random;
 
 /// Seed of stream `stream` for the indices (a, b) (e.g. frame and camera), derived from the
 /// master seed by chained mixing so nearby inputs give unrelated seeds.
-inline std::uint64_t DeriveSeed(std::uint64_t seed, Stream stream, std::uint64_t a = 0,
+inline std::uint64_t DeriveSeed(std::uint64_t seed,
+                                Stream stream,
+                                std::uint64_t a = 0,
                                 std::uint64_t b = 0) {
   std::uint64_t h = Mix64(seed);
   h = Mix64(h ^ static_cast<std::uint64_t>(stream));

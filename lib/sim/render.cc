@@ -26,9 +26,7 @@ bool Overlap(const core::BoxPx& a, const core::BoxPx& b) {
   return a.x_min < b.x_max && b.x_min < a.x_max && a.y_min < b.y_max && b.y_min < a.y_max;
 }
 
-double Area(const core::BoxPx& b) {
-  return std::max(0.0, b.width()) * std::max(0.0, b.height());
-}
+double Area(const core::BoxPx& b) { return std::max(0.0, b.width()) * std::max(0.0, b.height()); }
 
 bool Contains(const core::BoxPx& b, const Vec2& p) {
   return p.x() >= b.x_min && p.x() <= b.x_max && p.y() >= b.y_min && p.y() <= b.y_max;
@@ -36,7 +34,9 @@ bool Contains(const core::BoxPx& b, const Vec2& p) {
 
 core::BoxPx Clip(const core::BoxPx& b, int width_px, int height_px) {
   const double w = width_px, h = height_px;
-  return {std::clamp(b.x_min, 0.0, w), std::clamp(b.y_min, 0.0, h), std::clamp(b.x_max, 0.0, w),
+  return {std::clamp(b.x_min, 0.0, w),
+          std::clamp(b.y_min, 0.0, h),
+          std::clamp(b.x_max, 0.0, w),
           std::clamp(b.y_max, 0.0, h)};
 }
 
@@ -84,9 +84,9 @@ PersonGeometry MakePersonGeometry(const PersonTruth& person) {
     }
   }
   g.sphere_centre = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
-  g.sphere_radius_m = 0.5 * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
-                                      (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                      (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  g.sphere_radius_m =
+      0.5 * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                      (hi[2] - lo[2]) * (hi[2] - lo[2]));
   return g;
 }
 
@@ -113,7 +113,8 @@ class Projector {
   // Camera-frame coordinates of a world point.
   std::array<double, 3> ToCamera(const std::array<double, 3>& p) const {
     const double x = p[0], y = p[1], z = p[2];
-    return {r_[0] * x + r_[1] * y + r_[2] * z + t_[0], r_[3] * x + r_[4] * y + r_[5] * z + t_[1],
+    return {r_[0] * x + r_[1] * y + r_[2] * z + t_[0],
+            r_[3] * x + r_[4] * y + r_[5] * z + t_[1],
             r_[6] * x + r_[7] * y + r_[8] * z + t_[2]};
   }
 
@@ -247,8 +248,10 @@ double CoveredArea(const core::BoxPx& target, const std::vector<core::BoxPx>& re
   std::vector<core::BoxPx> clipped;
   clipped.reserve(rects.size());
   for (const core::BoxPx& r : rects) {
-    const core::BoxPx c{std::max(r.x_min, target.x_min), std::max(r.y_min, target.y_min),
-                        std::min(r.x_max, target.x_max), std::min(r.y_max, target.y_max)};
+    const core::BoxPx c{std::max(r.x_min, target.x_min),
+                        std::max(r.y_min, target.y_min),
+                        std::min(r.x_max, target.x_max),
+                        std::min(r.y_max, target.y_max)};
     if (c.x_max > c.x_min && c.y_max > c.y_min) clipped.push_back(c);
   }
   if (clipped.empty()) return 0.0;
@@ -371,11 +374,12 @@ core::CameraFrame RenderCameraImpl(const SceneOptions& options,
         const Vec2& clean = p.keypoints_px[j];
         double confidence = 0.0;
         if (p.keypoint_in_image[j] && !(k.u_dropout < options.keypoint_dropout)) {
-          const bool occluded = std::any_of(
-              occluders.begin(), occluders.end(),
-              [&](const core::BoxPx& b) { return Contains(b, clean); });
-          confidence = occluded ? OccludedConfidence(k.u_confidence)
-                                : VisibleConfidence(k.u_confidence);
+          const bool occluded =
+              std::any_of(occluders.begin(), occluders.end(), [&](const core::BoxPx& b) {
+                return Contains(b, clean);
+              });
+          confidence =
+              occluded ? OccludedConfidence(k.u_confidence) : VisibleConfidence(k.u_confidence);
         }
         d.keypoints.push_back(
             {Vec2(clean.x() + sigma * k.nx, clean.y() + sigma * k.ny), confidence});
@@ -435,8 +439,7 @@ RenderedFrame RenderFrame(const SceneOptions& options,
   f.cameras.reserve(cameras.size());
   f.person_ids.resize(cameras.size());
   for (std::size_t c = 0; c < cameras.size(); ++c) {
-    f.cameras.push_back(
-        RenderCameraImpl(options, cameras[c], truth, geometry, &f.person_ids[c]));
+    f.cameras.push_back(RenderCameraImpl(options, cameras[c], truth, geometry, &f.person_ids[c]));
   }
   return f;
 }

@@ -34,8 +34,8 @@ bool SceneOptions::Validate(std::string* why) const {
     return false;
   };
   auto finite = [](double v) { return std::isfinite(v); };
-  if (!finite(room_width_m) || !finite(room_depth_m) || room_width_m < 2.0 ||
-      room_depth_m < 2.0 || room_width_m > 1000.0 || room_depth_m > 1000.0) {
+  if (!finite(room_width_m) || !finite(room_depth_m) || room_width_m < 2.0 || room_depth_m < 2.0 ||
+      room_width_m > 1000.0 || room_depth_m > 1000.0) {
     return fail("room_width_m and room_depth_m must be in [2, 1000]");
   }
   if (num_cameras < 1 || num_cameras > 4096) return fail("num_cameras must be in [1, 4096]");

@@ -30,7 +30,8 @@ bool TouchesBorder(double edge_px, int border_px) {
 
 }  // namespace
 
-CameraStage::CameraStage(geometry::CameraModel camera, int camera_index,
+CameraStage::CameraStage(geometry::CameraModel camera,
+                         int camera_index,
                          const TrackerOptions& options)
     : camera_(std::move(camera)),
       camera_index_(camera_index),
@@ -71,8 +72,8 @@ bool CameraStage::SteeperThanEndsLimit(const Vec2& undistorted_px) const {
   return -in_world.z() > sin_ends_limit_ * in_world.norm();
 }
 
-std::optional<core::Observation2D> CameraStage::MakeObservation(
-    const core::Detection2D& detection, core::BoxPx* sort_box) const {
+std::optional<core::Observation2D> CameraStage::MakeObservation(const core::Detection2D& detection,
+                                                                core::BoxPx* sort_box) const {
   if (detection.score < options_.min_detection_score) return std::nullopt;
   core::Observation2D obs;
   if (options_.mode == InputMode::kBoxes) {
@@ -156,7 +157,8 @@ std::optional<core::Observation2D> CameraStage::MakeObservation(
   return obs;
 }
 
-TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame, std::int64_t stream_epoch,
+TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
+                                        std::int64_t stream_epoch,
                                         CameraStageCounters* counters) {
   MVTRACK_CHECK(counters != nullptr);
   MVTRACK_CHECK_MSG(stream_epoch >= stream_epoch_, "stream epochs must not decrease");

@@ -58,7 +58,8 @@ class CameraStage {
   /// detection, converts the usable ones to observations and runs SORT on them. Frames must
   /// increase within a stream epoch; a newer `stream_epoch` than the previous call's restarts
   /// SORT first (the stream ended: re-anchor or flush). `counters` (not null) is overwritten.
-  TrackedCameraFrame Process(const core::CameraFrame& frame, std::int64_t stream_epoch,
+  TrackedCameraFrame Process(const core::CameraFrame& frame,
+                             std::int64_t stream_epoch,
                              CameraStageCounters* counters);
 
   /// Index of the camera in the rig.

@@ -83,10 +83,10 @@ struct TrackerOptions {
   /// A camera-frame with more detections is rejected as a whole.
   int max_detections_per_frame = 1000;
 
-  tracking2d::SortOptions sort;                     ///< per-camera SORT
-  association::AssociationOptions association;      ///< Eq. 2-4 and PDNC
+  tracking2d::SortOptions sort;                       ///< per-camera SORT
+  association::AssociationOptions association;        ///< Eq. 2-4 and PDNC
   triangulation::TriangulationOptions triangulation;  ///< CMMT (Algorithm 2)
-  linking::LinkerOptions linking;                   ///< Eq. 8-9
+  linking::LinkerOptions linking;                     ///< Eq. 8-9
   /// Pose mode: per-window refinement after CMMT (duplicate merging, fragment removal, temporal
   /// outlier rejection, completion of joints no camera pair could triangulate;
   /// docs/ACCURACY.md). Not applied in box mode.

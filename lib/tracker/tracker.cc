@@ -5,7 +5,8 @@
 
 namespace mvtrack::tracker {
 
-std::unique_ptr<Tracker> Tracker::Create(geometry::CameraRig rig, TrackerOptions options,
+std::unique_ptr<Tracker> Tracker::Create(geometry::CameraRig rig,
+                                         TrackerOptions options,
                                          std::string* why) {
   if (!options.Validate(why)) return nullptr;
   if (rig.size() < 2) {

@@ -44,33 +44,33 @@ namespace mvtrack::tracker {
 struct AddResult {
   /// kNone when the camera-frame was accepted.
   FrameRejection rejection = FrameRejection::kNone;
-  std::string reason;           ///< why the frame (or the first bad detection) was rejected
-  int detections_used = 0;      ///< converted to observations and given to SORT
-  int detections_rejected = 0;  ///< invalid detections dropped (ValidateDetection)
-  int detections_repaired = 0;  ///< detections kept with some keypoints invalidated
-  int detections_filtered = 0;  ///< valid but below score / keypoint thresholds
+  std::string reason;              ///< why the frame (or the first bad detection) was rejected
+  int detections_used = 0;         ///< converted to observations and given to SORT
+  int detections_rejected = 0;     ///< invalid detections dropped (ValidateDetection)
+  int detections_repaired = 0;     ///< detections kept with some keypoints invalidated
+  int detections_filtered = 0;     ///< valid but below score / keypoint thresholds
   std::vector<Frame3D> finalized;  ///< frames finalized by this call, in increasing order
 };
 
 /// Cumulative counters.
 struct TrackerStats {
-  std::int64_t camera_frames_accepted = 0;  ///< camera-frames admitted
-  std::int64_t camera_frames_rejected = 0;  ///< camera-frames rejected as a whole
+  std::int64_t camera_frames_accepted = 0;            ///< camera-frames admitted
+  std::int64_t camera_frames_rejected = 0;            ///< camera-frames rejected as a whole
   std::map<FrameRejection, std::int64_t> rejections;  ///< rejected camera-frames by reason
-  std::int64_t detections_used = 0;      ///< see AddResult
-  std::int64_t detections_rejected = 0;  ///< see AddResult
-  std::int64_t detections_repaired = 0;  ///< see AddResult
-  std::int64_t detections_filtered = 0;  ///< see AddResult
-  std::int64_t frames_finalized = 0;     ///< Frame3D output
-  std::int64_t windows_processed = 0;    ///< windows linked
-  std::int64_t reanchors = 0;            ///< stream restarts (max_frame_jump exceeded)
-  std::int64_t tracks_born = 0;          ///< long-term 3D tracks started
+  std::int64_t detections_used = 0;                   ///< see AddResult
+  std::int64_t detections_rejected = 0;               ///< see AddResult
+  std::int64_t detections_repaired = 0;               ///< see AddResult
+  std::int64_t detections_filtered = 0;               ///< see AddResult
+  std::int64_t frames_finalized = 0;                  ///< Frame3D output
+  std::int64_t windows_processed = 0;                 ///< windows linked
+  std::int64_t reanchors = 0;                         ///< stream restarts (max_frame_jump exceeded)
+  std::int64_t tracks_born = 0;                       ///< long-term 3D tracks started
 };
 
 /// Output of one window (exposed for tests, ablations and diagnostics).
 struct WindowOutput {
-  std::int64_t window_id = 0;     ///< see WindowJob
-  FrameIndex begin = 0, end = 0;  ///< [begin, end)
+  std::int64_t window_id = 0;               ///< see WindowJob
+  FrameIndex begin = 0, end = 0;            ///< [begin, end)
   std::vector<core::Tracklet2D> tracklets;  ///< the job's 2D tracklets
   std::vector<std::vector<int>> clusters;   ///< PDNC clusters of indices into `tracklets`
   std::vector<core::Tracklet3D> persons;    ///< see WindowResult::persons
@@ -82,7 +82,8 @@ class Tracker {
  public:
   /// Returns nullptr and sets `why` when the options are invalid or the rig has fewer than two
   /// cameras (a single camera cannot triangulate anything).
-  static std::unique_ptr<Tracker> Create(geometry::CameraRig rig, TrackerOptions options,
+  static std::unique_ptr<Tracker> Create(geometry::CameraRig rig,
+                                         TrackerOptions options,
                                          std::string* why);
 
   /// Adds one camera's detections for one frame. A frame is collected until a camera-frame of

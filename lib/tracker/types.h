@@ -32,7 +32,7 @@ struct Track3D {
 /// All confirmed tracks of one finalized frame, sorted by id.
 struct Frame3D {
   FrameIndex frame = 0;  ///< frame index of the synchronized capture
-  Utime utime = 0;  ///< capture time: the smallest utime among the frame's camera-frames
+  Utime utime = 0;       ///< capture time: the smallest utime among the frame's camera-frames
   std::vector<Track3D> tracks;  ///< sorted by id
 };
 

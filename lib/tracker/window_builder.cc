@@ -35,7 +35,8 @@ std::size_t WindowBuilder::num_stored_observations() const {
   return n;
 }
 
-void WindowBuilder::Add(const FrameEvents& events, TrackedCameraFrame frame,
+void WindowBuilder::Add(const FrameEvents& events,
+                        TrackedCameraFrame frame,
                         std::vector<BuilderOutput>* out) {
   MVTRACK_CHECK(out != nullptr);
   MVTRACK_CHECK(frame.camera_index >= 0 &&
@@ -88,7 +89,8 @@ void WindowBuilder::CloseOpenFrame(std::vector<BuilderOutput>* out) {
   EmitWindowsUpTo(f, /*flushing=*/false, out);
 }
 
-void WindowBuilder::EmitWindowsUpTo(FrameIndex complete_through, bool flushing,
+void WindowBuilder::EmitWindowsUpTo(FrameIndex complete_through,
+                                    bool flushing,
                                     std::vector<BuilderOutput>* out) {
   if (!grid_origin_) return;
   // Three closed frames give two periods; their median is the larger, so one late frame among
@@ -114,14 +116,21 @@ void WindowBuilder::EmitWindowsUpTo(FrameIndex complete_through, bool flushing,
     if (flushing && last_closed_frame_ && begin + delta > *last_closed_frame_) {
       finalize_to = *last_closed_frame_ + 1;  // the last window finalizes the tail
     }
-    EmitWindow(window_id_offset_ + next_window_, begin, complete ? end : *last_closed_frame_ + 1,
-               finalize_from, finalize_to, out);
+    EmitWindow(window_id_offset_ + next_window_,
+               begin,
+               complete ? end : *last_closed_frame_ + 1,
+               finalize_from,
+               finalize_to,
+               out);
     ++next_window_;
   }
 }
 
-void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIndex end,
-                               FrameIndex finalize_from, FrameIndex finalize_to,
+void WindowBuilder::EmitWindow(std::int64_t window_id,
+                               FrameIndex begin,
+                               FrameIndex end,
+                               FrameIndex finalize_from,
+                               FrameIndex finalize_to,
                                std::vector<BuilderOutput>* out) {
   WindowJob job;
   job.window_id = window_id;
@@ -141,16 +150,19 @@ void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIn
     for (auto& [track_id, observations] : tracks_[c]) {
       // Observations are in frame order: the window's are one contiguous run. Tracklets too
       // short for the window are skipped before copying anything.
-      const auto first = std::lower_bound(
-          observations.begin(), observations.end(), begin,
-          [](const TimedObservation& o, FrameIndex f) { return o.frame < f; });
+      const auto first =
+          std::lower_bound(observations.begin(),
+                           observations.end(),
+                           begin,
+                           [](const TimedObservation& o, FrameIndex f) { return o.frame < f; });
       const auto last = std::lower_bound(
-          first, observations.end(), end,
-          [](const TimedObservation& o, FrameIndex f) { return o.frame < f; });
+          first, observations.end(), end, [](const TimedObservation& o, FrameIndex f) {
+            return o.frame < f;
+          });
       const auto count = static_cast<std::size_t>(last - first);
       if (count == 0) continue;
-      job.live_tracks.push_back({camera_ids_[c], track_id, first->frame, (last - 1)->frame,
-                                 static_cast<int>(count)});
+      job.live_tracks.push_back(
+          {camera_ids_[c], track_id, first->frame, (last - 1)->frame, static_cast<int>(count)});
       if (static_cast<int>(count) < min_tracklet_length_) continue;
       core::Tracklet2D& t = job.tracklets.emplace_back();
       t.camera_id = camera_ids_[c];
@@ -167,7 +179,8 @@ void WindowBuilder::EmitWindow(std::int64_t window_id, FrameIndex begin, FrameIn
       }
     }
   }
-  std::sort(job.live_tracks.begin(), job.live_tracks.end(),
+  std::sort(job.live_tracks.begin(),
+            job.live_tracks.end(),
             [](const core::TrackletMember& a, const core::TrackletMember& b) {
               return a.camera_id != b.camera_id ? a.camera_id < b.camera_id
                                                 : a.track_id < b.track_id;

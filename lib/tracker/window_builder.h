@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <deque>
 #include <map>
-#include <utility>
 #include <optional>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -103,8 +103,8 @@ class WindowBuilder {
   std::vector<CameraId> camera_ids_;  // by rig index
   TrackerOptions options_;            // as given; the geometry below is AtFrameRate's
   bool geometry_fixed_ = false;
-  std::int64_t window_size_ = 0;      // ν
-  std::int64_t window_step_ = 0;      // δ
+  std::int64_t window_size_ = 0;  // ν
+  std::int64_t window_step_ = 0;  // δ
   int min_tracklet_length_ = 0;
 
   // Frame being collected.

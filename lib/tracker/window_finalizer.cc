@@ -43,8 +43,8 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
                                               std::vector<Frame3D>* out) {
   MVTRACK_CHECK(out != nullptr);
   // Link to long-term tracks (Eq. 8-9).
-  linking::LinkResult link = linker_.Link(result.window_id, result.begin, result.seconds_per_frame,
-                                                 result.persons, result.live_tracks);
+  linking::LinkResult link = linker_.Link(
+      result.window_id, result.begin, result.seconds_per_frame, result.persons, result.live_tracks);
   counters_.windows_processed += 1;
   counters_.tracks_born += static_cast<std::int64_t>(link.born.size());
   // The linker's alive tracks, sorted by id (WindowLinker::tracks()): looked up by bisection.
@@ -55,8 +55,9 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
     auto first = first_frame_of_track_.try_emplace(id, person.frames.front()).first;
     first->second = std::min(first->second, person.frames.front());
     const auto it = std::lower_bound(
-        alive.begin(), alive.end(), id,
-        [](const linking::LinkedTrack& t, TrackId3D wanted) { return t.id < wanted; });
+        alive.begin(), alive.end(), id, [](const linking::LinkedTrack& t, TrackId3D wanted) {
+          return t.id < wanted;
+        });
     if (it == alive.end() || it->id != id || it->state == linking::TrackState::kTentative) continue;
     for (std::size_t f = 0; f < person.frames.size(); ++f) {
       const FrameIndex frame = person.frames[f];
@@ -101,8 +102,8 @@ void WindowFinalizer::EndStream(std::vector<Frame3D>* out) {
 
 void WindowFinalizer::EmitFinal(FrameIndex up_to, std::vector<Frame3D>* out) {
   // Room for every frame emitted below at once (geometric growth kept for long-lived outputs).
-  const auto count = static_cast<std::size_t>(
-      std::distance(pending_.begin(), pending_.lower_bound(up_to)));
+  const auto count =
+      static_cast<std::size_t>(std::distance(pending_.begin(), pending_.lower_bound(up_to)));
   const std::size_t needed = out->size() + count;
   if (needed > out->capacity()) out->reserve(std::max(needed, 2 * out->capacity()));
   while (!pending_.empty() && pending_.begin()->first < up_to) {
@@ -111,8 +112,9 @@ void WindowFinalizer::EmitFinal(FrameIndex up_to, std::vector<Frame3D>* out) {
     f.frame = p.frame;
     f.utime = p.utime;
     f.tracks = std::move(p.tracks);
-    std::sort(f.tracks.begin(), f.tracks.end(),
-              [](const Track3D& a, const Track3D& b) { return a.id < b.id; });
+    std::sort(f.tracks.begin(), f.tracks.end(), [](const Track3D& a, const Track3D& b) {
+      return a.id < b.id;
+    });
     out->push_back(std::move(f));
     ++counters_.frames_finalized;
     pending_.erase(pending_.begin());

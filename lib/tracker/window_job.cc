@@ -9,8 +9,8 @@
 #include <optional>
 
 #include "association/association.h"
-#include "linking/window_linker.h"
 #include "core/check.h"
+#include "linking/window_linker.h"
 #include "triangulation/refinement.h"
 
 namespace mvtrack::tracker {
@@ -19,9 +19,9 @@ namespace {
 bool SameTriangulationOptions(const triangulation::TriangulationOptions& a,
                               const triangulation::TriangulationOptions& b) {
   // phi is set per window (PersonTriangulator::set_phi, AtFrameRate).
-  return a.method == b.method && a.kappa_m == b.kappa_m &&
-         a.min_confidence == b.min_confidence && a.ransac_threshold_px == b.ransac_threshold_px &&
-         a.min_inliers == b.min_inliers && a.max_views == b.max_views;
+  return a.method == b.method && a.kappa_m == b.kappa_m && a.min_confidence == b.min_confidence &&
+         a.ransac_threshold_px == b.ransac_threshold_px && a.min_inliers == b.min_inliers &&
+         a.max_views == b.max_views;
 }
 
 // Box mode: removes a person's points outside the plausible heights of a box point
@@ -30,20 +30,26 @@ bool SameTriangulationOptions(const triangulation::TriangulationOptions& a,
 void GateBoxHeights(const TrackerOptions& options, core::Tracklet3D* person) {
   const triangulation::RefinementOptions& r = options.refinement;
   const double g = options.ground_height_m;
-  triangulation::RemovePointsOutsideHeights(person, g + r.box_min_height_m,
-                                            g + r.box_max_height_m);
+  triangulation::RemovePointsOutsideHeights(person, g + r.box_min_height_m, g + r.box_max_height_m);
 }
 
 // One person of `cluster`: CMMT (Algorithm 2) of the points it triangulates; in box mode the
 // ends by DLT (center_ends) and the height gates.
-core::Tracklet3D TriangulateCluster(const geometry::CameraRig& rig, const TrackerOptions& options,
-                                    const WindowJob& job, const std::vector<int>& cluster,
+core::Tracklet3D TriangulateCluster(const geometry::CameraRig& rig,
+                                    const TrackerOptions& options,
+                                    const WindowJob& job,
+                                    const std::vector<int>& cluster,
                                     WindowWorkspace* workspace) {
   // `options` are the window's (AtFrameRate): φ follows the stream's frame rate.
   workspace->triangulator().set_phi(options.triangulation.phi);
-  core::Tracklet3D person = workspace->triangulator().Triangulate(
-      rig, job.tracklets, cluster, job.begin, job.end, NumTriangulatedPoints(options), nullptr,
-      NumPoints(options));
+  core::Tracklet3D person = workspace->triangulator().Triangulate(rig,
+                                                                  job.tracklets,
+                                                                  cluster,
+                                                                  job.begin,
+                                                                  job.end,
+                                                                  NumTriangulatedPoints(options),
+                                                                  nullptr,
+                                                                  NumPoints(options));
   if (options.mode != InputMode::kBoxes) return person;
   if (options.box_point == BoxPoint::kCenterEnds) {
     const triangulation::RefinementOptions& r = options.refinement;
@@ -51,8 +57,13 @@ core::Tracklet3D TriangulateCluster(const geometry::CameraRig& rig, const Tracke
     std::vector<triangulation::HeightRange> ranges(2);
     ranges[0] = {g + r.box_bottom_min_height_m, g + r.box_bottom_max_height_m};
     ranges[1] = {g + r.box_top_min_height_m, g + r.box_top_max_height_m};
-    triangulation::TriangulateBoxEnds(rig, job.tracklets, cluster, kBoxBottomPoint, ranges,
-                                      options.association.min_confidence, &person);
+    triangulation::TriangulateBoxEnds(rig,
+                                      job.tracklets,
+                                      cluster,
+                                      kBoxBottomPoint,
+                                      ranges,
+                                      options.association.min_confidence,
+                                      &person);
   }
   GateBoxHeights(options, &person);
   return person;
@@ -71,8 +82,10 @@ int NumCameras(const WindowJob& job, const std::vector<int>& members) {
 // box_split_residual) off its cluster. When the rest still spans two cameras, the person is
 // triangulated again from it; the split-off tracklets, when they span two cameras, are
 // triangulated as a new person (appended). Persons are examined in order, new ones are not.
-void SplitInconsistent(const geometry::CameraRig& rig, const TrackerOptions& options,
-                       const WindowJob& job, WindowWorkspace* workspace,
+void SplitInconsistent(const geometry::CameraRig& rig,
+                       const TrackerOptions& options,
+                       const WindowJob& job,
+                       WindowWorkspace* workspace,
                        std::vector<std::vector<int>>* clusters,
                        std::vector<core::Tracklet3D>* persons) {
   const double max_residual = options.refinement.box_split_residual;
@@ -80,9 +93,14 @@ void SplitInconsistent(const geometry::CameraRig& rig, const TrackerOptions& opt
   const std::size_t n = persons->size();
   for (std::size_t p = 0; p < n; ++p) {
     // The box point only (box_split_residual is a fraction of the box scale at the centre).
-    const std::vector<int> out = triangulation::InconsistentTracklets(
-        rig, job.tracklets, (*clusters)[p], (*persons)[p], max_residual,
-        options.association.min_confidence, NumTriangulatedPoints(options));
+    const std::vector<int> out =
+        triangulation::InconsistentTracklets(rig,
+                                             job.tracklets,
+                                             (*clusters)[p],
+                                             (*persons)[p],
+                                             max_residual,
+                                             options.association.min_confidence,
+                                             NumTriangulatedPoints(options));
     if (out.empty()) continue;
     std::vector<int> keep;
     for (int i : (*clusters)[p]) {
@@ -111,7 +129,8 @@ void SplitInconsistent(const geometry::CameraRig& rig, const TrackerOptions& opt
 // leaving while another arrives) do not. nullopt without a jump.
 std::optional<FrameIndex> FirstJump(const TrackerOptions& options,
                                     const std::vector<int>& footprint_points,
-                                    double seconds_per_frame, const core::Tracklet3D& person) {
+                                    double seconds_per_frame,
+                                    const core::Tracklet3D& person) {
   const double gate = options.refinement.jump_gate_chi2;
   if (gate <= 0.0) return std::nullopt;
   const linking::MotionOptions& mo = options.linking.motion;
@@ -170,8 +189,10 @@ std::optional<FrameIndex> FirstJump(const TrackerOptions& options,
 // whose every 2D tracklet crosses the jump is kept whole (cutting it in time would leave the
 // same 2D tracks in both halves, measured to cost identity on store floors). Parts are
 // examined again, so a cluster of three people is cut twice.
-void SplitAtJumps(const geometry::CameraRig& rig, const TrackerOptions& options,
-                  const WindowJob& job, WindowWorkspace* workspace,
+void SplitAtJumps(const geometry::CameraRig& rig,
+                  const TrackerOptions& options,
+                  const WindowJob& job,
+                  WindowWorkspace* workspace,
                   std::vector<std::vector<int>>* clusters,
                   std::vector<core::Tracklet3D>* persons) {
   if (options.refinement.jump_gate_chi2 <= 0.0) return;
@@ -225,8 +246,10 @@ void SplitAtJumps(const geometry::CameraRig& rig, const TrackerOptions& options,
 // Keeps the order of first members. Pair distances are computed once (pairs whose ground-plane
 // rectangles are farther apart than the limit cannot qualify and are skipped) and afterwards only
 // the merged person's.
-void MergeDuplicates(const geometry::CameraRig& rig, const TrackerOptions& options,
-                     const WindowJob& job, WindowWorkspace* workspace,
+void MergeDuplicates(const geometry::CameraRig& rig,
+                     const TrackerOptions& options,
+                     const WindowJob& job,
+                     WindowWorkspace* workspace,
                      std::vector<std::vector<int>>* clusters,
                      std::vector<core::Tracklet3D>* persons) {
   const triangulation::RefinementOptions& ro = options.refinement;
@@ -331,7 +354,8 @@ void SetMembers(const WindowJob& job, core::Tracklet3D* person) {
     person->members.push_back(
         {t.camera_id, t.track_id, *first, *(last - 1), static_cast<int>(last - first)});
   }
-  std::sort(person->members.begin(), person->members.end(),
+  std::sort(person->members.begin(),
+            person->members.end(),
             [](const core::TrackletMember& a, const core::TrackletMember& b) {
               return a.camera_id != b.camera_id ? a.camera_id < b.camera_id
                                                 : a.track_id < b.track_id;
@@ -355,18 +379,22 @@ WindowResult EmptyWindowResult(const WindowJob& job) {
 WindowWorkspace::WindowWorkspace(const triangulation::TriangulationOptions& options)
     : triangulator_(options) {}
 
-WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,
-                              const WindowJob& job, WindowWorkspace* workspace) {
+WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
+                              const TrackerOptions& options,
+                              const WindowJob& job,
+                              WindowWorkspace* workspace) {
   return ProcessWindowJob(rig, options, job, workspace, PersonLoop());
 }
 
-WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& base_options,
-                              const WindowJob& job, WindowWorkspace* workspace,
+WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
+                              const TrackerOptions& base_options,
+                              const WindowJob& job,
+                              WindowWorkspace* workspace,
                               const PersonLoop& person_loop) {
   MVTRACK_CHECK(workspace != nullptr);
-  MVTRACK_CHECK_MSG(SameTriangulationOptions(workspace->triangulator().options(),
-                                             base_options.triangulation),
-                    "the workspace was made for other triangulation options");
+  MVTRACK_CHECK_MSG(
+      SameTriangulationOptions(workspace->triangulator().options(), base_options.triangulation),
+      "the workspace was made for other triangulation options");
   // The frame counts in effect at the stream's measured rate (TrackerOptions::reference_fps).
   const TrackerOptions options = AtFrameRate(base_options, job.seconds_per_frame);
   WindowResult r = EmptyWindowResult(job);
@@ -406,7 +434,8 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptio
   if (options.mode == InputMode::kPoses) {
     // Fragments of a few joints are not people (RefinementOptions::min_person_point_fraction).
     const double min_points = options.refinement.min_person_point_fraction * num_points;
-    r.persons.erase(std::remove_if(r.persons.begin(), r.persons.end(),
+    r.persons.erase(std::remove_if(r.persons.begin(),
+                                   r.persons.end(),
                                    [&](const core::Tracklet3D& person) {
                                      return triangulation::MaxPointsPerFrame(person) < min_points;
                                    }),
@@ -420,7 +449,8 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptio
   return r;
 }
 
-WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,
+WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
+                              const TrackerOptions& options,
                               const WindowJob& job) {
   WindowWorkspace workspace(options.triangulation);
   return ProcessWindowJob(rig, options, job, &workspace);

@@ -40,11 +40,11 @@ struct WindowJob {
 
 /// The output of ProcessWindowJob: the window's persons, not yet linked.
 struct WindowResult {
-  std::int64_t window_id = 0;    ///< copied from the job
-  FrameIndex begin = 0;          ///< copied from the job
-  FrameIndex end = 0;            ///< copied from the job
-  FrameIndex finalize_from = 0;  ///< copied from the job
-  FrameIndex finalize_to = 0;    ///< copied from the job
+  std::int64_t window_id = 0;             ///< copied from the job
+  FrameIndex begin = 0;                   ///< copied from the job
+  FrameIndex end = 0;                     ///< copied from the job
+  FrameIndex finalize_from = 0;           ///< copied from the job
+  FrameIndex finalize_to = 0;             ///< copied from the job
   double seconds_per_frame = 1.0 / 30.0;  ///< copied from the job
   /// PDNC clusters of indices into the job's tracklets (association::AssociateTracklets).
   std::vector<std::vector<int>> clusters;
@@ -87,8 +87,10 @@ class WindowWorkspace {
 /// may run it concurrently on shared immutable inputs) and writes only `workspace` and its
 /// result. `options` must be the valid options the job was built with and `workspace` must
 /// have been made for options.triangulation (checked).
-WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,
-                              const WindowJob& job, WindowWorkspace* workspace);
+WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
+                              const TrackerOptions& options,
+                              const WindowJob& job,
+                              WindowWorkspace* workspace);
 
 /// One person's triangulation inside ProcessWindowJob: person `index` on workspace `ws`.
 using PersonTask = std::function<void(int index, WindowWorkspace* ws)>;
@@ -99,12 +101,15 @@ using PersonLoop = std::function<void(int n, const PersonTask& task)>;
 
 /// ProcessWindowJob with the persons' triangulation (CMMT and its per-person box gating) run by
 /// `person_loop` (empty: in order, on `workspace`). The result is identical either way.
-WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,
-                              const WindowJob& job, WindowWorkspace* workspace,
+WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
+                              const TrackerOptions& options,
+                              const WindowJob& job,
+                              WindowWorkspace* workspace,
                               const PersonLoop& person_loop);
 
 /// As above with a fresh workspace.
-WindowResult ProcessWindowJob(const geometry::CameraRig& rig, const TrackerOptions& options,
+WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
+                              const TrackerOptions& options,
                               const WindowJob& job);
 
 }  // namespace mvtrack::tracker

@@ -52,11 +52,11 @@ StateCovariance InitialCovariance() {
 bool FactorLdlt(const Eigen::Matrix4d& s, Eigen::Matrix4d* out, std::array<int, 4>* perm) {
   Eigen::Matrix4d& mat = *out;
   mat = s;
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int k = 0; k < 4; ++k) {
     int big = k;
     double big_abs = std::abs(mat(k, k));
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int i = k + 1; i < 4; ++i) {
       if (std::abs(mat(i, i)) > big_abs) {
         big_abs = std::abs(mat(i, i));
@@ -65,12 +65,12 @@ bool FactorLdlt(const Eigen::Matrix4d& s, Eigen::Matrix4d* out, std::array<int, 
     }
     (*perm)[static_cast<std::size_t>(k)] = big;
     if (big != k) {
-      #pragma GCC unroll 8
+#pragma GCC unroll 8
       for (int j = 0; j < k; ++j) std::swap(mat(k, j), mat(big, j));
-      #pragma GCC unroll 8
+#pragma GCC unroll 8
       for (int i = big + 1; i < 4; ++i) std::swap(mat(i, k), mat(i, big));
       std::swap(mat(k, k), mat(big, big));
-      #pragma GCC unroll 8
+#pragma GCC unroll 8
       for (int i = k + 1; i < big; ++i) {
         const double tmp = mat(i, k);
         mat(i, k) = mat(big, i);
@@ -79,23 +79,23 @@ bool FactorLdlt(const Eigen::Matrix4d& s, Eigen::Matrix4d* out, std::array<int, 
     }
     if (k > 0) {
       std::array<double, 4> temp{};
-      #pragma GCC unroll 8
+#pragma GCC unroll 8
       for (int j = 0; j < k; ++j) temp[static_cast<std::size_t>(j)] = mat(j, j) * mat(k, j);
       double dot = mat(k, 0) * temp[0];
-      #pragma GCC unroll 8
+#pragma GCC unroll 8
       for (int j = 1; j < k; ++j) dot = dot + mat(k, j) * temp[static_cast<std::size_t>(j)];
       mat(k, k) -= dot;
-      #pragma GCC unroll 8
+#pragma GCC unroll 8
       for (int row = k + 1; row < 4; ++row) {
         double acc = mat(row, 0) * temp[0];
-        #pragma GCC unroll 8
+#pragma GCC unroll 8
         for (int j = 1; j < k; ++j) acc = acc + mat(row, j) * temp[static_cast<std::size_t>(j)];
         mat(row, k) = mat(row, k) - acc;
       }
     }
     const double akk = mat(k, k);
     if (!(std::abs(akk) > 0.0)) return false;
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int row = k + 1; row < 4; ++row) mat(row, k) /= akk;
   }
   return true;
@@ -166,19 +166,19 @@ void KalmanBoxTracker::Update(const core::BoxPx& box) {
   Gain k;
   k.topRows<kStateDim>() = p_.topRows<kMeasurementDim>().transpose();
   k.row(7).setZero();
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int i = 0; i < kMeasurementDim; ++i) {
     const int pi = perm[static_cast<std::size_t>(i)];
     if (pi != i) k.col(i).swap(k.col(pi));
   }
-  // Unit lower solve, column-major kernel: each row subtracts the earlier rows in order.
-  #pragma GCC unroll 8
+// Unit lower solve, column-major kernel: each row subtracts the earlier rows in order.
+#pragma GCC unroll 8
   for (int i = 0; i < kMeasurementDim; ++i) {
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int q = i + 1; q < kMeasurementDim; ++q) k.col(q) -= k.col(i) * l(q, i);
   }
-  // D^+ (LDLT treats |d| <= the smallest normal double as zero).
-  #pragma GCC unroll 8
+// D^+ (LDLT treats |d| <= the smallest normal double as zero).
+#pragma GCC unroll 8
   for (int i = 0; i < kMeasurementDim; ++i) {
     const double d = l(i, i);
     if (std::abs(d) > std::numeric_limits<double>::min()) {
@@ -187,37 +187,37 @@ void KalmanBoxTracker::Update(const core::BoxPx& box) {
       k.col(i).setZero();
     }
   }
-  // Unit upper solve with L^T (row-major kernel): a left-to-right dot of the later rows.
-  #pragma GCC unroll 8
+// Unit upper solve with L^T (row-major kernel): a left-to-right dot of the later rows.
+#pragma GCC unroll 8
   for (int i = kMeasurementDim - 2; i >= 0; --i) {
     Column dot = k.col(i + 1) * l(i + 1, i);
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int q = i + 2; q < kMeasurementDim; ++q) dot = dot + k.col(q) * l(q, i);
     k.col(i) -= dot;
   }
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int i = kMeasurementDim - 1; i >= 0; --i) {
     const int pi = perm[static_cast<std::size_t>(i)];
     if (pi != i) k.col(i).swap(k.col(pi));
   }
   // x += K y: Eigen's lazy product sums rows 0-5 (packets) left to right and row 6 (scalar
   // reduction) pairwise.
-  const Column dx = ((k.col(0) * innovation(0) + k.col(1) * innovation(1)) +
-                     k.col(2) * innovation(2)) +
-                    k.col(3) * innovation(3);
+  const Column dx =
+      ((k.col(0) * innovation(0) + k.col(1) * innovation(1)) + k.col(2) * innovation(2)) +
+      k.col(3) * innovation(3);
   x_.head<6>() += dx.head<6>();
   x_(6) += (k(6, 0) * innovation(0) + k(6, 1) * innovation(1)) +
            (k(6, 2) * innovation(2) + k(6, 3) * innovation(3));
   // a = the first four columns of I - K H (the others are those of I).
   Gain a = -k;
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int c = 0; c < kMeasurementDim; ++c) a(c, c) = 1.0 - k(c, c);
   // t1 = (I - K H) P: rows 0-5 left to right, row 6 pairwise.
   Eigen::Matrix<double, 8, kStateDim> t1;
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int j = 0; j < kStateDim; ++j) {
-    t1.col(j) = ((a.col(0) * p_(0, j) + a.col(1) * p_(1, j)) + a.col(2) * p_(2, j)) +
-                a.col(3) * p_(3, j);
+    t1.col(j) =
+        ((a.col(0) * p_(0, j) + a.col(1) * p_(1, j)) + a.col(2) * p_(2, j)) + a.col(3) * p_(3, j);
     t1(4, j) += p_(4, j);
     t1(5, j) += p_(5, j);
     t1(6, j) = (a(6, 0) * p_(0, j) + (a(6, 1) * p_(1, j) + a(6, 2) * p_(2, j))) +
@@ -226,13 +226,13 @@ void KalmanBoxTracker::Update(const core::BoxPx& box) {
   // P = t1 (I - K H)^T + (K R) K^T: P aliases the right-hand side, so Eigen evaluates both
   // products by scalar (pairwise) reductions for every entry.
   Gain kr;
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int c = 0; c < kMeasurementDim; ++c) kr.col(c) = k.col(c) * r(c, c);
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int j = 0; j < kStateDim; ++j) {
     const Column head = t1.col(0) * a(j, 0) + (t1.col(1) * a(j, 1) + t1.col(2) * a(j, 2));
-    const Column tail = j < kMeasurementDim ? Column(t1.col(3) * a(j, 3))
-                                            : Column(t1.col(3) * a(j, 3) + t1.col(j));
+    const Column tail =
+        j < kMeasurementDim ? Column(t1.col(3) * a(j, 3)) : Column(t1.col(3) * a(j, 3) + t1.col(j));
     const Column krk =
         (kr.col(0) * k(j, 0) + kr.col(1) * k(j, 1)) + (kr.col(2) * k(j, 2) + kr.col(3) * k(j, 3));
     p_.col(j) = ((head + tail) + krk).head<kStateDim>();
@@ -251,9 +251,7 @@ void KalmanBoxTracker::UpdateDense(const Measurement& innovation) {
   p_ = i_kh * p_ * i_kh.transpose() + k * r * k.transpose();
 }
 
-core::BoxPx KalmanBoxTracker::Box() const {
-  return MeasurementToBox(x_.head<kMeasurementDim>());
-}
+core::BoxPx KalmanBoxTracker::Box() const { return MeasurementToBox(x_.head<kMeasurementDim>()); }
 
 bool KalmanBoxTracker::HasValidBox() const { return ValidBox().has_value(); }
 

@@ -111,7 +111,10 @@ std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
   // 6. Start a track for every unmatched usable detection, in detection order.
   for (const int col : assignment.unmatched_cols) {
     const int detection = usable[static_cast<std::size_t>(col)];
-    Track t{next_id_++, KalmanBoxTracker(boxes[static_cast<std::size_t>(detection)]), frame, 1,
+    Track t{next_id_++,
+            KalmanBoxTracker(boxes[static_cast<std::size_t>(detection)]),
+            frame,
+            1,
             options_.min_hits <= 1};
     if (t.confirmed) reported.push_back({t.id, detection});
     tracks_.push_back(std::move(t));
@@ -119,11 +122,10 @@ std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
 
   // Matched tracks are visited in id order and births get larger ids, so `reported` is already
   // sorted; keep the guarantee explicit.
-  std::sort(reported.begin(),
-            reported.end(),
-            [](const TrackedDetection& a, const TrackedDetection& b) {
-              return a.track_id < b.track_id;
-            });
+  std::sort(
+      reported.begin(), reported.end(), [](const TrackedDetection& a, const TrackedDetection& b) {
+        return a.track_id < b.track_id;
+      });
   return reported;
 }
 

@@ -1,7 +1,7 @@
+#include "transport/codec.h"
+
 #include <climits>
 #include <string>
-
-#include "transport/codec.h"
 
 namespace mvtrack::transport {
 

@@ -150,7 +150,7 @@ struct TracksMessage {
 /// Result of DecodeTracks().
 struct TracksDecodeResult {
   DecodeStatus status = DecodeStatus::kMalformed;
-  std::string reason;  ///< empty when kOk; otherwise what, where, why
+  std::string reason;     ///< empty when kOk; otherwise what, where, why
   TracksMessage message;  ///< valid only when kOk
 
   /// status == kOk.

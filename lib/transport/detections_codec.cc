@@ -46,7 +46,8 @@ bool WalkDetection(WireWalker* w, const DecodeLimits& limits) {
   if (!w->ReadString("keypoint_layout", limits.max_string, &layout)) return false;
   if (!LayoutOfName(layout)) {
     return w->Fail(DecodeStatus::kMalformed,
-                   "unknown keypoint_layout \"" + std::string(layout) + "\"", layout_at);
+                   "unknown keypoint_layout \"" + std::string(layout) + "\"",
+                   layout_at);
   }
   std::int32_t num_keypoints = 0;
   if (!w->ReadCount16("num_keypoints", limits.max_keypoints, kKeypointBytes, &num_keypoints)) {
@@ -64,7 +65,8 @@ bool WalkDetection(WireWalker* w, const DecodeLimits& limits) {
 
 // Walks a whole camera_detections_t message; on failure the walker holds status and reason.
 bool WalkCameraDetections(WireWalker* w, const DecodeLimits& limits) {
-  if (!internal::WalkFingerprint(w, mvtrack::camera_detections_t::getHash(),
+  if (!internal::WalkFingerprint(w,
+                                 mvtrack::camera_detections_t::getHash(),
                                  mvtrack::camera_detections_t::getTypeName())) {
     return false;
   }
@@ -74,8 +76,8 @@ bool WalkCameraDetections(WireWalker* w, const DecodeLimits& limits) {
   w->Skip("image_width", kInt32Bytes);
   w->Skip("image_height", kInt32Bytes);
   std::int32_t num_detections = 0;
-  if (!w->ReadCount32("num_detections", limits.max_detections, kMinDetectionBytes,
-                      &num_detections)) {
+  if (!w->ReadCount32(
+          "num_detections", limits.max_detections, kMinDetectionBytes, &num_detections)) {
     return false;
   }
   for (std::int32_t i = 0; i < num_detections; ++i) {

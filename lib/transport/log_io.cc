@@ -39,8 +39,8 @@ std::string ErrnoText(int error) {
 bool ReadAt(int fd, std::int64_t offset, std::uint8_t* buffer, std::size_t size, int* error) {
   std::size_t done = 0;
   while (done < size) {
-    const ssize_t n = ::pread(fd, buffer + done, size - done,
-                              static_cast<off_t>(offset) + static_cast<off_t>(done));
+    const ssize_t n = ::pread(
+        fd, buffer + done, size - done, static_cast<off_t>(offset) + static_cast<off_t>(done));
     if (n < 0) {
       if (errno == EINTR) continue;
       *error = errno;
@@ -139,8 +139,8 @@ std::unique_ptr<LogReader> LogReader::Open(const std::string& path,
     const auto n = static_cast<std::size_t>(std::min<std::int64_t>(size, kSyncBytes));
     int error = 0;
     if (!ReadAt(fd, 0, head.data(), n, &error)) {
-      return fail("cannot read log '" + path + "': " +
-                  (error != 0 ? ErrnoText(error) : std::string("unexpected end of file")));
+      return fail("cannot read log '" + path +
+                  "': " + (error != 0 ? ErrnoText(error) : std::string("unexpected end of file")));
     }
     if (n < static_cast<std::size_t>(kSyncBytes) ||
         static_cast<std::uint32_t>(BigEndian(head.data(), head.size())) != kSyncWord) {
@@ -185,8 +185,9 @@ std::optional<LogEvent> LogReader::Next() {
           std::min<std::int64_t>(size - offset, static_cast<std::int64_t>(chunk.size())));
       int error = 0;
       if (!ReadAt(fd_, offset, chunk.data(), n, &error)) {
-        return Stop(LogEnd::kIoError, "read failed at " + At(offset) + ": " +
-                                          (error != 0 ? ErrnoText(error) : "end of file"));
+        return Stop(LogEnd::kIoError,
+                    "read failed at " + At(offset) + ": " +
+                        (error != 0 ? ErrnoText(error) : "end of file"));
       }
       for (std::size_t i = 0; i < n; ++i) {
         window = (window << 8u) | chunk[i];
@@ -211,19 +212,21 @@ std::optional<LogEvent> LogReader::Next() {
                     "the log ends inside the sync word of an event at " + At(pos));
       }
     }
-    return Stop(LogEnd::kCorrupt, "the last " + std::to_string(tail) + " bytes (from " + At(pos) +
-                                      ") contain no LCM sync word");
+    return Stop(LogEnd::kCorrupt,
+                "the last " + std::to_string(tail) + " bytes (from " + At(pos) +
+                    ") contain no LCM sync word");
   }
   if (sync_at + kHeaderBytes > size) {
-    return Stop(LogEnd::kTruncated, "the event at " + At(sync_at) +
-                                        " is cut off inside its header (the log ends at " +
-                                        At(size) + ")");
+    return Stop(LogEnd::kTruncated,
+                "the event at " + At(sync_at) + " is cut off inside its header (the log ends at " +
+                    At(size) + ")");
   }
   std::array<std::uint8_t, kHeaderBytes - kSyncBytes> header{};
   int error = 0;
   if (!ReadAt(fd_, sync_at + kSyncBytes, header.data(), header.size(), &error)) {
-    return Stop(LogEnd::kIoError, "read failed at " + At(sync_at) + ": " +
-                                      (error != 0 ? ErrnoText(error) : "end of file"));
+    return Stop(
+        LogEnd::kIoError,
+        "read failed at " + At(sync_at) + ": " + (error != 0 ? ErrnoText(error) : "end of file"));
   }
   const auto event_number = static_cast<std::int64_t>(BigEndian(header.data(), 8));
   const auto timestamp = static_cast<std::int64_t>(BigEndian(header.data() + 8, 8));
@@ -233,32 +236,35 @@ std::optional<LogEvent> LogReader::Next() {
       static_cast<std::int32_t>(static_cast<std::uint32_t>(BigEndian(header.data() + 20, 4)));
   const std::string event = "event " + std::to_string(event_number) + " at " + At(sync_at);
   if (channel_length < 1 || channel_length > kMaxChannelBytes) {
-    return Stop(LogEnd::kCorrupt, event + ": channel length " + std::to_string(channel_length) +
-                                      " is outside [1, " + std::to_string(kMaxChannelBytes) +
-                                      "]");
+    return Stop(LogEnd::kCorrupt,
+                event + ": channel length " + std::to_string(channel_length) + " is outside [1, " +
+                    std::to_string(kMaxChannelBytes) + "]");
   }
   if (data_length < 0 || data_length > options_.max_event_bytes) {
-    return Stop(LogEnd::kCorrupt, event + ": data length " + std::to_string(data_length) +
-                                      " is outside [0, " +
-                                      std::to_string(options_.max_event_bytes) + "]");
+    return Stop(LogEnd::kCorrupt,
+                event + ": data length " + std::to_string(data_length) + " is outside [0, " +
+                    std::to_string(options_.max_event_bytes) + "]");
   }
   const std::int64_t body_at = sync_at + kHeaderBytes;
   const std::int64_t event_end = body_at + channel_length + data_length;
   if (event_end > size) {
-    return Stop(LogEnd::kTruncated, event + " needs " + std::to_string(event_end - sync_at) +
-                                        " bytes but the log ends after " +
-                                        std::to_string(size - sync_at));
+    return Stop(LogEnd::kTruncated,
+                event + " needs " + std::to_string(event_end - sync_at) +
+                    " bytes but the log ends after " + std::to_string(size - sync_at));
   }
   LogEvent out;
   out.timestamp_us = timestamp;
   out.event_number = event_number;
   out.channel.resize(static_cast<std::size_t>(channel_length));
   out.data.resize(static_cast<std::size_t>(data_length));
-  if (!ReadAt(fd_, body_at, reinterpret_cast<std::uint8_t*>(out.channel.data()),
-              out.channel.size(), &error) ||
+  if (!ReadAt(fd_,
+              body_at,
+              reinterpret_cast<std::uint8_t*>(out.channel.data()),
+              out.channel.size(),
+              &error) ||
       !ReadAt(fd_, body_at + channel_length, out.data.data(), out.data.size(), &error)) {
-    return Stop(LogEnd::kIoError, "read failed in " + event + ": " +
-                                      (error != 0 ? ErrnoText(error) : "end of file"));
+    return Stop(LogEnd::kIoError,
+                "read failed in " + event + ": " + (error != 0 ? ErrnoText(error) : "end of file"));
   }
   skipped_bytes_ += sync_at - pos;
   position_ = event_end;
@@ -280,8 +286,8 @@ std::unique_ptr<LogWriter> LogWriter::Open(const std::string& path, std::string*
   if (!file->good()) {
     const int error = errno;
     if (why != nullptr) {
-      *why = "cannot create log '" + path + "': " +
-             (error != 0 ? ErrnoText(error) : std::string("lcm::LogFile failed"));
+      *why = "cannot create log '" + path +
+             "': " + (error != 0 ? ErrnoText(error) : std::string("lcm::LogFile failed"));
     }
     return nullptr;
   }

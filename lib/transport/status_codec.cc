@@ -26,8 +26,8 @@ constexpr std::size_t kCameraStatusBytes =
     kInt32Bytes + kInt64Bytes + kFloatBytes + 2 * kInt64Bytes + 7 * kInt64Bytes + 2 * kInt32Bytes;
 
 bool WalkStatus(WireWalker* w, const DecodeLimits& limits) {
-  if (!internal::WalkFingerprint(w, mvtrack::tracker_status_t::getHash(),
-                                 mvtrack::tracker_status_t::getTypeName())) {
+  if (!internal::WalkFingerprint(
+          w, mvtrack::tracker_status_t::getHash(), mvtrack::tracker_status_t::getTypeName())) {
     return false;
   }
   w->Skip("utime, period_us, uptime_us", 3 * kInt64Bytes);
@@ -106,7 +106,8 @@ void CopyStatusFields(const From& msg, To* out) {
 
 }  // namespace
 
-StatusDecodeResult DecodeTrackerStatus(const void* data, std::size_t size,
+StatusDecodeResult DecodeTrackerStatus(const void* data,
+                                       std::size_t size,
                                        const DecodeLimits& limits) {
   StatusDecodeResult result;
   const auto convert = [&](const mvtrack::tracker_status_t& msg) {
@@ -116,8 +117,8 @@ StatusDecodeResult DecodeTrackerStatus(const void* data, std::size_t size,
       CopyCameraFields(msg.cameras[i], &result.message.cameras[i]);
     }
   };
-  internal::CheckedDecode<mvtrack::tracker_status_t>(data, size, limits, WalkStatus, convert,
-                                                     &result.status, &result.reason);
+  internal::CheckedDecode<mvtrack::tracker_status_t>(
+      data, size, limits, WalkStatus, convert, &result.status, &result.reason);
   return result;
 }
 
@@ -126,7 +127,8 @@ std::vector<std::uint8_t> EncodeTrackerStatus(const TrackerStatus& s) {
   mvtrack::tracker_status_t msg;
   CopyStatusFields(s, &msg);
   msg.cameras.resize(s.cameras.size());
-  for (std::size_t i = 0; i < s.cameras.size(); ++i) CopyCameraFields(s.cameras[i], &msg.cameras[i]);
+  for (std::size_t i = 0; i < s.cameras.size(); ++i)
+    CopyCameraFields(s.cameras[i], &msg.cameras[i]);
   msg.num_cameras = static_cast<std::int16_t>(msg.cameras.size());
   std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
   const int written = msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
@@ -135,13 +137,20 @@ std::vector<std::uint8_t> EncodeTrackerStatus(const TrackerStatus& s) {
 }
 
 std::vector<std::string> CameraFlagNames(std::int64_t flags) {
-  return FlagNames(flags, {"NO_DATA", "STALE", "LATE", "DROPPING", "REJECTING", "DECODE_ERRORS",
-                           "CLOCK_OFFSET", "LOSING"});
+  return FlagNames(flags,
+                   {"NO_DATA",
+                    "STALE",
+                    "LATE",
+                    "DROPPING",
+                    "REJECTING",
+                    "DECODE_ERRORS",
+                    "CLOCK_OFFSET",
+                    "LOSING"});
 }
 
 std::vector<std::string> TrackerFlagNames(std::int64_t flags) {
-  return FlagNames(flags, {"CAMERA_MISSING", "INPUT_LOSS", "BACKLOG", "LATENCY_HIGH",
-                           "JOB_FAILURES"});
+  return FlagNames(flags,
+                   {"CAMERA_MISSING", "INPUT_LOSS", "BACKLOG", "LATENCY_HIGH", "JOB_FAILURES"});
 }
 
 }  // namespace mvtrack::transport

@@ -32,8 +32,8 @@ using internal::WireWalker;
 // Encoded sizes (lcmtypes/README.md): joint3d_t = 3 doubles, a float and a boolean; the
 // smallest track3d_t has no cameras and no joints.
 constexpr std::size_t kJointBytes = 3 * kDoubleBytes + kFloatBytes + kInt8Bytes;
-constexpr std::size_t kMinTrackBytes = kInt64Bytes + kInt8Bytes + 3 * kDoubleBytes +
-                                       kFloatBytes + 2 * kInt32Bytes + 2 * kInt16Bytes;
+constexpr std::size_t kMinTrackBytes =
+    kInt64Bytes + kInt8Bytes + 3 * kDoubleBytes + kFloatBytes + 2 * kInt32Bytes + 2 * kInt16Bytes;
 
 std::optional<core::KeypointLayoutId> LayoutOfName(std::string_view name) {
   if (name.empty()) return core::KeypointLayoutId::kNone;
@@ -81,8 +81,8 @@ bool WalkTrack(WireWalker* w, const DecodeLimits& limits, int layout_joints, std
 }
 
 bool WalkTracks(WireWalker* w, const DecodeLimits& limits) {
-  if (!internal::WalkFingerprint(w, mvtrack::tracks3d_t::getHash(),
-                                 mvtrack::tracks3d_t::getTypeName())) {
+  if (!internal::WalkFingerprint(
+          w, mvtrack::tracks3d_t::getHash(), mvtrack::tracks3d_t::getTypeName())) {
     return false;
   }
   w->Skip("utime", kInt64Bytes);
@@ -95,7 +95,8 @@ bool WalkTracks(WireWalker* w, const DecodeLimits& limits) {
   const std::optional<core::KeypointLayoutId> layout = LayoutOfName(layout_name);
   if (!layout) {
     return w->Fail(DecodeStatus::kMalformed,
-                   "unknown keypoint_layout \"" + std::string(layout_name) + "\"", layout_at);
+                   "unknown keypoint_layout \"" + std::string(layout_name) + "\"",
+                   layout_at);
   }
   const int layout_joints = core::GetKeypointLayout(*layout).num_joints();
   std::int32_t num_tracks = 0;

@@ -32,8 +32,11 @@ void AppendInt(std::int64_t value, std::string* out) {
 void AppendFixed(double value, std::string* out) {
   // 309 integer digits of DBL_MAX, sign, point and the decimals fit.
   std::array<char, 330> buffer{};
-  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
-                                       std::chars_format::fixed, kTracksJsonDecimals);
+  const auto [end, ec] = std::to_chars(buffer.data(),
+                                       buffer.data() + buffer.size(),
+                                       value,
+                                       std::chars_format::fixed,
+                                       kTracksJsonDecimals);
   std::string_view text(buffer.data(), static_cast<std::size_t>(end - buffer.data()));
   // A negative value that rounds to zero prints "-0.0000": drop the sign.
   if (text.front() == '-' && text.find_first_not_of("0.", 1) == std::string_view::npos) {
@@ -61,8 +64,12 @@ void AppendPoint(const Vec3& p, std::string* out) {
 
 // "[x, y, z]" with three numbers. The key path (`base`.`key`, with [index] when index >= 0) is
 // built only to report a failure.
-bool GetPoint(json::Checker* c, const json::Value& v, const std::string& base, const char* key,
-              long index, Vec3* point) {
+bool GetPoint(json::Checker* c,
+              const json::Value& v,
+              const std::string& base,
+              const char* key,
+              long index,
+              Vec3* point) {
   if (v.kind == json::Value::Kind::kArray && v.items.size() == 3 &&
       v.items[0].kind == json::Value::Kind::kNumber &&
       v.items[1].kind == json::Value::Kind::kNumber &&
@@ -81,15 +88,20 @@ bool GetPoint(json::Checker* c, const json::Value& v, const std::string& base, c
   return true;
 }
 
-bool GetTrack(json::Checker* c, const json::Value& v, const std::string& path,
+bool GetTrack(json::Checker* c,
+              const json::Value& v,
+              const std::string& path,
               tracker::Track3D* track) {
   std::map<std::string, const json::Value*> m;
   if (!c->Members(v, path, {"id", "joints", "position"}, {"id", "joints", "position"}, &m)) {
     return false;
   }
   const json::Value& id = *m.at("id");
-  if (!c->GetInt(id, json::Checker::Join(path, "id"), std::numeric_limits<std::int64_t>::min(),
-                 std::numeric_limits<std::int64_t>::max(), &track->id)) {
+  if (!c->GetInt(id,
+                 json::Checker::Join(path, "id"),
+                 std::numeric_limits<std::int64_t>::min(),
+                 std::numeric_limits<std::int64_t>::max(),
+                 &track->id)) {
     return false;
   }
   const json::Value& position = *m.at("position");
@@ -181,7 +193,9 @@ std::optional<tracker::Frame3D> ParseTracksJsonLine(std::string_view line,
   std::map<std::string, const json::Value*> m;
   const std::vector<std::string_view> keys = {"frame", "layout", "tracks", "utime"};
   if (root->kind != json::Value::Kind::kObject) {
-    c.Fail(*root, "", std::string("a line must be a JSON object, found ") + json::KindName(root->kind));
+    c.Fail(*root,
+           "",
+           std::string("a line must be a JSON object, found ") + json::KindName(root->kind));
     return fail(Describe(c.error()));
   }
   if (!c.Members(*root, "", keys, keys, &m)) return fail(Describe(c.error()));
@@ -219,7 +233,8 @@ std::optional<tracker::Frame3D> ParseTracksJsonLine(std::string_view line,
     }
   }
   std::stable_sort(
-      frame.tracks.begin(), frame.tracks.end(),
+      frame.tracks.begin(),
+      frame.tracks.end(),
       [](const tracker::Track3D& a, const tracker::Track3D& b) { return a.id < b.id; });
   for (std::size_t i = 1; i < frame.tracks.size(); ++i) {
     if (frame.tracks[i].id == frame.tracks[i - 1].id) {

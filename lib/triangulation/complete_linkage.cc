@@ -144,7 +144,8 @@ void ClusterVoter::FindComponents(std::span<const Vec3> candidates, double kappa
       }
       member_next_[static_cast<std::size_t>(member_tail_[static_cast<std::size_t>(big)])] = small;
       member_tail_[static_cast<std::size_t>(big)] = member_tail_[static_cast<std::size_t>(small)];
-      member_count_[static_cast<std::size_t>(big)] += member_count_[static_cast<std::size_t>(small)];
+      member_count_[static_cast<std::size_t>(big)] +=
+          member_count_[static_cast<std::size_t>(small)];
     }
   }
 
@@ -328,7 +329,8 @@ std::optional<ClusterVote> ClusterVoter::Vote(std::span<const Vec3> candidates, 
   return vote;
 }
 
-void ClusterVoter::Cluster(std::span<const Vec3> candidates, double kappa_m,
+void ClusterVoter::Cluster(std::span<const Vec3> candidates,
+                           double kappa_m,
                            std::vector<int>* labels) {
   MVTRACK_CHECK_MSG(std::isfinite(kappa_m) && kappa_m > 0.0, "kappa_m must be finite and > 0");
   MVTRACK_CHECK(labels != nullptr);

@@ -67,22 +67,22 @@ class ClusterVoter {
   // Clusters component `comp` and appends its clusters to cluster_members_/cluster_offsets_.
   void ClusterComponent(std::span<const Vec3> candidates, int comp, double kappa_m);
 
-  std::vector<int> valid_;           // indices of finite candidates, ascending
-  bool all_within_kappa_ = false;    // last FindComponents: every finite pair within kappa
-  std::vector<int> order_;           // positions into valid_ sorted by x
-  std::vector<int> label_;           // per position into valid_: its component's representative
-  std::vector<int> member_next_;     // per position: next position of its component, -1 at the end
-  std::vector<int> member_tail_;     // per representative: last position of its component
-  std::vector<int> member_count_;    // per representative: positions in its component
+  std::vector<int> valid_;         // indices of finite candidates, ascending
+  bool all_within_kappa_ = false;  // last FindComponents: every finite pair within kappa
+  std::vector<int> order_;         // positions into valid_ sorted by x
+  std::vector<int> label_;         // per position into valid_: its component's representative
+  std::vector<int> member_next_;   // per position: next position of its component, -1 at the end
+  std::vector<int> member_tail_;   // per representative: last position of its component
+  std::vector<int> member_count_;  // per representative: positions in its component
   std::vector<int> comp_of_root_;
-  std::vector<int> comp_members_;    // original indices, grouped by component
+  std::vector<int> comp_members_;  // original indices, grouped by component
   std::vector<int> comp_offsets_;
-  std::vector<int> comp_order_;      // components by decreasing size
-  std::vector<int> size_start_;      // counting-sort buckets of comp_order_
-  std::vector<float> dist_;          // full s x s distance matrix of one component
-  std::vector<int> active_;          // local ids of clusters still able to merge, ascending
-  std::vector<int> chain_;           // nearest-neighbour chain
-  std::vector<int> next_;            // linked member lists (local ids)
+  std::vector<int> comp_order_;  // components by decreasing size
+  std::vector<int> size_start_;  // counting-sort buckets of comp_order_
+  std::vector<float> dist_;      // full s x s distance matrix of one component
+  std::vector<int> active_;      // local ids of clusters still able to merge, ascending
+  std::vector<int> chain_;       // nearest-neighbour chain
+  std::vector<int> next_;        // linked member lists (local ids)
   std::vector<int> tail_;
   std::vector<int> cluster_members_;  // original indices, grouped by cluster
   std::vector<int> cluster_offsets_;

@@ -25,8 +25,8 @@ using Row = std::vector<std::optional<Vec3>>;
 
 // Estimate of point k at row `to` carried from row `from` by the motion of k's nearest
 // neighbours (points present in both rows), or nullopt without neighbours.
-std::optional<Vec3> Carry(const Row& from, const Row& to, std::size_t k, int max_neighbors,
-                          bool* rigid) {
+std::optional<Vec3> Carry(
+    const Row& from, const Row& to, std::size_t k, int max_neighbors, bool* rigid) {
   const Vec3 anchor = *from[k];
   std::vector<std::pair<double, std::size_t>> near;
   for (std::size_t j = 0; j < from.size(); ++j) {
@@ -143,7 +143,8 @@ double PointDistance(const core::Tracklet3D& a, const core::Tracklet3D& b, std::
   return sum / static_cast<double>(count);
 }
 
-double FootprintDistance(const core::Tracklet3D& a, const core::Tracklet3D& b,
+double FootprintDistance(const core::Tracklet3D& a,
+                         const core::Tracklet3D& b,
                          std::int64_t* frames) {
   // The (x, y) of the mean of the present points of one frame; nullopt without a point.
   auto footprint = [](const Row& row) -> std::optional<Vec2> {
@@ -226,8 +227,10 @@ std::int64_t RemovePointsOutsideHeights(core::Tracklet3D* tracklet,
 
 BoxEndsStats TriangulateBoxEnds(const geometry::CameraRig& rig,
                                 const std::vector<core::Tracklet2D>& tracklets,
-                                const std::vector<int>& cluster, int first_point,
-                                const std::vector<HeightRange>& ranges, double min_confidence,
+                                const std::vector<int>& cluster,
+                                int first_point,
+                                const std::vector<HeightRange>& ranges,
+                                double min_confidence,
                                 core::Tracklet3D* person) {
   MVTRACK_CHECK(person != nullptr);
   MVTRACK_CHECK_MSG(first_point >= 0, "first_point must be >= 0");
@@ -373,7 +376,8 @@ BoxEndsStats TriangulateBoxEnds(const geometry::CameraRig& rig,
 std::optional<double> ReprojectionResidual(const geometry::CameraRig& rig,
                                            const core::Tracklet2D& tracklet,
                                            const core::Tracklet3D& person,
-                                           double min_confidence, int max_points) {
+                                           double min_confidence,
+                                           int max_points) {
   const std::optional<int> index = rig.IndexOf(tracklet.camera_id);
   MVTRACK_CHECK_MSG(index.has_value(), "the tracklet's camera is not in the rig");
   const geometry::CameraModel& camera = rig.camera(*index);
@@ -406,12 +410,12 @@ std::optional<double> ReprojectionResidual(const geometry::CameraRig& rig,
   }
   if (per_frame.empty()) return std::nullopt;
   const std::size_t mid = per_frame.size() / 2;
-  std::nth_element(per_frame.begin(), per_frame.begin() + static_cast<std::ptrdiff_t>(mid),
-                   per_frame.end());
+  std::nth_element(
+      per_frame.begin(), per_frame.begin() + static_cast<std::ptrdiff_t>(mid), per_frame.end());
   double m = per_frame[mid];
   if (per_frame.size() % 2 == 0) {
     m = 0.5 * (m + *std::max_element(per_frame.begin(),
-                                      per_frame.begin() + static_cast<std::ptrdiff_t>(mid)));
+                                     per_frame.begin() + static_cast<std::ptrdiff_t>(mid)));
   }
   return m;
 }
@@ -420,7 +424,8 @@ std::vector<int> InconsistentTracklets(const geometry::CameraRig& rig,
                                        const std::vector<core::Tracklet2D>& tracklets,
                                        const std::vector<int>& cluster,
                                        const core::Tracklet3D& person,
-                                       double max_residual, double min_confidence,
+                                       double max_residual,
+                                       double min_confidence,
                                        int max_points) {
   std::vector<int> out;
   if (max_residual <= 0.0) return out;
@@ -436,8 +441,8 @@ std::vector<int> InconsistentTracklets(const geometry::CameraRig& rig,
 int MaxPointsPerFrame(const core::Tracklet3D& tracklet) {
   int best = 0;
   for (const Row& row : tracklet.points) {
-    const auto n = std::count_if(row.begin(), row.end(),
-                                 [](const std::optional<Vec3>& p) { return p.has_value(); });
+    const auto n = std::count_if(
+        row.begin(), row.end(), [](const std::optional<Vec3>& p) { return p.has_value(); });
     best = std::max(best, static_cast<int>(n));
   }
   return best;
@@ -516,8 +521,8 @@ CompletionStats CompleteMissingPoints(core::Tracklet3D* tracklet,
   const FrameIndex max_gap = options.max_fill_gap;
   for (std::size_t f = 0; f < num_frames; ++f) {
     const Row& here = original[f];
-    const auto present = std::count_if(here.begin(), here.end(),
-                                       [](const std::optional<Vec3>& p) { return p.has_value(); });
+    const auto present = std::count_if(
+        here.begin(), here.end(), [](const std::optional<Vec3>& p) { return p.has_value(); });
     if (present < options.min_points_to_fill) continue;
     for (std::size_t k = 0; k < num_points; ++k) {
       if (here[k]) continue;

@@ -122,7 +122,8 @@ struct RefinementOptions {
 /// Mean Euclidean distance between the points of `a` and `b` with the same frame and the same
 /// point index, over every such pair where both are present; `pairs` (if non-null) receives
 /// their number. +infinity when there is none.
-double PointDistance(const core::Tracklet3D& a, const core::Tracklet3D& b,
+double PointDistance(const core::Tracklet3D& a,
+                     const core::Tracklet3D& b,
                      std::int64_t* pairs = nullptr);
 
 /// Median ground-plane distance between the footprints of `a` and `b` over their common frames:
@@ -131,7 +132,8 @@ double PointDistance(const core::Tracklet3D& a, const core::Tracklet3D& b,
 /// of the two middle values) ignores the few frames where one of two coinciding persons is
 /// triangulated far off. `frames` (if non-null) receives the number of frames compared.
 /// +infinity when there is none. Deterministic.
-double FootprintDistance(const core::Tracklet3D& a, const core::Tracklet3D& b,
+double FootprintDistance(const core::Tracklet3D& a,
+                         const core::Tracklet3D& b,
                          std::int64_t* frames = nullptr);
 
 /// Removes every point of `tracklet` whose z is outside [min_z, max_z] (world frame, metres),
@@ -169,8 +171,10 @@ struct BoxEndsStats {
 /// frames left without points are removed. Deterministic.
 BoxEndsStats TriangulateBoxEnds(const geometry::CameraRig& rig,
                                 const std::vector<core::Tracklet2D>& tracklets,
-                                const std::vector<int>& cluster, int first_point,
-                                const std::vector<HeightRange>& ranges, double min_confidence,
+                                const std::vector<int>& cluster,
+                                int first_point,
+                                const std::vector<HeightRange>& ranges,
+                                double min_confidence,
                                 core::Tracklet3D* person);
 
 /// How far `tracklet`'s observations are from where `person` projects in its camera: per frame
@@ -183,7 +187,8 @@ BoxEndsStats TriangulateBoxEnds(const geometry::CameraRig& rig,
 std::optional<double> ReprojectionResidual(const geometry::CameraRig& rig,
                                            const core::Tracklet2D& tracklet,
                                            const core::Tracklet3D& person,
-                                           double min_confidence, int max_points = 0);
+                                           double min_confidence,
+                                           int max_points = 0);
 
 /// The members of `cluster` (indices into `tracklets`, in cluster order) whose
 /// ReprojectionResidual against `person` is above `max_residual`; members without a comparable
@@ -193,7 +198,8 @@ std::vector<int> InconsistentTracklets(const geometry::CameraRig& rig,
                                        const std::vector<core::Tracklet2D>& tracklets,
                                        const std::vector<int>& cluster,
                                        const core::Tracklet3D& person,
-                                       double max_residual, double min_confidence,
+                                       double max_residual,
+                                       double min_confidence,
                                        int max_points = 0);
 
 /// The largest number of points present in one frame of `tracklet` (0 when it has no frame).
@@ -222,7 +228,6 @@ struct CompletionStats {
 /// points never feed other fills), so the result does not depend on the order of the work.
 /// Frames with fewer than min_points_to_fill triangulated points, and tracklets with one
 /// point per frame, are left as they are. Deterministic.
-CompletionStats CompleteMissingPoints(core::Tracklet3D* tracklet,
-                                      const RefinementOptions& options);
+CompletionStats CompleteMissingPoints(core::Tracklet3D* tracklet, const RefinementOptions& options);
 
 }  // namespace mvtrack::triangulation

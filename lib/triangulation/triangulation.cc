@@ -12,8 +12,8 @@ namespace mvtrack::triangulation {
 namespace {
 
 /// Whether point k of `obs` may be used: present, finite, confidence > 0 and >= min_confidence.
-bool UsablePoint(const core::Observation2D& obs, int k, double min_confidence, Vec2* x,
-                 double* confidence) {
+bool UsablePoint(
+    const core::Observation2D& obs, int k, double min_confidence, Vec2* x, double* confidence) {
   const auto uk = static_cast<std::size_t>(k);
   if (uk >= obs.points_px.size() || uk >= obs.confidence.size()) return false;
   const double c = obs.confidence[uk];
@@ -25,8 +25,9 @@ bool UsablePoint(const core::Observation2D& obs, int k, double min_confidence, V
 }
 
 bool InFrontOfAll(std::span<const Mat34> projections, const Vec3& point) {
-  return std::all_of(projections.begin(), projections.end(),
-                     [&](const Mat34& p) { return geometry::InFront(p, point); });
+  return std::all_of(projections.begin(), projections.end(), [&](const Mat34& p) {
+    return geometry::InFront(p, point);
+  });
 }
 
 }  // namespace
@@ -78,8 +79,12 @@ PersonTriangulator::PersonTriangulator(const TriangulationOptions& options) : op
   MVTRACK_CHECK_MSG(options_.Validate(&why), why.c_str());
 }
 
-int PersonTriangulator::Gather(const std::vector<core::Tracklet2D>& tracklets, FrameIndex t, int k,
-                               bool interpolate, bool best_only, TriangulationStats* stats) {
+int PersonTriangulator::Gather(const std::vector<core::Tracklet2D>& tracklets,
+                               FrameIndex t,
+                               int k,
+                               bool interpolate,
+                               bool best_only,
+                               TriangulationStats* stats) {
   points_.clear();
   view_offsets_.assign(1, 0);
   view_score_.assign(view_projections_.size(), 0.0);
@@ -125,7 +130,8 @@ int PersonTriangulator::Gather(const std::vector<core::Tracklet2D>& tracklets, F
       Vec2 x1;
       double c1 = 0.0;
       for (int i = observed_here ? cur + 1 : cur;
-           i < n && tr.frames[static_cast<std::size_t>(i)] <= t + phi; ++i) {
+           i < n && tr.frames[static_cast<std::size_t>(i)] <= t + phi;
+           ++i) {
         if (UsablePoint(tr.observations[static_cast<std::size_t>(i)], k, min_conf, &x1, &c1)) {
           after = i;
           break;
@@ -269,8 +275,8 @@ std::optional<Vec3> PersonTriangulator::SolveRansac(TriangulationStats* stats) {
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t b = a + 1; b < n; ++b) {
       ++pairs;
-      const auto x = geometry::TriangulateTwoView(sel_projections_[a], sel_points_[a],
-                                                  sel_projections_[b], sel_points_[b]);
+      const auto x = geometry::TriangulateTwoView(
+          sel_projections_[a], sel_points_[a], sel_projections_[b], sel_points_[b]);
       if (!x || !geometry::InFront(sel_projections_[a], *x) ||
           !geometry::InFront(sel_projections_[b], *x)) {
         continue;
@@ -384,8 +390,8 @@ core::Tracklet3D PersonTriangulator::Triangulate(const geometry::CameraRig& rig,
   cursor_.resize(view_tracklets_.size());
   for (std::size_t e = 0; e < view_tracklets_.size(); ++e) {
     const auto& frames = tracklets[static_cast<std::size_t>(view_tracklets_[e])].frames;
-    cursor_[e] = static_cast<int>(std::lower_bound(frames.begin(), frames.end(), t_begin) -
-                                  frames.begin());
+    cursor_[e] =
+        static_cast<int>(std::lower_bound(frames.begin(), frames.end(), t_begin) - frames.begin());
   }
 
   const bool cmmt = options_.method == TriangulationMethod::kCmmt;

@@ -120,8 +120,12 @@ class PersonTriangulator {
 
   // Fills points_/view_offsets_/view_score_ for point k at frame t (observed and, for CMMT,
   // interpolated). Returns the number of views with at least one point.
-  int Gather(const std::vector<core::Tracklet2D>& tracklets, FrameIndex t, int k, bool interpolate,
-             bool best_only, TriangulationStats* stats);
+  int Gather(const std::vector<core::Tracklet2D>& tracklets,
+             FrameIndex t,
+             int k,
+             bool interpolate,
+             bool best_only,
+             TriangulationStats* stats);
   // Fills sel_views_ (ascending) with the views that have points, capped at `max_views` (> 0) by
   // the confidence-then-farthest-camera rule of TriangulationOptions::max_views.
   void SelectViews(int max_views, TriangulationStats* stats);
@@ -133,22 +137,22 @@ class PersonTriangulator {
   ClusterVoter voter_;
   // Per call.
   std::vector<std::pair<int, int>> entries_;  // (rig camera index, position in cluster)
-  std::vector<Mat34> view_projections_;  // one per view (distinct camera), ascending camera id
-  std::vector<Vec3> view_centers_;       // camera centres, world frame
-  std::vector<double> center_distance_;  // views x views distances between camera centres
-  std::vector<int> view_tracklets_;      // tracklet indices grouped by view
+  std::vector<Mat34> view_projections_;       // one per view (distinct camera), ascending camera id
+  std::vector<Vec3> view_centers_;            // camera centres, world frame
+  std::vector<double> center_distance_;       // views x views distances between camera centres
+  std::vector<int> view_tracklets_;           // tracklet indices grouped by view
   std::vector<int> view_tracklet_offsets_;
-  std::vector<int> cursor_;              // per view_tracklets_ entry: first index with frame >= t
+  std::vector<int> cursor_;  // per view_tracklets_ entry: first index with frame >= t
   // Per (frame, point).
-  std::vector<ViewPoint> points_;        // grouped by view
-  std::vector<int> view_offsets_;        // size = number of views + 1
-  std::vector<double> view_score_;       // per view: highest confidence among its points
-  std::vector<int> sel_views_;           // views taking part, ascending
-  std::vector<double> min_distance_;     // SelectViews: distance to the chosen set
+  std::vector<ViewPoint> points_;     // grouped by view
+  std::vector<int> view_offsets_;     // size = number of views + 1
+  std::vector<double> view_score_;    // per view: highest confidence among its points
+  std::vector<int> sel_views_;        // views taking part, ascending
+  std::vector<double> min_distance_;  // SelectViews: distance to the chosen set
   std::vector<char> chosen_;
   std::vector<geometry::TwoViewRows> rows_;  // CMMT: DLT rows of points_ (selected views)
   std::vector<Vec3> candidates_;
-  std::vector<Mat34> sel_projections_;   // DLT / RANSAC: one entry per view with a point
+  std::vector<Mat34> sel_projections_;  // DLT / RANSAC: one entry per view with a point
   std::vector<Vec2> sel_points_;
   std::vector<double> sel_weights_;
   std::vector<char> inlier_;

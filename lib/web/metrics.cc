@@ -45,8 +45,10 @@ double D(std::int64_t v) { return static_cast<double>(v); }
 
 // One 0/1 sample per documented flag bit, named as transport names it (`names` of a single bit;
 // the first undocumented bit is named "BIT<n>" and ends the list), labelled `labels` + flag.
-void FlagSamples(Exposition* e, std::int64_t flags,
-                 std::vector<std::string> (*names)(std::int64_t), const std::string& labels) {
+void FlagSamples(Exposition* e,
+                 std::int64_t flags,
+                 std::vector<std::string> (*names)(std::int64_t),
+                 const std::string& labels) {
   for (int bit = 0; bit < 63; ++bit) {
     const std::string name = names(std::int64_t{1} << bit).front();
     if (name.rfind("BIT", 0) == 0) break;
@@ -57,7 +59,8 @@ void FlagSamples(Exposition* e, std::int64_t flags,
 }  // namespace
 
 std::string PrometheusText(const std::optional<transport::TrackerStatus>& status,
-                           double status_age_s, const WebCounters& web) {
+                           double status_age_s,
+                           const WebCounters& web) {
   Exposition e;
   e.Family("mvtrack_up", "gauge", "1 when a tracker status message has been received");
   e.Sample(status ? 1.0 : 0.0);
@@ -69,7 +72,8 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
   e.Sample(D(web.decode_errors));
   e.Family("mvtrack_web_clients", "gauge", "/events clients connected");
   e.Sample(D(web.clients));
-  e.Family("mvtrack_web_clients_dropped_total", "counter",
+  e.Family("mvtrack_web_clients_dropped_total",
+           "counter",
            "/events clients disconnected because they did not keep up");
   e.Sample(D(web.clients_dropped));
   e.Family("mvtrack_web_events_sent_total", "counter", "events written to /events clients");
@@ -79,7 +83,8 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
   const service::HealthReport health = service::AssessStatus(s);
   e.Family("mvtrack_status_age_seconds", "gauge", "time since the latest status message");
   e.Sample(status_age_s);
-  e.Family("mvtrack_health", "gauge",
+  e.Family("mvtrack_health",
+           "gauge",
            "0 OK, 1 WARNING, 2 CRITICAL (monitoring-plugin levels; mvtrack status)");
   e.Sample(static_cast<double>(static_cast<int>(health.health)));
   e.Family("mvtrack_uptime_seconds", "gauge", "tracker uptime");
@@ -102,7 +107,8 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
   e.Sample(D(s.jobs_failed));
   e.Family("mvtrack_executor_queue_depth", "gauge", "window jobs waiting");
   e.Sample(s.executor_queue_depth);
-  e.Family("mvtrack_kernel_drops_total", "counter",
+  e.Family("mvtrack_kernel_drops_total",
+           "counter",
            "input datagrams the kernel dropped (receive buffer full); -1 not measured");
   e.Sample(D(s.kernel_drops));
   e.Family("mvtrack_tracker_flag", "gauge", "1 when the tracker flag is set this period");
@@ -117,33 +123,42 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
     std::int64_t transport::CameraStatus::*field;
   };
   const std::vector<Counter> counters = {
-      {"mvtrack_camera_received_total", "messages received and decoded",
+      {"mvtrack_camera_received_total",
+       "messages received and decoded",
        &transport::CameraStatus::received},
-      {"mvtrack_camera_late_total", "camera-frames discarded as late",
+      {"mvtrack_camera_late_total",
+       "camera-frames discarded as late",
        &transport::CameraStatus::late},
-      {"mvtrack_camera_dropped_total", "camera-frames dropped (queue overflow, flooding)",
+      {"mvtrack_camera_dropped_total",
+       "camera-frames dropped (queue overflow, flooding)",
        &transport::CameraStatus::dropped},
-      {"mvtrack_camera_rejected_total", "detections rejected by validation",
+      {"mvtrack_camera_rejected_total",
+       "detections rejected by validation",
        &transport::CameraStatus::rejected},
-      {"mvtrack_camera_decode_errors_total", "messages on the camera's channel that failed",
+      {"mvtrack_camera_decode_errors_total",
+       "messages on the camera's channel that failed",
        &transport::CameraStatus::decode_errors},
-      {"mvtrack_camera_lost_total", "frames the camera never delivered",
+      {"mvtrack_camera_lost_total",
+       "frames the camera never delivered",
        &transport::CameraStatus::lost},
   };
   for (const Counter& c : counters) {
     e.Family(c.name, "counter", c.help);
-    for (const transport::CameraStatus& cam : s.cameras) e.Sample(D(cam.*c.field), CameraLabel(cam));
+    for (const transport::CameraStatus& cam : s.cameras)
+      e.Sample(D(cam.*c.field), CameraLabel(cam));
   }
   e.Family("mvtrack_camera_rate_hz", "gauge", "messages per second in the period");
   for (const transport::CameraStatus& cam : s.cameras) e.Sample(cam.rate_hz, CameraLabel(cam));
-  e.Family("mvtrack_camera_clock_offset_seconds", "gauge",
+  e.Family("mvtrack_camera_clock_offset_seconds",
+           "gauge",
            "the clock model's offset of the camera to the others");
   for (const transport::CameraStatus& cam : s.cameras) {
     e.Sample(D(cam.clock_offset_us) / 1e6, CameraLabel(cam));
   }
   e.Family("mvtrack_camera_queue_depth", "gauge", "camera-frames waiting for the camera thread");
   for (const transport::CameraStatus& cam : s.cameras) e.Sample(cam.queue_depth, CameraLabel(cam));
-  e.Family("mvtrack_camera_last_receive_age_seconds", "gauge",
+  e.Family("mvtrack_camera_last_receive_age_seconds",
+           "gauge",
            "time from the camera's latest message to the status");
   for (const transport::CameraStatus& cam : s.cameras) {
     e.Sample(cam.last_receive_utime > 0 ? (D(s.utime) - D(cam.last_receive_utime)) / 1e6 : NAN,

@@ -13,17 +13,18 @@ namespace mvtrack::web {
 
 /// The web server's own counters.
 struct WebCounters {
-  std::int64_t tracks_messages = 0;   ///< tracks3d_t received and decoded
-  std::int64_t status_messages = 0;   ///< tracker_status_t received and decoded
-  std::int64_t decode_errors = 0;     ///< messages on either channel that failed to decode
-  std::int64_t clients = 0;           ///< /events clients connected now
-  std::int64_t clients_dropped = 0;   ///< /events clients disconnected for being too slow
-  std::int64_t events_sent = 0;       ///< events written to /events clients
+  std::int64_t tracks_messages = 0;  ///< tracks3d_t received and decoded
+  std::int64_t status_messages = 0;  ///< tracker_status_t received and decoded
+  std::int64_t decode_errors = 0;    ///< messages on either channel that failed to decode
+  std::int64_t clients = 0;          ///< /events clients connected now
+  std::int64_t clients_dropped = 0;  ///< /events clients disconnected for being too slow
+  std::int64_t events_sent = 0;      ///< events written to /events clients
 };
 
 /// The exposition text. Without a status (none received yet) only mvtrack_up 0 and the web
 /// counters; `status_age_s` is the time since the latest status arrived.
 std::string PrometheusText(const std::optional<transport::TrackerStatus>& status,
-                           double status_age_s, const WebCounters& web);
+                           double status_age_s,
+                           const WebCounters& web);
 
 }  // namespace mvtrack::web

@@ -43,23 +43,24 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
     const tracker::Track3D& t = message.frame.tracks[i];
     json joints = json::array();
     for (const std::optional<Vec3>& j : t.joints) joints.push_back(j ? Point(*j) : json(nullptr));
-    tracks.push_back({{"id", t.id},
-                      {"state", i < message.info.size() ? StateName(message.info[i].state)
-                                                        : "confirmed"},
-                      {"position", Point(t.position)},
-                      {"confidence", Number(t.confidence)},
-                      {"age_frames", t.age_frames},
-                      {"cameras", t.cameras},
-                      {"joints", std::move(joints)}});
+    tracks.push_back(
+        {{"id", t.id},
+         {"state", i < message.info.size() ? StateName(message.info[i].state) : "confirmed"},
+         {"position", Point(t.position)},
+         {"confidence", Number(t.confidence)},
+         {"age_frames", t.age_frames},
+         {"cameras", t.cameras},
+         {"joints", std::move(joints)}});
   }
   const json o = {{"type", "tracks"},
                   {"frame", message.frame.frame},
                   {"utime", message.frame.utime},
                   {"publish_utime", message.publish_utime},
                   {"latency_us", message.latency_us},
-                  {"layout", message.layout == core::KeypointLayoutId::kNone
-                                 ? std::string()
-                                 : core::GetKeypointLayout(message.layout).name},
+                  {"layout",
+                   message.layout == core::KeypointLayoutId::kNone
+                       ? std::string()
+                       : core::GetKeypointLayout(message.layout).name},
                   {"tracks", std::move(tracks)}};
   return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);
 }
@@ -144,7 +145,7 @@ std::string FloorJson(const std::vector<geometry::CameraModel>& cameras) {
           continue;
         }
         fov.push_back(json::array({Number(p.x()), Number(p.y())}));
-          }
+      }
     }
     if (std::isfinite(c.x()) && std::isfinite(c.y())) grow(c.x(), c.y());
     out_cameras.push_back({{"id", cam.id}, {"position", Point(c)}, {"fov", std::move(fov)}});

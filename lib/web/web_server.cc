@@ -82,7 +82,8 @@ class EventHub {
 
   // The next event for `c`: the event, nullptr after `timeout` without one (send a keep-alive),
   // or false when the client must be disconnected (dropped, or the hub closed).
-  bool Next(const std::shared_ptr<Client>& c, std::chrono::milliseconds timeout,
+  bool Next(const std::shared_ptr<Client>& c,
+            std::chrono::milliseconds timeout,
             std::shared_ptr<const std::string>* event) {
     std::unique_lock<std::mutex> lock(mu_);
     cv_.wait_for(lock, timeout, [&] { return closed_ || c->dropped || !c->queue.empty(); });
@@ -163,7 +164,9 @@ class WebServer::Impl {
     }
     Routes();
     const int threads = options_.max_clients + 4;  // /events clients plus the short requests
-    server_.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<size_t>(threads)); };
+    server_.new_task_queue = [threads] {
+      return new httplib::ThreadPool(static_cast<size_t>(threads));
+    };
     server_.set_write_timeout(10, 0);  // a stuck client is dropped by its queue first
     // A client's unread data in the kernel stays small (accepted sockets inherit the listening
     // socket's send buffer), so a client that stops reading soon fills its own queue and is
@@ -272,9 +275,9 @@ class WebServer::Impl {
         const std::shared_ptr<const std::string> e = hub_.last(status);
         if (!e) {
           res.status = 404;
-          res.set_content(std::string("no ") + (status ? "status" : "tracks") +
-                              " message received yet\n",
-                          "text/plain");
+          res.set_content(
+              std::string("no ") + (status ? "status" : "tracks") + " message received yet\n",
+              "text/plain");
           return;
         }
         res.set_content(*e, "application/json");
@@ -284,9 +287,10 @@ class WebServer::Impl {
     server_.Get("/tracks.json", latest(false));
     server_.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
       const auto s = LatestStatus();
-      res.set_content(PrometheusText(s ? std::optional(s->first) : std::nullopt,
-                                     s ? s->second : 0.0, Counters()),
-                      "text/plain; version=0.0.4");
+      res.set_content(
+          PrometheusText(
+              s ? std::optional(s->first) : std::nullopt, s ? s->second : 0.0, Counters()),
+          "text/plain; version=0.0.4");
     });
     server_.Get("/healthz", [this](const httplib::Request&, httplib::Response& res) {
       const auto s = LatestStatus();
@@ -312,9 +316,9 @@ class WebServer::Impl {
       std::shared_ptr<EventHub::Client> client = hub_.Connect(options_.max_clients);
       if (!client) {
         res.status = 503;
-        res.set_content("too many /events clients (max_clients " +
-                            std::to_string(options_.max_clients) + ")\n",
-                        "text/plain");
+        res.set_content(
+            "too many /events clients (max_clients " + std::to_string(options_.max_clients) + ")\n",
+            "text/plain");
         return;
       }
       res.set_header("Cache-Control", "no-cache");
@@ -358,8 +362,8 @@ WebServer::~WebServer() = default;
 std::unique_ptr<WebServer> WebServer::Create(WebOptions options, std::string* why) {
   std::string reason;
   if (options.client_queue_events < 1 || options.client_queue_bytes < 1 ||
-      options.max_clients < 1 || options.port < 0 ||
-      options.port > 65535 || !(options.stale_after_s > 0.0)) {
+      options.max_clients < 1 || options.port < 0 || options.port > 65535 ||
+      !(options.stale_after_s > 0.0)) {
     if (why != nullptr) *why = "invalid web options";
     return nullptr;
   }

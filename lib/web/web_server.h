@@ -28,8 +28,8 @@ namespace mvtrack::web {
 
 /// Options of WebServer.
 struct WebOptions {
-  std::string host = "127.0.0.1";   ///< address to listen on (localhost by default)
-  int port = 8080;                  ///< TCP port; 0 = any free port (see WebServer::port)
+  std::string host = "127.0.0.1";  ///< address to listen on (localhost by default)
+  int port = 8080;                 ///< TCP port; 0 = any free port (see WebServer::port)
   std::string lcm_url = "udpm://239.255.76.67:7667?ttl=0";  ///< where the daemon publishes
   std::string tracks_channel = "MVTRACK_TRACKS";
   std::string status_channel = "MVTRACK_STATUS";
@@ -38,8 +38,8 @@ struct WebOptions {
   /// Per-client queue bound, bytes of JSON (>= 1): also bounds the server's memory, as the
   /// events are shared between clients.
   std::size_t client_queue_bytes = std::size_t{32} << 20;
-  int max_clients = 8;                         ///< concurrent /events clients (>= 1)
-  double stale_after_s = 5.0;                  ///< /healthz: a status older than this is 503
+  int max_clients = 8;         ///< concurrent /events clients (>= 1)
+  double stale_after_s = 5.0;  ///< /healthz: a status older than this is 503
 };
 
 class WebServer {

@@ -2,6 +2,8 @@
 // walking in a room seen by calibrated cameras, 2D tracklets with time gaps and detection
 // biases, Eq. 2-4 distances and PDNC against the appendix's alternatives.
 
+#include "association/association.h"
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <iterator>
@@ -10,7 +12,6 @@
 #include <set>
 #include <vector>
 
-#include "association/association.h"
 #include "association/association_scene.h"
 #include "geometry/camera_rig.h"
 #include "support/synthetic_cameras.h"
@@ -76,8 +77,7 @@ AppendixScene MakeAppendixScene() {
   return s;
 }
 
-TEST_CASE("appendix example from geometry: PDNC recovers both persons, (c)-(e) do not",
-          "[unit]") {
+TEST_CASE("appendix example from geometry: PDNC recovers both persons, (c)-(e) do not", "[unit]") {
   const AppendixScene s = MakeAppendixScene();
   REQUIRE(s.rig.ok());
   const AssociationOptions pdnc = Options(ClusteringMethod::kPdnc, 0.5);  // appendix's lambda
@@ -146,10 +146,10 @@ FullScene MakeFullScene() {
   FullScene s;
   s.cameras = testing::RingOfCameras(3, 6.0, 2.8, Vec3(0.0, 0.0, 0.9), 1000.0, 1920, 1080, 1);
   s.rig = geometry::CameraRig(s.cameras);
-  const std::vector<Vec3> start = {Vec3(-2.5, -2.0, 0.0), Vec3(2.0, -2.5, 0.0),
-                                   Vec3(-1.0, 2.5, 0.0), Vec3(1.5, 1.0, 0.0)};
-  const std::vector<Vec3> end = {Vec3(0.5, 1.5, 0.0), Vec3(-1.5, -0.5, 0.0),
-                                 Vec3(2.5, 1.0, 0.0), Vec3(-1.0, -2.5, 0.0)};
+  const std::vector<Vec3> start = {
+      Vec3(-2.5, -2.0, 0.0), Vec3(2.0, -2.5, 0.0), Vec3(-1.0, 2.5, 0.0), Vec3(1.5, 1.0, 0.0)};
+  const std::vector<Vec3> end = {
+      Vec3(0.5, 1.5, 0.0), Vec3(-1.5, -0.5, 0.0), Vec3(2.5, 1.0, 0.0), Vec3(-1.0, -2.5, 0.0)};
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> bias(-0.05, 0.05);
   const BoxPerson box;
@@ -164,8 +164,8 @@ FullScene MakeFullScene() {
       const bool split = c == 2 && p == 3;
       for (auto [first, last] : split ? std::vector<std::pair<int, int>>{{0, 14}, {15, 29}}
                                       : std::vector<std::pair<int, int>>{{0, 29}}) {
-        s.tracklets.push_back(MakeBoxTracklet(s.cameras[c], next_id++, box, first, last, at,
-                                              Vec3(0.0, 0.0, bias(rng)), 1.0, &rng));
+        s.tracklets.push_back(MakeBoxTracklet(
+            s.cameras[c], next_id++, box, first, last, at, Vec3(0.0, 0.0, bias(rng)), 1.0, &rng));
         s.person_of.push_back(p);
       }
     }
@@ -201,8 +201,8 @@ TEST_CASE("full synthetic scene: PDNC associates every tracklet to its person", 
   const DistanceMatrix m = ComputeDistanceMatrix(s.rig, s.tracklets, options);
   CHECK(m.at(half_a, half_b).is_empty());
   CHECK(SameCluster(clusters, half_a, half_b));
-  const Clusters d = ClusterTracklets(
-      m, Options(ClusteringMethod::kCompleteLinkageEmptyAsUpper, options.lambda));
+  const Clusters d =
+      ClusterTracklets(m, Options(ClusteringMethod::kCompleteLinkageEmptyAsUpper, options.lambda));
   CHECK_FALSE(SameCluster(d, half_a, half_b));
   // Same-camera tracklets of different people overlap in time: ∞.
   CHECK(m.at(0, 1).is_infinite());
@@ -261,10 +261,10 @@ TEST_CASE("the partition does not depend on the order of the input tracklets", "
 
 TEST_CASE("same-camera tracklets overlapping in time never merge, whatever lambda", "[unit]") {
   const FullScene s = MakeFullScene();
-  for (ClusteringMethod method :
-       {ClusteringMethod::kPdnc, ClusteringMethod::kCompleteLinkageEmptyAsZero,
-        ClusteringMethod::kCompleteLinkageEmptyAsUpper,
-        ClusteringMethod::kSingleLinkageEmptyAsUpper}) {
+  for (ClusteringMethod method : {ClusteringMethod::kPdnc,
+                                  ClusteringMethod::kCompleteLinkageEmptyAsZero,
+                                  ClusteringMethod::kCompleteLinkageEmptyAsUpper,
+                                  ClusteringMethod::kSingleLinkageEmptyAsUpper}) {
     INFO(ClusteringMethodName(method));
     // With a huge lambda every finite distance is "tiny": only ∞ can keep tracklets apart.
     const Clusters clusters = AssociateTracklets(s.rig, s.tracklets, Options(method, 1e9));

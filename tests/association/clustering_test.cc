@@ -1,6 +1,8 @@
 // Tests of Algorithm 1 (PDNC) and of the appendix's alternatives (c)-(e) on hand-made and random
 // distance matrices, against an independent brute-force reference.
 
+#include "association/clustering.h"
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -11,7 +13,6 @@
 #include <vector>
 
 #include "association/association_scene.h"
-#include "association/clustering.h"
 
 namespace mvtrack::association {
 namespace {
@@ -20,9 +21,10 @@ using testing::AsPartition;
 using testing::SameCluster;
 using Clusters = std::vector<std::vector<int>>;
 
-constexpr ClusteringMethod kAllMethods[] = {
-    ClusteringMethod::kPdnc, ClusteringMethod::kCompleteLinkageEmptyAsZero,
-    ClusteringMethod::kCompleteLinkageEmptyAsUpper, ClusteringMethod::kSingleLinkageEmptyAsUpper};
+constexpr ClusteringMethod kAllMethods[] = {ClusteringMethod::kPdnc,
+                                            ClusteringMethod::kCompleteLinkageEmptyAsZero,
+                                            ClusteringMethod::kCompleteLinkageEmptyAsUpper,
+                                            ClusteringMethod::kSingleLinkageEmptyAsUpper};
 
 AssociationOptions Options(ClusteringMethod method, double lambda) {
   AssociationOptions o;
@@ -91,8 +93,8 @@ Clusters ReferenceCluster(const DistanceMatrix& m, const AssociationOptions& o) 
       }
     }
     if (!best) break;
-    clusters[best_a].insert(clusters[best_a].end(), clusters[best_b].begin(),
-                            clusters[best_b].end());
+    clusters[best_a].insert(
+        clusters[best_a].end(), clusters[best_b].begin(), clusters[best_b].end());
     std::sort(clusters[best_a].begin(), clusters[best_a].end());
     clusters.erase(clusters.begin() + static_cast<std::ptrdiff_t>(best_b));
   }
@@ -225,7 +227,7 @@ TEST_CASE("empty distances alone never merge under PDNC; values merge only below
             .size() == 4);
 
   DistanceMatrix m(3);
-  m.set(0, 1, TrackletDistance::Value(0.3));   // exactly lambda: not < lambda
+  m.set(0, 1, TrackletDistance::Value(0.3));  // exactly lambda: not < lambda
   m.set(1, 2, TrackletDistance::Value(0.299));
   m.set(0, 2, TrackletDistance::Value(0.9));  // no ∅ here: the alternatives see the same matrix
   for (ClusteringMethod method : kAllMethods) {

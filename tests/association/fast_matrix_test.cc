@@ -53,8 +53,8 @@ GateScene MakeGateScene(int num_cameras, int num_people, bool poses, int frames)
             o.confidence.push_back(k.confidence);
           }
         } else {
-          o.points_px = {Vec2(0.5 * (det.box.x_min + det.box.x_max),
-                              0.5 * (det.box.y_min + det.box.y_max))};
+          o.points_px = {
+              Vec2(0.5 * (det.box.x_min + det.box.x_max), 0.5 * (det.box.y_min + det.box.y_max))};
           o.confidence = {1.0};
         }
         const int person = rendered.person_ids[c][d];
@@ -137,8 +137,8 @@ TEST_CASE("fast matrix: cuts far pairs short with a lower bound, keeps near pair
   };
   const Vec3 a(3.0, 1.0, 1.0), b(3.0, 5.0, 1.0);
   // 0: A in camera 0, 1: A in camera 1, 2: B in camera 1.
-  const std::vector<core::Tracklet2D> tracklets = {tracklet(c0, a), tracklet(c1, a),
-                                                   tracklet(c1, b)};
+  const std::vector<core::Tracklet2D> tracklets = {
+      tracklet(c0, a), tracklet(c1, a), tracklet(c1, b)};
   AssociationOptions options;
   const DistanceMatrix exact = ComputeDistanceMatrix(rig, tracklets, options);
   const DistanceMatrix fast = ComputeDistanceMatrixForClustering(rig, tracklets, options);
@@ -155,8 +155,7 @@ TEST_CASE("fast matrix: cuts far pairs short with a lower bound, keeps near pair
   REQUIRE(f.is_value());
   CHECK(f.value >= options.lambda);
   CHECK(f.value <= e);
-  CHECK(AssociateTracklets(rig, tracklets, options) ==
-        std::vector<std::vector<int>>{{0, 1}, {2}});
+  CHECK(AssociateTracklets(rig, tracklets, options) == std::vector<std::vector<int>>{{0, 1}, {2}});
 }
 
 }  // namespace

@@ -69,16 +69,15 @@ TEST_CASE("normalized epipolar distance does not depend on the person-to-camera 
     // Without the bias both distances vanish: the construction is consistent.
     const auto clean = ObserveBoxPerson(cameras[1], person, foot, Vec3::Zero());
     REQUIRE(clean);
-    REQUIRE(geometry::SymmetricEpipolarDistance(o0->points_px[0], clean->points_px[0], f) <
-            1e-6);
+    REQUIRE(geometry::SymmetricEpipolarDistance(o0->points_px[0], clean->points_px[0], f) < 1e-6);
     normalized.push_back(geometry::NormalizedEpipolarDistance(
         o0->points_px[0], o0->scale_px, o1->points_px[0], o1->scale_px, f));
     raw.push_back(geometry::SymmetricEpipolarDistance(o0->points_px[0], o1->points_px[0], f));
   }
   const auto [n_min, n_max] = std::minmax_element(normalized.begin(), normalized.end());
   const auto [r_min, r_max] = std::minmax_element(raw.begin(), raw.end());
-  INFO("normalized in [" << *n_min << ", " << *n_max << "], raw px in [" << *r_min << ", "
-                         << *r_max << "]");
+  INFO("normalized in [" << *n_min << ", " << *n_max << "], raw px in [" << *r_min << ", " << *r_max
+                         << "]");
   CHECK(*n_max / *n_min < 1.5);
   CHECK(*r_max / *r_min > 3.0);
   // And the tracklet distance (Eq. 3-4) over the whole walk is the mean of those values.
@@ -122,18 +121,14 @@ TEST_CASE("Eq. 4: no common frame is empty, for the same or different cameras", 
               .is_empty());
   }
   SECTION("interleaved frames without a common one") {
-    CHECK(ComputeTrackletDistance(TrackletAt(0, {0, 2, 4, 6}), TrackletAt(0, {1, 3, 5}), f,
-                                  options)
+    CHECK(ComputeTrackletDistance(TrackletAt(0, {0, 2, 4, 6}), TrackletAt(0, {1, 3, 5}), f, options)
               .is_empty());
-    CHECK(ComputeTrackletDistance(TrackletAt(0, {0, 2, 4, 6}), TrackletAt(1, {1, 3, 5}), f,
-                                  options)
+    CHECK(ComputeTrackletDistance(TrackletAt(0, {0, 2, 4, 6}), TrackletAt(1, {1, 3, 5}), f, options)
               .is_empty());
   }
   SECTION("an empty tracklet") {
-    CHECK(ComputeTrackletDistance(TrackletAt(0, {}), TrackletAt(0, {1, 2}), f, options)
-              .is_empty());
-    CHECK(ComputeTrackletDistance(TrackletAt(0, {1, 2}), TrackletAt(1, {}), f, options)
-              .is_empty());
+    CHECK(ComputeTrackletDistance(TrackletAt(0, {}), TrackletAt(0, {1, 2}), f, options).is_empty());
+    CHECK(ComputeTrackletDistance(TrackletAt(0, {1, 2}), TrackletAt(1, {}), f, options).is_empty());
   }
   SECTION("common frames but no common usable point") {
     core::Tracklet2D a = TrackletAt(0, {0, 1, 2});
@@ -162,10 +157,10 @@ TEST_CASE("Eq. 3-4: different cameras with overlap give the mean over common fra
   for (FrameIndex frame = 5; frame <= 9; ++frame) {
     const core::Observation2D& oa = a.observations[static_cast<std::size_t>(a.IndexOf(frame))];
     const core::Observation2D& ob = b.observations[static_cast<std::size_t>(b.IndexOf(frame))];
-    expected += geometry::NormalizedEpipolarDistance(oa.points_px[0], oa.scale_px,
-                                                     ob.points_px[0], ob.scale_px,
-                                                     rig.fundamental(0, 1)) /
-                5.0;
+    expected +=
+        geometry::NormalizedEpipolarDistance(
+            oa.points_px[0], oa.scale_px, ob.points_px[0], ob.scale_px, rig.fundamental(0, 1)) /
+        5.0;
   }
   REQUIRE(expected > 0.0);
   const TrackletDistance ab =
@@ -218,8 +213,8 @@ TEST_CASE("pose mode: joints averaged per frame, low-confidence joints and empty
   auto joint_distance = [&](std::size_t frame, std::size_t k) {
     const core::Observation2D& oa = a.observations[frame];
     const core::Observation2D& ob = b.observations[frame];
-    return geometry::NormalizedEpipolarDistance(oa.points_px[k], oa.scale_px, ob.points_px[k],
-                                                ob.scale_px, f);
+    return geometry::NormalizedEpipolarDistance(
+        oa.points_px[k], oa.scale_px, ob.points_px[k], ob.scale_px, f);
   };
   double expected = 0.0;
   for (std::size_t frame = 0; frame < used.size(); ++frame) {
@@ -342,7 +337,8 @@ std::vector<core::Tracklet2D> RandomPoseTracklets(const std::vector<geometry::Ca
         const std::size_t joints = uniform(*rng) < 0.1 ? 3 : 5;
         for (std::size_t k = 0; k < joints; ++k) {
           const Vec3 joint(-1.0 + 1.0 * person + 0.03 * static_cast<double>(f),
-                           0.5 * person - 0.5, 0.3 + 0.3 * static_cast<double>(k));
+                           0.5 * person - 0.5,
+                           0.3 + 0.3 * static_cast<double>(k));
           o.points_px.push_back(*camera.ProjectUndistorted(joint) + Vec2(noise(*rng), noise(*rng)));
           const double u = uniform(*rng);
           o.confidence.push_back(u < 0.15 ? 0.0 : (u < 0.3 ? 0.05 : u));
@@ -395,10 +391,10 @@ TEST_CASE("the all-pairs computation equals the pairwise definition in pose mode
         infinities += expected.is_infinite() ? 1 : 0;
       }
     }
-    for (ClusteringMethod method :
-         {ClusteringMethod::kPdnc, ClusteringMethod::kCompleteLinkageEmptyAsZero,
-          ClusteringMethod::kCompleteLinkageEmptyAsUpper,
-          ClusteringMethod::kSingleLinkageEmptyAsUpper}) {
+    for (ClusteringMethod method : {ClusteringMethod::kPdnc,
+                                    ClusteringMethod::kCompleteLinkageEmptyAsZero,
+                                    ClusteringMethod::kCompleteLinkageEmptyAsUpper,
+                                    ClusteringMethod::kSingleLinkageEmptyAsUpper}) {
       AssociationOptions o = options;
       o.method = method;
       CHECK(ClusterTracklets(fast, o) == ClusterTracklets(m, o));
@@ -433,10 +429,10 @@ TEST_CASE("AssociationOptions validation and method names", "[unit]") {
   CHECK_FALSE(o.Validate(&why));
   CHECK_THAT(why, Catch::Contains("method"));
   CHECK(o.Validate(nullptr) == false);
-  for (ClusteringMethod m :
-       {ClusteringMethod::kPdnc, ClusteringMethod::kCompleteLinkageEmptyAsZero,
-        ClusteringMethod::kCompleteLinkageEmptyAsUpper,
-        ClusteringMethod::kSingleLinkageEmptyAsUpper}) {
+  for (ClusteringMethod m : {ClusteringMethod::kPdnc,
+                             ClusteringMethod::kCompleteLinkageEmptyAsZero,
+                             ClusteringMethod::kCompleteLinkageEmptyAsUpper,
+                             ClusteringMethod::kSingleLinkageEmptyAsUpper}) {
     CHECK(ClusteringMethodFromName(ClusteringMethodName(m)) == m);
   }
   CHECK(ClusteringMethodName(ClusteringMethod::kPdnc) == "pdnc");

@@ -3,9 +3,9 @@
 /// Helpers for the config tests: a private temporary directory, file writing, line lookup in
 /// test text, and a checker for ConfigError locations.
 
-#include <catch2/catch.hpp>
 #include <stdlib.h>
 
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>

@@ -1,8 +1,7 @@
 #include "config/internal/yaml_node.h"
 
-#include <catch2/catch.hpp>
-
 #include <bit>
+#include <catch2/catch.hpp>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -84,22 +83,30 @@ TEST_CASE("GetDouble accepts plain decimal reals and nothing else", "[unit]") {
 TEST_CASE("GetDouble enforces its range with a readable bound", "[unit]") {
   CHECK(internal::GetDouble(ValueOf("0"), DoubleRange::Closed(0.0, 1.0)) == 0.0);
   CHECK(internal::GetDouble(ValueOf("1"), DoubleRange::LeftOpen(0.0, 1.0)) == 1.0);
-  CheckLocated(RequireConfigError([] {
-                 internal::GetDouble(ValueOf("0"), DoubleRange::LeftOpen(0.0, 1.0));
-               }),
-               "t.yaml", 1, "v", "value 0 out of range: must be in (0, 1]");
-  CheckLocated(RequireConfigError([] {
-                 internal::GetDouble(ValueOf("1.5"), DoubleRange::Closed(0.0, 1.0));
-               }),
-               "t.yaml", 1, "v", "must be in [0, 1]");
-  CheckLocated(RequireConfigError([] {
-                 internal::GetDouble(ValueOf("-1e-300"), DoubleRange::AtLeast(0.0));
-               }),
-               "t.yaml", 1, "v", "must be >= 0");
-  CheckLocated(RequireConfigError([] {
-                 internal::GetDouble(ValueOf("0"), DoubleRange::GreaterThan(0.0));
-               }),
-               "t.yaml", 1, "v", "must be > 0");
+  CheckLocated(RequireConfigError(
+                   [] { internal::GetDouble(ValueOf("0"), DoubleRange::LeftOpen(0.0, 1.0)); }),
+               "t.yaml",
+               1,
+               "v",
+               "value 0 out of range: must be in (0, 1]");
+  CheckLocated(RequireConfigError(
+                   [] { internal::GetDouble(ValueOf("1.5"), DoubleRange::Closed(0.0, 1.0)); }),
+               "t.yaml",
+               1,
+               "v",
+               "must be in [0, 1]");
+  CheckLocated(RequireConfigError(
+                   [] { internal::GetDouble(ValueOf("-1e-300"), DoubleRange::AtLeast(0.0)); }),
+               "t.yaml",
+               1,
+               "v",
+               "must be >= 0");
+  CheckLocated(
+      RequireConfigError([] { internal::GetDouble(ValueOf("0"), DoubleRange::GreaterThan(0.0)); }),
+      "t.yaml",
+      1,
+      "v",
+      "must be > 0");
 }
 
 TEST_CASE("GetInt64 and GetInt accept decimal integers only", "[unit]") {
@@ -129,15 +136,27 @@ TEST_CASE("GetInt64 and GetInt accept decimal integers only", "[unit]") {
   };
   for (const Bad& b : bad) {
     INFO("scalar: " << b.scalar);
-    CheckLocated(RequireConfigError([&] { internal::GetInt64(ValueOf(b.scalar)); }), "t.yaml", 1,
-                 "v", b.reason);
+    CheckLocated(RequireConfigError([&] { internal::GetInt64(ValueOf(b.scalar)); }),
+                 "t.yaml",
+                 1,
+                 "v",
+                 b.reason);
   }
-  CheckLocated(RequireConfigError([] { internal::GetInt(ValueOf("0"), 1, 10); }), "t.yaml", 1, "v",
+  CheckLocated(RequireConfigError([] { internal::GetInt(ValueOf("0"), 1, 10); }),
+               "t.yaml",
+               1,
+               "v",
                "value 0 out of range: must be in [1, 10]");
-  CheckLocated(RequireConfigError([] { internal::GetInt(ValueOf("0"), 1); }), "t.yaml", 1, "v",
+  CheckLocated(RequireConfigError([] { internal::GetInt(ValueOf("0"), 1); }),
+               "t.yaml",
+               1,
+               "v",
                "value 0 out of range: must be >= 1");
-  CheckLocated(RequireConfigError([] { internal::GetInt(ValueOf("4294967296")); }), "t.yaml", 1,
-               "v", "integer '4294967296' does not fit in 32 bits");
+  CheckLocated(RequireConfigError([] { internal::GetInt(ValueOf("4294967296")); }),
+               "t.yaml",
+               1,
+               "v",
+               "integer '4294967296' does not fit in 32 bits");
 }
 
 TEST_CASE("GetBool accepts the YAML 1.2 booleans only", "[unit]") {
@@ -147,7 +166,10 @@ TEST_CASE("GetBool accepts the YAML 1.2 booleans only", "[unit]") {
   CHECK_FALSE(internal::GetBool(ValueOf("false")));
   for (const std::string scalar : {"yes", "on", "1", "\"true\"", "y", ""}) {
     INFO("scalar: " << scalar);
-    CheckLocated(RequireConfigError([&] { internal::GetBool(ValueOf(scalar)); }), "t.yaml", 1, "v",
+    CheckLocated(RequireConfigError([&] { internal::GetBool(ValueOf(scalar)); }),
+                 "t.yaml",
+                 1,
+                 "v",
                  "expected true or false");
   }
 }
@@ -156,9 +178,15 @@ TEST_CASE("GetString and GetEnum", "[unit]") {
   CHECK(internal::GetString(ValueOf("hello")) == "hello");
   CHECK(internal::GetString(ValueOf("\"a: b\"")) == "a: b");
   CHECK(internal::GetString(ValueOf("\"\""), /*allow_empty=*/true).empty());
-  CheckLocated(RequireConfigError([] { internal::GetString(ValueOf("\"\"")); }), "t.yaml", 1, "v",
+  CheckLocated(RequireConfigError([] { internal::GetString(ValueOf("\"\"")); }),
+               "t.yaml",
+               1,
+               "v",
                "non-empty");
-  CheckLocated(RequireConfigError([] { internal::GetString(ValueOf("[a]")); }), "t.yaml", 1, "v",
+  CheckLocated(RequireConfigError([] { internal::GetString(ValueOf("[a]")); }),
+               "t.yaml",
+               1,
+               "v",
                "expected a string, got a list");
 
   enum class Color { kRed, kGreen };
@@ -171,11 +199,17 @@ TEST_CASE("GetString and GetEnum", "[unit]") {
   CheckLocated(RequireConfigError([&] {
                  internal::GetEnum<Color>(ValueOf("gren"), from_name, {"red", "green"});
                }),
-               "t.yaml", 1, "v", "unknown value 'gren' (did you mean 'green'?)");
+               "t.yaml",
+               1,
+               "v",
+               "unknown value 'gren' (did you mean 'green'?)");
   CheckLocated(RequireConfigError([&] {
                  internal::GetEnum<Color>(ValueOf("blue"), from_name, {"red", "green"});
                }),
-               "t.yaml", 1, "v", "unknown value 'blue' (expected one of 'red', 'green')");
+               "t.yaml",
+               1,
+               "v",
+               "unknown value 'blue' (expected one of 'red', 'green')");
 }
 
 TEST_CASE("MapRef rejects unknown, duplicate and non-scalar keys at the key's position", "[unit]") {
@@ -185,22 +219,40 @@ TEST_CASE("MapRef rejects unknown, duplicate and non-scalar keys at the key's po
       "  betta: 2\n";
   const NodeRef root = internal::ParseDocument(text, "m.yaml");
   const MapRef outer(root, {"outer"});
-  CheckLocated(RequireConfigError([&] { MapRef(outer.Get("outer"), {"alpha", "beta"}); }), "m.yaml",
-               LineOf(text, "betta"), "outer.betta", "unknown key (did you mean 'beta'?)");
-  CheckLocated(RequireConfigError([&] { MapRef(outer.Get("outer"), {"alpha", "gamma"}); }),
-               "m.yaml", LineOf(text, "betta"), "outer.betta",
+  CheckLocated(RequireConfigError([&] {
+                 MapRef(outer.Get("outer"), {"alpha", "beta"});
+               }),
+               "m.yaml",
+               LineOf(text, "betta"),
+               "outer.betta",
+               "unknown key (did you mean 'beta'?)");
+  CheckLocated(RequireConfigError([&] {
+                 MapRef(outer.Get("outer"), {"alpha", "gamma"});
+               }),
+               "m.yaml",
+               LineOf(text, "betta"),
+               "outer.betta",
                "unknown key (allowed keys: 'alpha', 'gamma')");
   // A hint for a key that belongs elsewhere wins over the edit distance.
   CheckLocated(RequireConfigError([&] {
-                 MapRef(outer.Get("outer"), {"alpha", "beta"}, false,
+                 MapRef(outer.Get("outer"),
+                        {"alpha", "beta"},
+                        false,
                         {internal::KeyHint{"betta", "'elsewhere.betta'"}});
                }),
-               "m.yaml", LineOf(text, "betta"), "outer.betta",
+               "m.yaml",
+               LineOf(text, "betta"),
+               "outer.betta",
                "unknown key (did you mean 'elsewhere.betta'?)");
 
   const std::string duplicated = "a: 1\nb: 2\na: 3\n";
   const NodeRef dup_root = internal::ParseDocument(duplicated, "d.yaml");
-  CheckLocated(RequireConfigError([&] { MapRef(dup_root, {"a", "b"}); }), "d.yaml", 3, "a",
+  CheckLocated(RequireConfigError([&] {
+                 MapRef(dup_root, {"a", "b"});
+               }),
+               "d.yaml",
+               3,
+               "a",
                "duplicate key (first given at line 1)");
 
   const NodeRef complex_key = internal::ParseDocument("? [1, 2]\n: 3\n", "c.yaml");
@@ -224,12 +276,19 @@ TEST_CASE("MapRef lookups, required keys and exclusive alternatives", "[unit]") 
   // A null value is located at its key (yaml-cpp would place it on the next line).
   CHECK(map.Find("b")->line() == 2);
   CHECK(map.Find("b")->IsNull());
-  CheckLocated(RequireConfigError([&] { map.Get("d"); }), "m.yaml", 1, "",
-               "missing required key 'd'");
+  CheckLocated(
+      RequireConfigError([&] { map.Get("d"); }), "m.yaml", 1, "", "missing required key 'd'");
   CHECK(map.RequireExactlyOne({"a", "d"}, "thing") == "a");
-  CheckLocated(RequireConfigError([&] { map.RequireExactlyOne({"a", "c"}, "thing"); }), "m.yaml",
-               3, "c", "give exactly one thing form, not both 'a', 'c'");
-  CHECK_THAT(RequireConfigError([&] { map.RequireExactlyOne({"d", "e"}, "thing"); }).reason(),
+  CheckLocated(RequireConfigError([&] {
+                 map.RequireExactlyOne({"a", "c"}, "thing");
+               }),
+               "m.yaml",
+               3,
+               "c",
+               "give exactly one thing form, not both 'a', 'c'");
+  CHECK_THAT(RequireConfigError([&] {
+               map.RequireExactlyOne({"d", "e"}, "thing");
+             }).reason(),
              Catch::Contains("missing thing: give exactly one of 'd', 'e'"));
 
   // null_is_empty: a null map is an empty map.
@@ -248,8 +307,11 @@ TEST_CASE("GetSequence checks length and gives element paths", "[unit]") {
   REQUIRE(items.size() == 3);
   CHECK(items[1].path() == "v[1]");
   CHECK(internal::GetDouble(items[1]) == 2.0);
-  CheckLocated(RequireConfigError([&] { internal::GetDouble(items[2]); }), "s.yaml",
-               LineOf(text, "- x"), "v[2]", "expected a number, got 'x'");
+  CheckLocated(RequireConfigError([&] { internal::GetDouble(items[2]); }),
+               "s.yaml",
+               LineOf(text, "- x"),
+               "v[2]",
+               "expected a number, got 'x'");
   CHECK_THAT(RequireConfigError([&] { internal::GetSequence(v, 2); }).reason(),
              Catch::Contains("expected a list of 2 values, got 3"));
 }
@@ -303,10 +365,12 @@ TEST_CASE("FormatDouble is shortest, exact and reads as a real", "[unit]") {
 }
 
 TEST_CASE("QuoteString round-trips through yaml-cpp", "[unit]") {
-  for (const std::string& text : {std::string("plain"), std::string("with \"quotes\" and \\"),
-                                 std::string("colon: hash # [brackets]"),
-                                 std::string("tab\tnew\nline"), std::string("ctrl\x01\x7f"),
-                                 std::string("unicode \xC3\xA9\xE2\x86\x92")}) {
+  for (const std::string& text : {std::string("plain"),
+                                  std::string("with \"quotes\" and \\"),
+                                  std::string("colon: hash # [brackets]"),
+                                  std::string("tab\tnew\nline"),
+                                  std::string("ctrl\x01\x7f"),
+                                  std::string("unicode \xC3\xA9\xE2\x86\x92")}) {
     INFO(text);
     CHECK(internal::GetString(ValueOf(internal::QuoteString(text))) == text);
   }
@@ -335,13 +399,15 @@ TEST_CASE("ParseDocument reports syntax errors with their line", "[unit]") {
   // at the line where the nesting went too deep.
   const ConfigError deep = RequireConfigError([] {
     internal::ParseDocument(
-        "a: 1\nb: " + std::string(100000, '[') + std::string(100000, ']') + "\nc: 2\n", "deep.yaml");
+        "a: 1\nb: " + std::string(100000, '[') + std::string(100000, ']') + "\nc: 2\n",
+        "deep.yaml");
   });
   CHECK(deep.line() == 2);
   CHECK_THAT(deep.reason(), Catch::StartsWith("YAML nested too deeply here"));
   CHECK_THAT(deep.reason(), !Catch::Contains("bad file"));
   std::string blocks = "a:\n";
-  for (int i = 1; i < 3000; ++i) blocks += std::string(static_cast<std::size_t>(2 * i), ' ') + "k:\n";
+  for (int i = 1; i < 3000; ++i)
+    blocks += std::string(static_cast<std::size_t>(2 * i), ' ') + "k:\n";
   const ConfigError deep_blocks =
       RequireConfigError([&] { internal::ParseDocument(blocks, "blocks.yaml"); });
   CHECK(deep_blocks.line() > 100);
@@ -365,8 +431,9 @@ TEST_CASE("ReadTextFile and WriteTextFile", "[unit]") {
   CHECK(std::string(e.what()) == missing + ": file does not exist");
   CHECK_THAT(RequireConfigError([&] { internal::ReadTextFile(dir.File("")); }).reason(),
              Catch::Contains("not a regular file"));
-  CHECK(RequireConfigError([&] { internal::WriteTextFile(dir.File("no/such/dir.txt"), "x"); })
-            .file() == dir.File("no/such/dir.txt"));
+  CHECK(RequireConfigError([&] {
+          internal::WriteTextFile(dir.File("no/such/dir.txt"), "x");
+        }).file() == dir.File("no/such/dir.txt"));
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include "formats/detection_importers.h"
 
 #include <catch2/catch.hpp>
-
 #include <string>
 #include <vector>
 
@@ -38,8 +37,8 @@ template <typename V>
 std::string FlatKeypoints(V v) {
   std::string s = "[";
   for (int j = 0; j < kCocoNumKeypoints; ++j) {
-    s += (j ? ", " : "") + std::to_string(10 + j) + ", " + std::to_string(100 + 2 * j) + ", " +
-         v(j);
+    s +=
+        (j ? ", " : "") + std::to_string(10 + j) + ", " + std::to_string(100 + 2 * j) + ", " + v(j);
   }
   return s + "]";
 }
@@ -82,8 +81,9 @@ TEST_CASE("MOTChallenge: boxes, scores and frames as constructed", "[unit]") {
 
 TEST_CASE("MOTChallenge: scores outside [0, 1] fail or are clamped", "[unit]") {
   const std::string text = "1,-1,1,1,10,10,-2.5\n2,-1,1,1,10,10,1.5\n";
-  CHECK(MotError(text) == "c0/det.txt:1: column 7 (conf): '-2.5' is outside [0, 1] "
-                          "(--clamp-scores clamps it)");
+  CHECK(MotError(text) ==
+        "c0/det.txt:1: column 7 (conf): '-2.5' is outside [0, 1] "
+        "(--clamp-scores clamps it)");
   MotChallengeOptions clamp;
   clamp.clamp_scores = true;
   const ImportedDetections d = ReadMotChallengeDetections(text, "det.txt", clamp);
@@ -119,15 +119,16 @@ TEST_CASE("MOTChallenge: bad lines name file, line, column and reason", "[unit]"
 
 TEST_CASE("COCO: keypoint results array with bbox, score and image ids", "[unit]") {
   const std::string kps = FlatKeypoints([](int j) { return j == 3 ? "0" : "0.5"; });
-  const std::string text = "[\n"
-                           "  {\"image_id\": 4, \"category_id\": 1, \"keypoints\": " +
-                           kps +
-                           ", \"score\": 0.875, \"bbox\": [10.5, 20, 100, 200]},\n"
-                           "  {\"image_id\": \"cam1/000002.jpg\", \"keypoints\": " +
-                           kps +
-                           ", \"score\": 0.25, \"box\": [1, 2, 3, 4], \"idx\": [7]},\n"
-                           "  {\"frame\": 4, \"keypoints\": " +
-                           kps + ", \"score\": 1, \"bbox\": [0, 0, 1, 1]}\n]\n";
+  const std::string text =
+      "[\n"
+      "  {\"image_id\": 4, \"category_id\": 1, \"keypoints\": " +
+      kps +
+      ", \"score\": 0.875, \"bbox\": [10.5, 20, 100, 200]},\n"
+      "  {\"image_id\": \"cam1/000002.jpg\", \"keypoints\": " +
+      kps +
+      ", \"score\": 0.25, \"box\": [1, 2, 3, 4], \"idx\": [7]},\n"
+      "  {\"frame\": 4, \"keypoints\": " +
+      kps + ", \"score\": 1, \"bbox\": [0, 0, 1, 1]}\n]\n";
   const ImportedDetections d = ReadCocoKeypoints(text, "cam1.json", {});
   REQUIRE(d.records == 3);
   REQUIRE(d.by_frame.size() == 2);
@@ -161,9 +162,10 @@ TEST_CASE("COCO: annotations object, nested triples, derived box and score", "[u
               std::to_string(100 + 2 * j) + ", " + (seen ? (j == 0 ? "0.25" : "0.75") : "0") + "]";
   }
   nested += "]";
-  const std::string text = "{\"images\": [{\"id\": 9}], \"annotations\": [{\"image_id\": 9, "
-                           "\"keypoints\": " +
-                           nested + "}], \"categories\": []}";
+  const std::string text =
+      "{\"images\": [{\"id\": 9}], \"annotations\": [{\"image_id\": 9, "
+      "\"keypoints\": " +
+      nested + "}], \"categories\": []}";
   const ImportedDetections d = ReadCocoKeypoints(text, "cam1.json", {});
   const core::Detection2D& a = d.by_frame.at(9).at(0);
   // Score: the mean confidence of the detected keypoints.
@@ -200,8 +202,9 @@ TEST_CASE("COCO: visibility flags and clamping", "[unit]") {
   CHECK(c.by_frame.at(0).at(0).keypoints[2].confidence == 1.0);
   const std::string bad_flag =
       "[{\"image_id\": 0, \"keypoints\": " + FlatKeypoints([](int) { return "0.5"; }) + "}]";
-  CHECK(CocoError(bad_flag, visibility).find("[0].keypoints[2]: visibility 0.5 of keypoint 0 is "
-                                             "not 0, 1 or 2") != std::string::npos);
+  CHECK(CocoError(bad_flag, visibility)
+            .find("[0].keypoints[2]: visibility 0.5 of keypoint 0 is "
+                  "not 0, 1 or 2") != std::string::npos);
 }
 
 TEST_CASE("COCO: bad input names file, line, column, path and reason", "[unit]") {
@@ -226,8 +229,8 @@ TEST_CASE("COCO: bad input names file, line, column, path and reason", "[unit]")
   CHECK(CocoError("[{\"image_id\": 1, \"bbox\": [0, 0, 0, 5], \"keypoints\": " + kps + "}]") ==
         "cam1.json:1:26: [0].bbox: width 0 and height 5 must be > 0");
   CHECK(CocoError("[{\"image_id\": 1, \"bbox\": [0, 0, 1, 5], \"box\": [0, 0, 1, 5], "
-                  "\"keypoints\": " + kps + "}]") ==
-        "cam1.json:1:47: [0].box: a record has both \"bbox\" and \"box\"");
+                  "\"keypoints\": " +
+                  kps + "}]") == "cam1.json:1:47: [0].box: a record has both \"bbox\" and \"box\"");
   // No box and fewer than 2 detected keypoints.
   const std::string one = FlatKeypoints([](int j) { return j == 0 ? "1" : "0"; });
   CHECK(CocoError("[{\"image_id\": 1, \"keypoints\": " + one + "}]") ==

@@ -180,7 +180,8 @@ TEST_CASE("jsonl: syntax errors give the byte column", "[unit]") {
   RequireError(line, ColumnOf(line, "q"), {"forbidden character after backslash"});
   line =
       head + "{\"box\": [0, 0, 1, 1], \"score\": 1, \"layout\": \"\xC3\x28\", \"keypoints\": []}]}";
-  RequireError(line, ColumnOf(line, "\xC3") + 1, {"ill-formed UTF-8 byte"});  // the byte that breaks it
+  RequireError(
+      line, ColumnOf(line, "\xC3") + 1, {"ill-formed UTF-8 byte"});  // the byte that breaks it
   // Nesting deeper than kJsonlMaxDepth.
   line = head + R"({"embedding": )" + std::string(20, '[') + std::string(20, ']') + "}]}";
   RequireError(line,

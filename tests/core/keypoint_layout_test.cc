@@ -94,24 +94,61 @@ std::vector<Point> PointsFor(const KeypointLayout& layout,
 }
 
 TEST_CASE("layouts have the documented joint counts and orders", "[unit]") {
-  const std::vector<std::string> coco17 = {
-      "nose",       "l_eye",   "r_eye",   "l_ear",   "r_ear",   "l_shoulder",
-      "r_shoulder", "l_elbow", "r_elbow", "l_wrist", "r_wrist", "l_hip",
-      "r_hip",      "l_knee",  "r_knee",  "l_ankle", "r_ankle"};
+  const std::vector<std::string> coco17 = {"nose",
+                                           "l_eye",
+                                           "r_eye",
+                                           "l_ear",
+                                           "r_ear",
+                                           "l_shoulder",
+                                           "r_shoulder",
+                                           "l_elbow",
+                                           "r_elbow",
+                                           "l_wrist",
+                                           "r_wrist",
+                                           "l_hip",
+                                           "r_hip",
+                                           "l_knee",
+                                           "r_knee",
+                                           "l_ankle",
+                                           "r_ankle"};
   const std::vector<std::string> body25 = {
-      "nose",      "neck",        "r_shoulder", "r_elbow",   "r_wrist",     "l_shoulder",
-      "l_elbow",   "l_wrist",     "mid_hip",    "r_hip",     "r_knee",      "r_ankle",
-      "l_hip",     "l_knee",      "l_ankle",    "r_eye",     "l_eye",       "r_ear",
-      "l_ear",     "l_big_toe",   "l_small_toe", "l_heel",   "r_big_toe",   "r_small_toe",
-      "r_heel"};
-  const std::vector<std::string> shelf14 = {
-      "r_ankle", "r_knee",     "r_hip",      "l_hip",   "l_knee",  "l_ankle",
-      "r_wrist", "r_elbow",    "r_shoulder", "l_shoulder", "l_elbow", "l_wrist",
-      "head_bottom", "head_top"};
-  const std::vector<std::string> panoptic19 = {
-      "neck",    "nose",    "mid_hip", "l_shoulder", "l_elbow", "l_wrist", "l_hip",
-      "l_knee",  "l_ankle", "r_shoulder", "r_elbow", "r_wrist", "r_hip",   "r_knee",
-      "r_ankle", "l_eye",   "l_ear",   "r_eye",      "r_ear"};
+      "nose",    "neck",      "r_shoulder",  "r_elbow", "r_wrist", "l_shoulder", "l_elbow",
+      "l_wrist", "mid_hip",   "r_hip",       "r_knee",  "r_ankle", "l_hip",      "l_knee",
+      "l_ankle", "r_eye",     "l_eye",       "r_ear",   "l_ear",   "l_big_toe",  "l_small_toe",
+      "l_heel",  "r_big_toe", "r_small_toe", "r_heel"};
+  const std::vector<std::string> shelf14 = {"r_ankle",
+                                            "r_knee",
+                                            "r_hip",
+                                            "l_hip",
+                                            "l_knee",
+                                            "l_ankle",
+                                            "r_wrist",
+                                            "r_elbow",
+                                            "r_shoulder",
+                                            "l_shoulder",
+                                            "l_elbow",
+                                            "l_wrist",
+                                            "head_bottom",
+                                            "head_top"};
+  const std::vector<std::string> panoptic19 = {"neck",
+                                               "nose",
+                                               "mid_hip",
+                                               "l_shoulder",
+                                               "l_elbow",
+                                               "l_wrist",
+                                               "l_hip",
+                                               "l_knee",
+                                               "l_ankle",
+                                               "r_shoulder",
+                                               "r_elbow",
+                                               "r_wrist",
+                                               "r_hip",
+                                               "r_knee",
+                                               "r_ankle",
+                                               "l_eye",
+                                               "l_ear",
+                                               "r_eye",
+                                               "r_ear"};
 
   CHECK(GetKeypointLayout(KeypointLayoutId::kCoco17).joints == coco17);
   CHECK(GetKeypointLayout(KeypointLayoutId::kBody25).joints == body25);
@@ -154,9 +191,8 @@ TEST_CASE("every layout's table entry is consistent", "[unit]") {
 TEST_CASE("bones connect every joint into one skeleton", "[unit]") {
   // Shelf14 is the exception: its bones are the nine PCP parts, which leave the limbs and the
   // head as separate pieces (the torso is scored from derived points by the evaluator).
-  for (KeypointLayoutId id : {KeypointLayoutId::kCoco17,
-                              KeypointLayoutId::kBody25,
-                              KeypointLayoutId::kPanoptic19}) {
+  for (KeypointLayoutId id :
+       {KeypointLayoutId::kCoco17, KeypointLayoutId::kBody25, KeypointLayoutId::kPanoptic19}) {
     const KeypointLayout& layout = GetKeypointLayout(id);
     INFO("layout " << layout.name);
     // Union-find over the bones.
@@ -364,8 +400,7 @@ TEST_CASE("COCO17 -> BODY25 / Panoptic19 derive neck and mid_hip as midpoints", 
     const KeypointMapping m = MakeKeypointMapping(KeypointLayoutId::kCoco17, to);
     std::vector<Vec3> out;
     std::vector<bool> valid;
-    ApplyKeypointMapping(
-        m, PointsFor(coco, skel), std::vector<bool>(17, true), &out, &valid);
+    ApplyKeypointMapping(m, PointsFor(coco, skel), std::vector<bool>(17, true), &out, &valid);
     const auto neck = static_cast<std::size_t>(IndexOf(target, "neck"));
     const auto mid_hip = static_cast<std::size_t>(IndexOf(target, "mid_hip"));
     CHECK(valid[neck]);

@@ -1,3 +1,5 @@
+#include "core/linear_assignment.h"
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -6,8 +8,6 @@
 #include <random>
 #include <utility>
 #include <vector>
-
-#include "core/linear_assignment.h"
 
 namespace mvtrack::core {
 namespace {
@@ -129,9 +129,8 @@ TEST_CASE("SolveAssignment equals brute force on random small matrices", "[unit]
         for (int trial = 0; trial < 6; ++trial) {
           const Eigen::MatrixXd cost = RandomCost(rows, cols, flavour, &rng);
           // Gated: a threshold that forbids roughly half the pairs. Integer ties: forbid cost 3.
-          const double max_cost = flavour == Flavour::kGated
-                                      ? 0.5
-                                      : (flavour == Flavour::kIntegerTies ? 2.0 : kInf);
+          const double max_cost =
+              flavour == Flavour::kGated ? 0.5 : (flavour == Flavour::kIntegerTies ? 2.0 : kInf);
           const Assignment a = SolveAssignment(cost, max_cost);
           CheckWellFormed(cost, max_cost, a);
           const Objective best = BruteForceBest(cost, max_cost);
@@ -233,9 +232,7 @@ TEST_CASE("SolveAssignment gating leaves rows and columns unmatched", "[unit]") 
     const Assignment at_gate = SolveAssignment(cost, 0.9);
     REQUIRE(at_gate.matches.size() == 3);
   }
-  SECTION("a NaN gate forbids everything") {
-    REQUIRE(SolveAssignment(cost, kNaN).matches.empty());
-  }
+  SECTION("a NaN gate forbids everything") { REQUIRE(SolveAssignment(cost, kNaN).matches.empty()); }
 }
 
 TEST_CASE("SolveAssignment handles empty matrices", "[unit]") {

@@ -44,8 +44,12 @@ inline CleanLog ReadCleanLog(const std::string& path, std::size_t min_cameras) {
     transport::DecodeResult d = transport::DecodeCameraDetections(e->data.data(), e->data.size());
     if (!d.ok()) throw std::runtime_error("the clean log has a bad message: " + d.reason);
     cameras[d.frame.camera_id] = true;
-    log.events.push_back(CleanEvent{e->channel, e->timestamp_us, std::move(e->data),
-                                    std::move(d.frame), d.image_width_px, d.image_height_px});
+    log.events.push_back(CleanEvent{e->channel,
+                                    e->timestamp_us,
+                                    std::move(e->data),
+                                    std::move(d.frame),
+                                    d.image_width_px,
+                                    d.image_height_px});
   }
   for (const auto& [id, unused] : cameras) log.cameras.push_back(id);
   if (log.events.empty() || log.cameras.size() < min_cameras) {

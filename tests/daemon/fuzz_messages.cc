@@ -40,7 +40,11 @@ struct Message {
 std::int64_t Extreme(std::mt19937_64& rng) {
   static const std::int64_t kValues[] = {std::numeric_limits<std::int64_t>::min(),
                                          std::numeric_limits<std::int64_t>::max(),
-                                         0, -1, 1, std::int64_t{1} << 62, -(std::int64_t{1} << 62)};
+                                         0,
+                                         -1,
+                                         1,
+                                         std::int64_t{1} << 62,
+                                         -(std::int64_t{1} << 62)};
   return kValues[rng() % (sizeof(kValues) / sizeof(kValues[0]))];
 }
 
@@ -98,14 +102,13 @@ int Run(int argc, char** argv) {
         if (decoded[k].ok()) {
           mvtrack::core::CameraFrame f = decoded[k].frame;
           const auto shift = [&](std::int64_t range) {
-            return static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(2 * range)) -
-                   range;
+            return static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(2 * range)) - range;
           };
           if (rng() % 2) f.utime = rng() % 3 ? f.utime + shift(3600000000) : Extreme(rng);
           if (rng() % 2) f.frame = rng() % 3 ? f.frame + shift(1000) : Extreme(rng);
           if (rng() % 4 == 0) f.camera_id = static_cast<mvtrack::CameraId>(rng() % 10);
-          bytes = transport::EncodeCameraDetections(f, decoded[k].image_width_px,
-                                                    decoded[k].image_height_px);
+          bytes = transport::EncodeCameraDetections(
+              f, decoded[k].image_width_px, decoded[k].image_height_px);
           channel = transport::DetectionsChannelForCamera(f.camera_id);
         }
         break;

@@ -25,12 +25,11 @@
 #include <string>
 #include <vector>
 
+#include "clean_log.h"
 #include "core/detection.h"
 #include "transport/channels.h"
 #include "transport/codec.h"
 #include "transport/log_io.h"
-
-#include "clean_log.h"
 
 namespace {
 
@@ -66,8 +65,8 @@ int Run(int argc, char** argv) {
   std::unique_ptr<transport::LogWriter> out = transport::LogWriter::Open(argv[2], &why);
   if (!out) throw std::runtime_error(why);
   auto write = [&](const Event& e, const CameraFrame& f) {
-    if (!out->Write(e.channel, e.time_us,
-                    transport::EncodeCameraDetections(f, e.width, e.height), &why)) {
+    if (!out->Write(
+            e.channel, e.time_us, transport::EncodeCameraDetections(f, e.width, e.height), &why)) {
       throw std::runtime_error(why);
     }
   };

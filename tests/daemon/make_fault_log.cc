@@ -35,13 +35,12 @@
 #include <string>
 #include <vector>
 
+#include "clean_log.h"
 #include "core/detection.h"
 #include "tracker/types.h"
 #include "transport/channels.h"
 #include "transport/codec.h"
 #include "transport/log_io.h"
-
-#include "clean_log.h"
 
 namespace {
 
@@ -129,8 +128,8 @@ int Run(int argc, char** argv) {
       write(e.channel, e.time_us, e.data);
     }
     if (cam == cam_a && k % 10 == 0) {
-      std::vector<std::uint8_t> half(e.data.begin(),
-                                     e.data.begin() + static_cast<std::ptrdiff_t>(e.data.size() / 2));
+      std::vector<std::uint8_t> half(
+          e.data.begin(), e.data.begin() + static_cast<std::ptrdiff_t>(e.data.size() / 2));
       write(e.channel, e.time_us, half);
       ++counts["truncated"];
     }
@@ -138,7 +137,8 @@ int Run(int argc, char** argv) {
       mvtrack::tracker::Frame3D tracks;
       tracks.frame = e.frame.frame;
       tracks.utime = e.frame.utime;
-      write(e.channel, e.time_us,
+      write(e.channel,
+            e.time_us,
             transport::EncodeTracks(tracks, mvtrack::core::KeypointLayoutId::kNone, e.time_us, 0));
       ++counts["foreign"];
     }
@@ -177,8 +177,16 @@ int Run(int argc, char** argv) {
   }
   if (!out->Flush(&why)) throw std::runtime_error(why);
   std::ofstream txt(argv[3], std::ios::trunc);
-  for (const char* key : {"truncated", "foreign", "oversized", "nan", "outside", "unknown", "flood",
-                          "backwards", "far_future", "duplicate"}) {
+  for (const char* key : {"truncated",
+                          "foreign",
+                          "oversized",
+                          "nan",
+                          "outside",
+                          "unknown",
+                          "flood",
+                          "backwards",
+                          "far_future",
+                          "duplicate"}) {
     txt << key << "=" << counts[key] << "\n";
   }
   txt.close();

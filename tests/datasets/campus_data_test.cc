@@ -71,8 +71,8 @@ TEST_CASE("Campus real data (skipped without ../shared/data/campus): 3D GT repro
       for (std::size_t i = 0; i < ds.detections[f][c].detections.size(); ++i) {
         const std::int64_t id = ds.source_ids[f][c][i];
         const auto& objects = ds.ground_truth[f].objects;
-        const auto it = std::find_if(objects.begin(), objects.end(),
-                                     [&](const eval::EvalObject& o) { return o.id == id; });
+        const auto it = std::find_if(
+            objects.begin(), objects.end(), [&](const eval::EvalObject& o) { return o.id == id; });
         if (it == objects.end()) continue;  // a 2D annotation without a 3D one
         for (std::size_t j = 0; j < 14; ++j) {
           const std::optional<Vec2> px = ds.cameras[c].Project(*it->joints[j]);

@@ -108,8 +108,8 @@ TEST_CASE("CorruptionOptions validation", "[unit]") {
 TEST_CASE("The clean variant passes detections through unchanged", "[unit]") {
   const CleanFrames clean = MakeCleanFrames(20);
   for (std::size_t f = 0; f < clean.frames.size(); ++f) {
-    const CorruptedFrame out = CorruptCameraFrame(clean.frames[f], clean.ids[f], clean.pool, kWidth,
-                                                  kHeight, CorruptionOptions::Clean());
+    const CorruptedFrame out = CorruptCameraFrame(
+        clean.frames[f], clean.ids[f], clean.pool, kWidth, kHeight, CorruptionOptions::Clean());
     CHECK(out.frame.frame == clean.frames[f].frame);
     CHECK(out.frame.camera_id == 3);
     CHECK(out.frame.utime == clean.frames[f].utime);

@@ -42,10 +42,10 @@ inline std::optional<std::filesystem::path> FindDataset(const std::string& folde
 
 /// Declares `const std::filesystem::path& root` for dataset `folder`, or leaves the test (see
 /// FindDataset).
-#define MVTRACK_REQUIRE_DATASET(root, folder)                                       \
-  const std::optional<std::filesystem::path> root##_found =                        \
-      ::mvtrack::datasets::testing::FindDataset(folder);                            \
-  if (!root##_found.has_value()) return;                                            \
+#define MVTRACK_REQUIRE_DATASET(root, folder)               \
+  const std::optional<std::filesystem::path> root##_found = \
+      ::mvtrack::datasets::testing::FindDataset(folder);    \
+  if (!root##_found.has_value()) return;                    \
   [[maybe_unused]] const std::filesystem::path& root = *root##_found
 
 /// Loaded datasets, keyed by a description of the options, loaded once per test binary.

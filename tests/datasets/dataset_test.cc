@@ -1,7 +1,7 @@
 #include "datasets/dataset.h"
 
-#include <catch2/catch.hpp>
 #include <Eigen/Dense>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -20,12 +20,11 @@ core::Keypoint2D Kp(double x, double y, double confidence) {
   return kp;
 }
 
-TEST_CASE("BoxFromKeypoints pads the detected keypoints' bounds by 10% of their height",
-          "[unit]") {
+TEST_CASE("BoxFromKeypoints pads the detected keypoints' bounds by 10% of their height", "[unit]") {
   // Detected: x in [100, 140], y in [50, 250] (height 200); the confidence-0 point at (0, 0)
   // must be ignored.
-  const std::vector<core::Keypoint2D> kps = {Kp(120, 50, 0.9), Kp(100, 150, 0.5), Kp(0, 0, 0.0),
-                                             Kp(140, 250, 0.7)};
+  const std::vector<core::Keypoint2D> kps = {
+      Kp(120, 50, 0.9), Kp(100, 150, 0.5), Kp(0, 0, 0.0), Kp(140, 250, 0.7)};
   const std::optional<core::BoxPx> box = BoxFromKeypoints(kps);
   REQUIRE(box.has_value());
   CHECK(box->x_min == Approx(100 - 20));
@@ -83,9 +82,9 @@ TEST_CASE("FootprintFromJoints drops the hip midpoint onto z = 0, else the centr
   CHECK(f->y() == Approx(3.5));
   CHECK(f->z() == 0.0);
 
-  CHECK_FALSE(FootprintFromJoints(std::vector<std::optional<Vec3>>(14),
-                                  core::KeypointLayoutId::kShelf14)
-                  .has_value());
+  CHECK_FALSE(
+      FootprintFromJoints(std::vector<std::optional<Vec3>>(14), core::KeypointLayoutId::kShelf14)
+          .has_value());
 }
 
 TEST_CASE("FrameUtime is frame / fps in microseconds", "[unit]") {
@@ -97,8 +96,8 @@ TEST_CASE("FrameUtime is frame / fps in microseconds", "[unit]") {
 
 TEST_CASE("DefaultDataRoot honours MVTRACK_DATA", "[unit]") {
   const char* old = std::getenv("MVTRACK_DATA");
-  const std::optional<std::string> saved = old != nullptr ? std::optional<std::string>(old)
-                                                          : std::nullopt;
+  const std::optional<std::string> saved =
+      old != nullptr ? std::optional<std::string>(old) : std::nullopt;
   setenv("MVTRACK_DATA", "/some/where/data", 1);
   CHECK(DefaultDataRoot() == std::filesystem::path("/some/where/data"));
   unsetenv("MVTRACK_DATA");

@@ -195,9 +195,9 @@ TEST_CASE("LoadShelfPeer4DA maps SKEL19 to shelf14 as 4D Association's evaluatio
   TempDir dir;
   std::vector<int> all(19);
   for (int j = 0; j < 19; ++j) all[static_cast<std::size_t>(j)] = j;
-  dir.Write("shelf/4d_association/skel.txt",
-            "19 2\n2\n" + Skel19Person(4, {9}) + Skel19Person(1, all) + "1\n" +
-                Skel19Person(7, {}));
+  dir.Write(
+      "shelf/4d_association/skel.txt",
+      "19 2\n2\n" + Skel19Person(4, {9}) + Skel19Person(1, all) + "1\n" + Skel19Person(7, {}));
   const PeerOutput peer = LoadShelfPeer4DA(dir.path());
   CHECK(peer.name == "4d_association");
   CHECK(peer.native_layout == core::KeypointLayoutId::kNone);
@@ -256,8 +256,7 @@ std::string CampusCalibration(const Mat3& K, const Mat3& R, const Vec3& centre_m
          ", \"dist_coeffs\": [-0.2, 0.1, 0, 0]}}}";
 }
 
-TEST_CASE("LoadCampus on a synthetic Campus: K de-normalised, Tw inverted, cm, 25 fps",
-          "[unit]") {
+TEST_CASE("LoadCampus on a synthetic Campus: K de-normalised, Tw inverted, cm, 25 fps", "[unit]") {
   TempDir dir;
   Mat3 K;
   K << 438.0, 0.0, 185.4, 0.0, 437.0, 139.3, 0.0, 0.0, 1.0;
@@ -340,9 +339,9 @@ TEST_CASE("LoadWildtrack and WildtrackGroundPoints on a synthetic WILDTRACK", "[
       "{\"index\": 0, \"name\": \"CVLab1\", \"K\": " + Matrix(K) +
       ", \"dist\": [0, 0, 0, 0, 0], \"rvec\": " + Array({rvec.x(), rvec.y(), rvec.z()}) +
       ", \"tvec_cm\": " + Array({t_cm.x(), t_cm.y(), t_cm.z()}) + ", \"R\": " + Matrix(R) + "}";
-  dir.Write("wildtrack/derived/calibration_wildtrack.json",
-            "{\"image_size\": [1920, 1080], \"world_units\": \"cm\", \"cameras\": [" + camera +
-                "]}");
+  dir.Write(
+      "wildtrack/derived/calibration_wildtrack.json",
+      "{\"image_size\": [1920, 1080], \"world_units\": \"cm\", \"cameras\": [" + camera + "]}");
   // H = K [r1 r2 t] maps ground (x, y, 1) in cm to pixels.
   Mat3 H;
   H.col(0) = K * R.col(0);
@@ -400,8 +399,8 @@ TEST_CASE("LoadWildtrack and WildtrackGroundPoints on a synthetic WILDTRACK", "[
   CHECK(with_gt.ground_truth[1].objects[1].id == 1);
   CHECK((with_gt.ground_truth[1].objects[0].position - Vec3(2.0, 3.0, 0.0)).norm() < 1e-12);
   CHECK((with_gt.ground_truth[1].objects[1].position - Vec3(8.975, 26.975, 0.0)).norm() < 1e-9);
-  for (const char* bad : {"1800 0\n", "1801 0 0\n", "1800 480 0\n", "1800 0 -1\n",
-                          "1800 0 0 7\n", "x 0 0\n"}) {
+  for (const char* bad :
+       {"1800 0\n", "1801 0 0\n", "1800 480 0\n", "1800 0 -1\n", "1800 0 0 7\n", "x 0 0\n"}) {
     dir.Write("wildtrack/mvdet/gt.txt", bad);
     INFO(bad);
     CHECK_THROWS_AS(WildtrackGroundTruth(dir.path(), 360, 360), DatasetError);
@@ -412,8 +411,13 @@ TEST_CASE("MergeGroundPoints merges across views within the radius only", "[unit
   // Person A seen by cameras 0, 1, 2 within a few cm; person B 0.25 m away seen by 0 and 3; a
   // second camera-0 point near A (a different person in the same view, 0.12 m from A's
   // camera-0 point, > 0.1 m from the others) must stay apart.
-  const std::vector<Vec2> points = {{1.00, 1.00}, {1.03, 0.99}, {0.98, 1.02}, {1.25, 1.00},
-                                    {1.27, 1.01}, {1.02, 1.12}, {5.0, 5.0}};
+  const std::vector<Vec2> points = {{1.00, 1.00},
+                                    {1.03, 0.99},
+                                    {0.98, 1.02},
+                                    {1.25, 1.00},
+                                    {1.27, 1.01},
+                                    {1.02, 1.12},
+                                    {5.0, 5.0}};
   const std::vector<int> cameras = {0, 1, 2, 0, 3, 0, 4};
   const std::vector<WildtrackGroundPoint> merged = MergeGroundPoints(points, cameras, 0.1);
   REQUIRE(merged.size() == 4);
@@ -590,8 +594,7 @@ TEST_CASE("Malformed Campus, WILDTRACK and Panoptic inputs are reported", "[unit
   e = CatchDatasetError([&] { LoadPanoptic(dir.path(), options); });
   CHECK(e.problem().find("00_99") != std::string::npos);
   e = CatchDatasetError([&] { LoadPanoptic(dir.path()); });
-  CHECK(e.file() ==
-        (dir.path() / "panoptic/160906_band2/calibration_160906_band2.json").string());
+  CHECK(e.file() == (dir.path() / "panoptic/160906_band2/calibration_160906_band2.json").string());
 }
 
 }  // namespace

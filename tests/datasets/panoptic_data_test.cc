@@ -23,9 +23,8 @@ PanopticOptions Clean(const std::string& sequence) {
 TEST_CASE("Panoptic real data (skipped without ../shared/data/panoptic): sizes and cameras",
           "[data]") {
   MVTRACK_REQUIRE_DATASET(root, "panoptic");
-  for (const auto& [sequence, first] :
-       std::vector<std::pair<std::string, FrameIndex>>{{"160906_band1", 168},
-                                                       {"160906_band2", 139}}) {
+  for (const auto& [sequence, first] : std::vector<std::pair<std::string, FrameIndex>>{
+           {"160906_band1", 168}, {"160906_band2", 139}}) {
     INFO(sequence);
     const Dataset ds = LoadPanoptic(root, Clean(sequence));
     CHECK(ds.name == "panoptic/" + sequence);
@@ -70,9 +69,10 @@ TEST_CASE("Panoptic real data (skipped without ../shared/data/panoptic): sizes a
   }
 }
 
-TEST_CASE("Panoptic real data (skipped without ../shared/data/panoptic): the 3 bodies lie "
-          "inside the 6 default cameras",
-          "[data]") {
+TEST_CASE(
+    "Panoptic real data (skipped without ../shared/data/panoptic): the 3 bodies lie "
+    "inside the 6 default cameras",
+    "[data]") {
   MVTRACK_REQUIRE_DATASET(root, "panoptic");
   const Dataset ds = LoadPanoptic(root, Clean("160906_band2"));
   // Every valid joint of every body, in every frame, is detected in each default camera (the
@@ -135,8 +135,10 @@ TEST_CASE("Panoptic real data (skipped without ../shared/data/panoptic): camera 
     for (std::size_t c = 0; c < 3; ++c) {
       for (const core::Detection2D& d : frame[c].detections) {
         for (const core::Keypoint2D& kp : d.keypoints) {
-          if (kp.confidence == 0.0) ++dropped;
-          else CHECK(a.cameras[c].InImage(kp.position_px));
+          if (kp.confidence == 0.0)
+            ++dropped;
+          else
+            CHECK(a.cameras[c].InImage(kp.position_px));
         }
       }
     }

@@ -3,8 +3,8 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <cmath>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <vector>
 
 #include "data_test_util.h"
@@ -77,9 +77,10 @@ TEST_CASE("WILDTRACK real data (skipped without ../shared/data/wildtrack): sizes
   CHECK(ds.gt_layout == core::KeypointLayoutId::kNone);
 }
 
-TEST_CASE("WILDTRACK real data (skipped without ../shared/data/wildtrack): ground truth of any "
-          "annotated frames",
-          "[data]") {
+TEST_CASE(
+    "WILDTRACK real data (skipped without ../shared/data/wildtrack): ground truth of any "
+    "annotated frames",
+    "[data]") {
   MVTRACK_REQUIRE_DATASET(root, "wildtrack");
   // All 400 annotated frames (image frames 0, 5, ..., 1995), positions on the 2.5 cm grid.
   const eval::EvalSequence all = WildtrackGroundTruth(root, 0, 399);
@@ -100,9 +101,10 @@ TEST_CASE("WILDTRACK real data (skipped without ../shared/data/wildtrack): groun
   CHECK_THROWS_AS(WildtrackGroundTruth(root, 10, 5), DatasetError);
 }
 
-TEST_CASE("WILDTRACK real data (skipped without ../shared/data/wildtrack): calibration agrees "
-          "with the homographies",
-          "[data]") {
+TEST_CASE(
+    "WILDTRACK real data (skipped without ../shared/data/wildtrack): calibration agrees "
+    "with the homographies",
+    "[data]") {
   MVTRACK_REQUIRE_DATASET(root, "wildtrack");
   const Dataset ds = LoadWildtrack(root);
   const std::vector<Mat3> homographies = WildtrackHomographies(root);
@@ -127,8 +129,7 @@ TEST_CASE("WILDTRACK real data (skipped without ../shared/data/wildtrack): calib
       worst_m = std::max(worst_m, (by_ray.head<2>() - by_h).norm());
     }
   }
-  INFO("largest homography-vs-calibration ground point difference, frame 360: " << worst_m
-                                                                                << " m");
+  INFO("largest homography-vs-calibration ground point difference, frame 360: " << worst_m << " m");
   CHECK(worst_m < 0.01);
 }
 

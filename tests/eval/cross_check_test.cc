@@ -161,7 +161,10 @@ BruteForceResult BruteForce(const EvalSequence& gt, const EvalSequence& pred, do
   }
   std::set<std::int64_t> used;
   r.idtp = BestIdtp(std::vector<std::int64_t>(gt_ids.begin(), gt_ids.end()),
-                    std::vector<std::int64_t>(pred_ids.begin(), pred_ids.end()), c, 0, &used);
+                    std::vector<std::int64_t>(pred_ids.begin(), pred_ids.end()),
+                    c,
+                    0,
+                    &used);
   return r;
 }
 
@@ -235,8 +238,8 @@ TEST_CASE("MOTA, MOTP and IDF1 agree with a brute-force implementation", "[unit]
       REQUIRE(r.clear.mota == Approx(mota).margin(1e-12));
     }
     REQUIRE(r.identity.idtp == b.idtp);
-    const double idf1 = 2.0 * static_cast<double>(b.idtp) /
-                        static_cast<double>(b.num_objects + b.num_predictions);
+    const double idf1 =
+        2.0 * static_cast<double>(b.idtp) / static_cast<double>(b.num_objects + b.num_predictions);
     REQUIRE(r.identity.idf1 == Approx(idf1).margin(1e-12));
     total_switches += b.switches;
     total_fp += b.false_positives;

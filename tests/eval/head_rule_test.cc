@@ -1,7 +1,6 @@
 #include "eval/head_rule.h"
 
 #include <catch2/catch.hpp>
-
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -55,26 +54,25 @@ TEST_CASE("4D Association head top: 0.125 m along the facing direction plus 0.14
           "[unit][eval]") {
   // (neck - mid_hip) x (r_shoulder - l_shoulder) = (0, 0, 0.5) x (0.4, 0, 0) = (0, 0.2, 0).
   const Vec3 bottom(0.0, 0.0, 1.6);
-  const auto top = FourDAssociationHeadTop(bottom, {0.0, 0.0, 1.5}, {0.0, 0.0, 1.0},
-                                           {0.2, 0.0, 1.5}, {-0.2, 0.0, 1.5});
+  const auto top = FourDAssociationHeadTop(
+      bottom, {0.0, 0.0, 1.5}, {0.0, 0.0, 1.0}, {0.2, 0.0, 1.5}, {-0.2, 0.0, 1.5});
   REQUIRE(top.has_value());
   CHECK(top->x() == Approx(0.0).margin(1e-12));
   CHECK(top->y() == Approx(0.125));
   CHECK(top->z() == Approx(1.6 + 0.145));
   // A person turned by 90 degrees faces -x: the offset turns with it.
-  const auto turned = FourDAssociationHeadTop(bottom, {0.0, 0.0, 1.5}, {0.0, 0.0, 1.0},
-                                              {0.0, 0.2, 1.5}, {0.0, -0.2, 1.5});
+  const auto turned = FourDAssociationHeadTop(
+      bottom, {0.0, 0.0, 1.5}, {0.0, 0.0, 1.0}, {0.0, 0.2, 1.5}, {0.0, -0.2, 1.5});
   REQUIRE(turned.has_value());
   CHECK(turned->x() == Approx(-0.125));
   CHECK(turned->y() == Approx(0.0).margin(1e-12));
   // No facing direction when the spine is parallel to the shoulder line (or zero).
-  CHECK_FALSE(FourDAssociationHeadTop(bottom, {0.0, 0.0, 1.5}, {0.0, 0.0, 1.5}, {0.2, 0.0, 1.5},
-                                      {-0.2, 0.0, 1.5})
+  CHECK_FALSE(FourDAssociationHeadTop(
+                  bottom, {0.0, 0.0, 1.5}, {0.0, 0.0, 1.5}, {0.2, 0.0, 1.5}, {-0.2, 0.0, 1.5})
                   .has_value());
 }
 
-TEST_CASE("ApplyHeadRule re-derives only head_top of skeletons mapped to shelf14",
-          "[unit][eval]") {
+TEST_CASE("ApplyHeadRule re-derives only head_top of skeletons mapped to shelf14", "[unit][eval]") {
   const auto b25 = core::KeypointLayoutId::kBody25;
   const auto shelf = core::KeypointLayoutId::kShelf14;
   const Joints source = UprightBody25();

@@ -230,7 +230,8 @@ TEST_CASE("The derived torso endpoint and per-group PCP", "[unit]") {
     g.joints[static_cast<std::size_t>(J("head_top"))] = std::nullopt;
     const PcpResult r = EvaluatePcp(testing::Sequence({{0, {g}}}),
                                     testing::Sequence({{0, {Person(1, 0.0, 0.0)}}}),
-                                    ShelfCampusPcpProtocol(), PcpOptions{});
+                                    ShelfCampusPcpProtocol(),
+                                    PcpOptions{});
     CHECK(r.actors[0].bone_total[8] == 0);
     CHECK(r.actors[0].total_parts == 9);
     CHECK(r.actors[0].pcp == 1.0);
@@ -248,8 +249,8 @@ TEST_CASE("The prediction with the smallest mean joint error is selected", "[uni
   const PcpResult r = EvaluatePcp(gt, pred, ShelfCampusPcpProtocol(), PcpOptions{});
   REQUIRE(r.valid);
   CHECK(r.actors[0].pcp == 1.0);
-  const PcpResult only_far = EvaluatePcp(gt, testing::Sequence({{0, {Person(3, 0.0, 0.2)}}}),
-                                         ShelfCampusPcpProtocol(), PcpOptions{});
+  const PcpResult only_far = EvaluatePcp(
+      gt, testing::Sequence({{0, {Person(3, 0.0, 0.2)}}}), ShelfCampusPcpProtocol(), PcpOptions{});
   CHECK(only_far.actors[0].pcp < 1.0);
 }
 

@@ -234,8 +234,8 @@ TEST_CASE("A GT keeps its last matched track across a gap even if another is clo
   // stays with 5 (no switch) and 6 is a false positive; a plain per-frame assignment would have
   // picked 6 and counted a switch.
   EvalSequence gt = testing::Sequence({{0, {At(1, 0.0, 0.0)}}, {2, {At(1, 0.0, 0.0)}}});
-  EvalSequence pred = testing::Sequence(
-      {{0, {At(5, 0.0, 0.0)}}, {1, {}}, {2, {At(5, 0.4, 0.0), At(6, 0.1, 0.0)}}});
+  EvalSequence pred =
+      testing::Sequence({{0, {At(5, 0.0, 0.0)}}, {1, {}}, {2, {At(5, 0.4, 0.0), At(6, 0.1, 0.0)}}});
   const TrackingEvaluation r = EvaluateTracking(gt, pred, TrackingOptions{});
   REQUIRE(r.valid);
   CHECK(r.clear.num_frames == 3);
@@ -253,11 +253,11 @@ TEST_CASE("MT / PT / ML classification at the 80% and 20% boundaries", "[unit]")
     std::vector<FrameIndex> tracked;
   };
   const std::vector<Spec> specs = {
-      {1, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, {0, 1, 2, 3, 4, 5, 6, 7}},     // 8/10 = 80% -> MT
-      {2, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, {0, 1, 2, 5, 6, 7, 8}},        // 7/10 -> PT, 1 frag.
-      {3, {0, 1, 2, 3, 4}, {2}},                                         // 1/5 = 20% -> PT
-      {4, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, {9}},                          // 1/10 -> ML
-      {5, {0, 1, 2}, {}},                                                // 0/3 -> ML
+      {1, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, {0, 1, 2, 3, 4, 5, 6, 7}},  // 8/10 = 80% -> MT
+      {2, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, {0, 1, 2, 5, 6, 7, 8}},     // 7/10 -> PT, 1 frag.
+      {3, {0, 1, 2, 3, 4}, {2}},                                      // 1/5 = 20% -> PT
+      {4, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, {9}},                       // 1/10 -> ML
+      {5, {0, 1, 2}, {}},                                             // 0/3 -> ML
   };
   EvalSequence gt;
   EvalSequence pred;

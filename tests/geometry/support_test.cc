@@ -2,8 +2,8 @@
 // cameras). They live in the geometry suite because the helpers build on geometry types; other
 // suites rely on them, so they must themselves be right.
 
-#include <catch2/catch.hpp>
 #include <Eigen/Geometry>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <random>

@@ -84,8 +84,7 @@ TEST_CASE("TriangulateTwoView recovers points exactly from clean projections", "
   }
 }
 
-TEST_CASE("TriangulateTwoView from precomputed rows equals the pixel form bit for bit",
-          "[unit]") {
+TEST_CASE("TriangulateTwoView from precomputed rows equals the pixel form bit for bit", "[unit]") {
   const std::vector<Mat34> p = Projections(EightCameraRing());
   std::mt19937 rng(302);
   std::normal_distribution<double> noise(0.0, 2.0);

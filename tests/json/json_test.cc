@@ -84,8 +84,17 @@ class Generator {
   }
 
   void String() {
-    static const char* const kPieces[] = {"a", "\\\"", "\\\\", "\\n", "\\u00e9", "\xc3\xa9",
-                                          "\\ud83d\\ude00", "/", "\\/", "xyz", "\\\\\\\""};
+    static const char* const kPieces[] = {"a",
+                                          "\\\"",
+                                          "\\\\",
+                                          "\\n",
+                                          "\\u00e9",
+                                          "\xc3\xa9",
+                                          "\\ud83d\\ude00",
+                                          "/",
+                                          "\\/",
+                                          "xyz",
+                                          "\\\\\\\""};
     text_ += '"';
     const int n = Pick(4);
     for (int i = 0; i < n; ++i) text_ += kPieces[Pick(11)];
@@ -97,8 +106,8 @@ class Generator {
     const int kind = depth > 4 ? Pick(4) : Pick(6);
     switch (kind) {
       case 0: {
-        static const char* const kNumbers[] = {"0", "-0", "12", "3.25", "-1e5", "6E-2", "1.5e+300",
-                                               "123456789012345678901234567890"};
+        static const char* const kNumbers[] = {
+            "0", "-0", "12", "3.25", "-1e5", "6E-2", "1.5e+300", "123456789012345678901234567890"};
         text_ += kNumbers[Pick(8)];
         break;
       }

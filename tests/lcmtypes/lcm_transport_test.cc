@@ -3,14 +3,13 @@
 
 #include <unistd.h>
 
+#include <catch2/catch.hpp>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <lcm/lcm-cpp.hpp>
 #include <string>
 #include <vector>
-
-#include <catch2/catch.hpp>
-#include <lcm/lcm-cpp.hpp>
 
 #include "lcmtypes/sample_messages.h"
 

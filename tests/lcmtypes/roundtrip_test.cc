@@ -1,14 +1,13 @@
 // Encode/decode behaviour of the generated C++ types: lossless round trips, clean failure on
 // truncated, foreign, corrupted and hostile input.
 
+#include <catch2/catch.hpp>
 #include <cstdint>
 #include <functional>
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <catch2/catch.hpp>
 
 #include "lcmtypes/sample_messages.h"
 

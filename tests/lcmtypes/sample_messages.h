@@ -12,9 +12,6 @@
 /// and `"`/`\` escaped as `\xHH`.
 
 #include <cstdint>
-#include <string>
-#include <vector>
-
 #include <mvtrack/camera_detections_t.hpp>
 #include <mvtrack/camera_status_t.hpp>
 #include <mvtrack/detection_t.hpp>
@@ -23,6 +20,8 @@
 #include <mvtrack/track3d_t.hpp>
 #include <mvtrack/tracker_status_t.hpp>
 #include <mvtrack/tracks3d_t.hpp>
+#include <string>
+#include <vector>
 
 namespace mvtrack::lcmtypes_test {
 
@@ -75,10 +74,10 @@ std::vector<std::uint8_t> Encode(const Msg& msg) {
 /// One message of the sample log.
 struct SampleEvent {
   std::string channel;
-  std::string type_name;           ///< getTypeName(), e.g. "camera_detections_t"
-  std::int64_t fingerprint = 0;    ///< getHash()
-  std::vector<std::uint8_t> bytes; ///< the encoded message
-  std::string dump;                ///< Dump() of the message
+  std::string type_name;            ///< getTypeName(), e.g. "camera_detections_t"
+  std::int64_t fingerprint = 0;     ///< getHash()
+  std::vector<std::uint8_t> bytes;  ///< the encoded message
+  std::string dump;                 ///< Dump() of the message
 };
 
 /// The sample log's messages, in publish order: every type at least once, top-level types with

@@ -8,9 +8,8 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-#include <string>
-
 #include <lcm/lcm-cpp.hpp>
+#include <string>
 
 #include "lcmtypes/sample_messages.h"
 
@@ -37,8 +36,7 @@ int main(int argc, char** argv) {
       if (lc.publish(event.channel,
                      event.bytes.data(),
                      static_cast<unsigned int>(event.bytes.size())) != 0) {
-        std::cerr << "publishing to " << log_path << " failed on channel " << event.channel
-                  << "\n";
+        std::cerr << "publishing to " << log_path << " failed on channel " << event.channel << "\n";
         return 1;
       }
     }

@@ -35,8 +35,10 @@ struct Person {
 
 // Joint offsets from the body centre (a small "skeleton": head, chest, shoulders, feet).
 const std::vector<Vec3>& SkeletonOffsets() {
-  static const std::vector<Vec3> offsets = {Vec3(0.0, 0.0, 0.7), Vec3(0.0, 0.0, 0.3),
-                                            Vec3(0.2, 0.0, 0.4), Vec3(-0.2, 0.0, 0.4),
+  static const std::vector<Vec3> offsets = {Vec3(0.0, 0.0, 0.7),
+                                            Vec3(0.0, 0.0, 0.3),
+                                            Vec3(0.2, 0.0, 0.4),
+                                            Vec3(-0.2, 0.0, 0.4),
                                             Vec3(0.0, 0.0, -0.9)};
   return offsets;
 }
@@ -49,12 +51,13 @@ Trajectory Straight(const Vec3& start, const Vec3& velocity_m_per_frame) {
 }
 
 // Members (camera c, track tracks[c]) spanning [first, last], sorted by camera.
-std::vector<core::TrackletMember> Members(const std::vector<TrackId2D>& tracks, FrameIndex first,
+std::vector<core::TrackletMember> Members(const std::vector<TrackId2D>& tracks,
+                                          FrameIndex first,
                                           FrameIndex last) {
   std::vector<core::TrackletMember> m;
   for (std::size_t c = 0; c < tracks.size(); ++c) {
-    m.push_back({static_cast<CameraId>(c), tracks[c], first, last,
-                 static_cast<int>(last - first + 1)});
+    m.push_back(
+        {static_cast<CameraId>(c), tracks[c], first, last, static_cast<int>(last - first + 1)});
   }
   return m;
 }
@@ -72,9 +75,12 @@ std::vector<core::TrackletMember> LiveOf(const std::vector<core::Tracklet3D>& tr
 
 // The short-term tracklet of a trajectory in window k: frames [k*delta, k*delta + nu), every
 // joint at its ground-truth position plus independent Gaussian noise.
-core::Tracklet3D MakeTracklet(const Trajectory& centre, std::int64_t window,
-                              const std::vector<Vec3>& offsets, double noise_sigma_m,
-                              std::mt19937* rng, const std::vector<TrackId2D>& tracks) {
+core::Tracklet3D MakeTracklet(const Trajectory& centre,
+                              std::int64_t window,
+                              const std::vector<Vec3>& offsets,
+                              double noise_sigma_m,
+                              std::mt19937* rng,
+                              const std::vector<TrackId2D>& tracks) {
   std::normal_distribution<double> noise(0.0, noise_sigma_m);
   core::Tracklet3D tracklet;
   for (FrameIndex t = window * kDelta; t < window * kDelta + kNu; ++t) {
@@ -100,8 +106,10 @@ struct SceneWindow {
   std::vector<int> person_of_tracklet;
 };
 
-SceneWindow MakeWindow(const std::vector<Person>& people, std::int64_t window,
-                       double noise_sigma_m, std::mt19937* rng) {
+SceneWindow MakeWindow(const std::vector<Person>& people,
+                       std::int64_t window,
+                       double noise_sigma_m,
+                       std::mt19937* rng) {
   std::vector<int> order;
   for (int p = 0; p < static_cast<int>(people.size()); ++p) {
     if (people[static_cast<std::size_t>(p)].present(window)) order.push_back(p);
@@ -127,7 +135,9 @@ const LinkedTrack* FindTrack(const WindowLinker& linker, TrackId3D id) {
 }
 
 // A single-point (box mode) tracklet at a fixed place, with members `tracks` (cameras 0, 1, ...).
-core::Tracklet3D ConstantTracklet(FrameIndex first, FrameIndex last, const Vec3& point,
+core::Tracklet3D ConstantTracklet(FrameIndex first,
+                                  FrameIndex last,
+                                  const Vec3& point,
                                   const std::vector<TrackId2D>& tracks = {1, 2}) {
   core::Tracklet3D tracklet;
   for (FrameIndex t = first; t <= last; ++t) {
@@ -141,7 +151,9 @@ core::Tracklet3D ConstantTracklet(FrameIndex first, FrameIndex last, const Vec3&
 }
 
 // A single-point tracklet moving along `centre` over [first, last].
-core::Tracklet3D MovingTracklet(FrameIndex first, FrameIndex last, const Trajectory& centre,
+core::Tracklet3D MovingTracklet(FrameIndex first,
+                                FrameIndex last,
+                                const Trajectory& centre,
                                 const std::vector<TrackId2D>& tracks) {
   core::Tracklet3D tracklet = ConstantTracklet(first, last, Vec3::Zero(), tracks);
   for (std::size_t f = 0; f < tracklet.frames.size(); ++f) {
@@ -150,7 +162,8 @@ core::Tracklet3D MovingTracklet(FrameIndex first, FrameIndex last, const Traject
   return tracklet;
 }
 
-LinkResult LinkWindow(WindowLinker* linker, std::int64_t k,
+LinkResult LinkWindow(WindowLinker* linker,
+                      std::int64_t k,
                       const std::vector<core::Tracklet3D>& tracklets) {
   return linker->Link(k, k * kDelta, kSpf, tracklets, LiveOf(tracklets));
 }
@@ -171,9 +184,9 @@ TEST_CASE("Eq. 8 distance on a hand-made case", "[unit]") {
   const Vec3 off12_1(0.0, 0.0, 3.0);  // |.| = 3
   const Vec3 off13_1(0.3, 0.0, 0.4);  // |.| = 0.5
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  b.points = {{a0, std::nullopt},                      // 11: only point 0 -> no common point
-              {Vec3(a0 + off12_0), Vec3(a1 + off12_1)},  // 12: mean(1, 3) = 2
-              {Vec3(nan, 0.0, 0.0), Vec3(a1 + off13_1)}, // 13: NaN point 0 is invalid -> 0.5
+  b.points = {{a0, std::nullopt},                         // 11: only point 0 -> no common point
+              {Vec3(a0 + off12_0), Vec3(a1 + off12_1)},   // 12: mean(1, 3) = 2
+              {Vec3(nan, 0.0, 0.0), Vec3(a1 + off13_1)},  // 13: NaN point 0 is invalid -> 0.5
               {a0, a1}};
   // Frame 11 has no common point and is left out: (2 + 0.5) / 2 frames. Pooling all point
   // distances would give 1.5, dividing by the 3 overlapping frames 0.8333.
@@ -211,8 +224,8 @@ TEST_CASE("Eq. 8 distance is undefined without overlap or without common points"
 }
 
 TEST_CASE("Footprints: the footprint points' mean, else the valid points' mean", "[unit]") {
-  const std::vector<std::optional<Vec3>> points = {Vec3(0.0, 0.0, 1.0), Vec3(2.0, 0.0, 1.0),
-                                                   std::nullopt, Vec3(4.0, 6.0, 9.0)};
+  const std::vector<std::optional<Vec3>> points = {
+      Vec3(0.0, 0.0, 1.0), Vec3(2.0, 0.0, 1.0), std::nullopt, Vec3(4.0, 6.0, 9.0)};
   const std::optional<Vec2> hips = FrameFootprint(points, {0, 1});
   REQUIRE(hips.has_value());
   CHECK(hips->x() == Approx(1.0));
@@ -348,9 +361,10 @@ TEST_CASE("Overlap without a shared 2D track: a new candidate unless nobody else
   {
     WindowLinker linker;
     LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
-    const LinkResult r =
-        LinkWindow(&linker, 1, {ConstantTracklet(20, 49, Vec3(0.0, 0.0, 1.0), {7, 8}),
-                                ConstantTracklet(20, 49, Vec3(0.45, 0.0, 1.0), {1, 2})});
+    const LinkResult r = LinkWindow(&linker,
+                                    1,
+                                    {ConstantTracklet(20, 49, Vec3(0.0, 0.0, 1.0), {7, 8}),
+                                     ConstantTracklet(20, 49, Vec3(0.45, 0.0, 1.0), {1, 2})});
     CHECK(r.track_of_tracklet[1] == 1);
     CHECK(r.link_kind[0] == LinkKind::kBirth);
   }
@@ -404,8 +418,7 @@ TEST_CASE("The motion gate grows with the gap in seconds, not frames", "[unit]")
   CHECK(run(0.5) == LinkKind::kGap);
 }
 
-TEST_CASE("A lost track ends when none of its 2D tracks continues, or after max_lost_s",
-          "[unit]") {
+TEST_CASE("A lost track ends when none of its 2D tracks continues, or after max_lost_s", "[unit]") {
   WindowLinker linker;
   LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
   // Window 1: nobody in 3D, camera 1's track 2 still alive.
@@ -491,9 +504,8 @@ TEST_CASE("Re-identification by motion alone is off by default; when on, only un
   }
   {
     // Two tracklets on the path, 0.1 m apart: ambiguous, both born.
-    const core::Tracklet3D twin =
-        MovingTracklet(46, 69, [&](FrameIndex t) { return Vec3(walk(t) + Vec3(0.0, 0.1, 0.0)); },
-                       {9, 10});
+    const core::Tracklet3D twin = MovingTracklet(
+        46, 69, [&](FrameIndex t) { return Vec3(walk(t) + Vec3(0.0, 0.1, 0.0)); }, {9, 10});
     WindowLinker linker(o);
     linker.Link(0, 0, kSpf, {first}, LiveOf({first}));
     const LinkResult r = linker.Link(1, 40, kSpf, {back, twin}, LiveOf({back, twin}));
@@ -502,8 +514,7 @@ TEST_CASE("Re-identification by motion alone is off by default; when on, only un
   }
 }
 
-TEST_CASE("Skipped window ids count as missed windows; the stream end ends every track",
-          "[unit]") {
+TEST_CASE("Skipped window ids count as missed windows; the stream end ends every track", "[unit]") {
   WindowLinker linker;
   const core::Tracklet3D a = ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2});
   LinkWindow(&linker, 0, {a});

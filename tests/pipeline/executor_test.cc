@@ -1,16 +1,16 @@
 // Executors: ordering, drain, stop, exceptions -> failed outcomes, bounded queue back-pressure.
 
-#include <catch2/catch.hpp>
+#include "pipeline/executor.h"
+
 #include <algorithm>
 #include <atomic>
+#include <catch2/catch.hpp>
 #include <chrono>
 #include <latch>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
 #include <vector>
-
-#include "pipeline/executor.h"
 
 namespace mvtrack::pipeline {
 namespace {
@@ -20,10 +20,12 @@ TEST_CASE("InlineExecutor runs each job inside Submit, in submission order", "[u
   std::vector<int> ran;
   std::vector<JobOutcome> outcomes;
   for (int i = 0; i < 5; ++i) {
-    REQUIRE(executor.Submit([&ran, i](int worker) {
-      CHECK(worker == 0);
-      ran.push_back(i);
-    }, [&outcomes](const JobOutcome& o) { outcomes.push_back(o); }));
+    REQUIRE(executor.Submit(
+        [&ran, i](int worker) {
+          CHECK(worker == 0);
+          ran.push_back(i);
+        },
+        [&outcomes](const JobOutcome& o) { outcomes.push_back(o); }));
     // Synchronous: the job and its completion ran before Submit returned.
     CHECK(ran.size() == static_cast<std::size_t>(i + 1));
     CHECK(outcomes.size() == static_cast<std::size_t>(i + 1));
@@ -60,8 +62,9 @@ void CheckExceptionsBecomeFailures(Executor* executor) {
   CHECK(later_ran);
   std::lock_guard<std::mutex> lock(mu);
   REQUIRE(outcomes.size() == 3);
-  std::sort(outcomes.begin(), outcomes.end(),
-            [](const JobOutcome& a, const JobOutcome& b) { return a.job_seq < b.job_seq; });
+  std::sort(outcomes.begin(), outcomes.end(), [](const JobOutcome& a, const JobOutcome& b) {
+    return a.job_seq < b.job_seq;
+  });
   CHECK(outcomes[0].status == JobStatus::kFailed);
   CHECK(outcomes[0].error == "bad window");
   CHECK(outcomes[1].status == JobStatus::kFailed);
@@ -97,12 +100,14 @@ TEST_CASE("ThreadPoolExecutor runs every job once, one worker keeps submission o
     std::vector<int> order;
     std::atomic<bool> worker_in_range{true};
     for (int i = 0; i < kJobs; ++i) {
-      REQUIRE(executor.Submit([&, i](int worker) {
-        if (worker < 0 || worker >= workers) worker_in_range = false;
-        runs[static_cast<std::size_t>(i)].fetch_add(1);
-        std::lock_guard<std::mutex> lock(mu);
-        order.push_back(i);
-      }, {}));
+      REQUIRE(executor.Submit(
+          [&, i](int worker) {
+            if (worker < 0 || worker >= workers) worker_in_range = false;
+            runs[static_cast<std::size_t>(i)].fetch_add(1);
+            std::lock_guard<std::mutex> lock(mu);
+            order.push_back(i);
+          },
+          {}));
     }
     executor.Drain();
     CHECK(worker_in_range);
@@ -125,10 +130,12 @@ TEST_CASE("ThreadPoolExecutor: a full queue blocks the submitter until a worker 
   ThreadPoolExecutor executor({/*num_workers=*/1, kCapacity});
   std::latch gate(1);
   std::atomic<bool> first_done{false};
-  REQUIRE(executor.Submit([&](int) {
-    gate.wait();  // the only worker is stuck here until the test opens the gate
-    first_done = true;
-  }, {}));
+  REQUIRE(executor.Submit(
+      [&](int) {
+        gate.wait();  // the only worker is stuck here until the test opens the gate
+        first_done = true;
+      },
+      {}));
   // Wait until the worker has taken the first job, then fill the queue.
   while (executor.stats().running == 0) std::this_thread::yield();
   for (int i = 0; i < kCapacity; ++i) REQUIRE(executor.Submit([](int) {}, {}));
@@ -166,10 +173,12 @@ TEST_CASE("ThreadPoolExecutor: Stop runs every accepted job, then refuses new on
   std::atomic<int> ran{0};
   std::atomic<int> completed{0};
   for (int i = 0; i < 40; ++i) {
-    REQUIRE(executor.Submit([&](int) {
-      gate.wait();
-      ++ran;
-    }, [&](const JobOutcome&) { ++completed; }));
+    REQUIRE(executor.Submit(
+        [&](int) {
+          gate.wait();
+          ++ran;
+        },
+        [&](const JobOutcome&) { ++completed; }));
   }
   std::thread stopper([&] { executor.Stop(); });
   gate.count_down();
@@ -215,19 +224,21 @@ TEST_CASE("ParallelFor runs every index once, each worker on one call at a time"
   std::atomic<int> overlaps{0};
   std::atomic<int> bad_worker{0};
   for (int job = 0; job < kJobs; ++job) {
-    REQUIRE(executor.Submit([&, job](int caller) {
-      // Every job fans out, so workers are often busy with their own job's calls.
-      executor.ParallelFor(caller, kIndices, [&, job](int index, int worker) {
-        if (worker < 0 || worker >= 3) {
-          ++bad_worker;
-          return;
-        }
-        if (busy[static_cast<std::size_t>(worker)].fetch_add(1) != 0) ++overlaps;
-        ++runs[static_cast<std::size_t>(job * kIndices + index)];
-        std::this_thread::sleep_for(std::chrono::microseconds(50));
-        busy[static_cast<std::size_t>(worker)].fetch_sub(1);
-      });
-    }, {}));
+    REQUIRE(executor.Submit(
+        [&, job](int caller) {
+          // Every job fans out, so workers are often busy with their own job's calls.
+          executor.ParallelFor(caller, kIndices, [&, job](int index, int worker) {
+            if (worker < 0 || worker >= 3) {
+              ++bad_worker;
+              return;
+            }
+            if (busy[static_cast<std::size_t>(worker)].fetch_add(1) != 0) ++overlaps;
+            ++runs[static_cast<std::size_t>(job * kIndices + index)];
+            std::this_thread::sleep_for(std::chrono::microseconds(50));
+            busy[static_cast<std::size_t>(worker)].fetch_sub(1);
+          });
+        },
+        {}));
   }
   executor.Drain();
   CHECK(bad_worker == 0);
@@ -246,21 +257,23 @@ TEST_CASE("ParallelFor: an idle worker takes part", "[unit][threads][pipeline]")
   std::atomic<int> index0_worker{-1};
   std::atomic<int> index1_worker{-1};
   std::atomic<bool> index1_started{false};
-  REQUIRE(executor.Submit([&](int caller) {
-    executor.ParallelFor(caller, 2, [&](int index, int worker) {
-      if (index == 1) {
-        index1_worker = worker;
-        index1_started = true;
-        return;
-      }
-      // Index 0 holds its taker until index 1 has started: only another worker can take it.
-      index0_worker = worker;
-      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-      while (!index1_started && std::chrono::steady_clock::now() < give_up) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-      }
-    });
-  }, {}));
+  REQUIRE(executor.Submit(
+      [&](int caller) {
+        executor.ParallelFor(caller, 2, [&](int index, int worker) {
+          if (index == 1) {
+            index1_worker = worker;
+            index1_started = true;
+            return;
+          }
+          // Index 0 holds its taker until index 1 has started: only another worker can take it.
+          index0_worker = worker;
+          const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+          while (!index1_started && std::chrono::steady_clock::now() < give_up) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+          }
+        });
+      },
+      {}));
   executor.Drain();
   REQUIRE(index1_started);
   CHECK(index0_worker != index1_worker);
@@ -274,15 +287,17 @@ TEST_CASE("ParallelFor rethrows a call's exception after every call returned",
   std::atomic<int> calls{0};
   std::vector<JobOutcome> outcomes;
   std::mutex mu;
-  REQUIRE(executor.Submit([&](int caller) {
-    executor.ParallelFor(caller, 50, [&](int index, int) {
-      ++calls;
-      if (index == 7) throw std::runtime_error("index 7 failed");
-    });
-  }, [&](const JobOutcome& o) {
-    std::lock_guard<std::mutex> lock(mu);
-    outcomes.push_back(o);
-  }));
+  REQUIRE(executor.Submit(
+      [&](int caller) {
+        executor.ParallelFor(caller, 50, [&](int index, int) {
+          ++calls;
+          if (index == 7) throw std::runtime_error("index 7 failed");
+        });
+      },
+      [&](const JobOutcome& o) {
+        std::lock_guard<std::mutex> lock(mu);
+        outcomes.push_back(o);
+      }));
   executor.Drain();
   CHECK(calls == 50);
   REQUIRE(outcomes.size() == 1);
@@ -293,12 +308,14 @@ TEST_CASE("ParallelFor rethrows a call's exception after every call returned",
 TEST_CASE("InlineExecutor ParallelFor runs the calls in order on worker 0", "[unit][pipeline]") {
   InlineExecutor executor;
   std::vector<int> order;
-  REQUIRE(executor.Submit([&](int caller) {
-    executor.ParallelFor(caller, 5, [&](int index, int worker) {
-      CHECK(worker == 0);
-      order.push_back(index);
-    });
-  }, {}));
+  REQUIRE(executor.Submit(
+      [&](int caller) {
+        executor.ParallelFor(caller, 5, [&](int index, int worker) {
+          CHECK(worker == 0);
+          order.push_back(index);
+        });
+      },
+      {}));
   CHECK(order == std::vector<int>{0, 1, 2, 3, 4});
 }
 

@@ -1,13 +1,14 @@
 // The threaded Pipeline against the single-threaded Tracker: bit-identical output whatever the
 // executor and worker count, clean drain on Stop, overflow drops, failed jobs, latency.
 
+#include "pipeline/pipeline.h"
+
 #include <catch2/catch.hpp>
 #include <functional>
 #include <latch>
 #include <mutex>
 #include <stdexcept>
 
-#include "pipeline/pipeline.h"
 #include "sim/synthetic_scene.h"
 #include "tracker/frame3d_equal.h"
 
@@ -91,7 +92,8 @@ struct RunOutput {
   tracker::TrackerStats stats;
 };
 
-RunOutput RunTracker(const sim::Scene& scene, const tracker::TrackerOptions& options,
+RunOutput RunTracker(const sim::Scene& scene,
+                     const tracker::TrackerOptions& options,
                      const std::vector<Input>& input) {
   std::string why;
   auto t = tracker::Tracker::Create(geometry::CameraRig(scene.cameras), options, &why);
@@ -127,11 +129,17 @@ struct Collector {
 std::unique_ptr<Pipeline> MakePipeline(const sim::Scene& scene,
                                        const tracker::TrackerOptions& options,
                                        const PipelineOptions& pipeline_options,
-                                       std::unique_ptr<Executor> executor, const Clock& clock,
+                                       std::unique_ptr<Executor> executor,
+                                       const Clock& clock,
                                        Collector* collector) {
   std::string why;
-  auto p = Pipeline::Create(geometry::CameraRig(scene.cameras), options, pipeline_options,
-                            std::move(executor), clock, collector->Callback(), &why);
+  auto p = Pipeline::Create(geometry::CameraRig(scene.cameras),
+                            options,
+                            pipeline_options,
+                            std::move(executor),
+                            clock,
+                            collector->Callback(),
+                            &why);
   INFO(why);
   REQUIRE(p);
   return p;
@@ -142,9 +150,11 @@ struct PipelineRun {
   PipelineStatus status;
 };
 
-PipelineRun RunPipeline(const sim::Scene& scene, const tracker::TrackerOptions& options,
+PipelineRun RunPipeline(const sim::Scene& scene,
+                        const tracker::TrackerOptions& options,
                         const PipelineOptions& pipeline_options,
-                        std::unique_ptr<Executor> executor, const std::vector<Input>& input) {
+                        std::unique_ptr<Executor> executor,
+                        const std::vector<Input>& input) {
   ManualClock clock;
   Collector collector;
   auto p = MakePipeline(scene, options, pipeline_options, std::move(executor), clock, &collector);
@@ -156,9 +166,8 @@ PipelineRun RunPipeline(const sim::Scene& scene, const tracker::TrackerOptions& 
     }
     const SubmitResult r = p->Submit(in.frame);
     REQUIRE(r.status != SubmitStatus::kStopped);
-    run.output.rejections.push_back(r.status == SubmitStatus::kAccepted
-                                        ? tracker::FrameRejection::kNone
-                                        : r.rejection);
+    run.output.rejections.push_back(
+        r.status == SubmitStatus::kAccepted ? tracker::FrameRejection::kNone : r.rejection);
   }
   p->Stop();
   run.status = p->Status();
@@ -184,8 +193,11 @@ void CheckIdenticalToTracker(int workers, const PipelineOptions& pipeline_option
   REQUIRE(expected.stats.reanchors == 1);
   REQUIRE(expected.stats.camera_frames_rejected > 10);
   REQUIRE(expected.stats.tracks_born >= 5);
-  const PipelineRun run = RunPipeline(BigScene(), PoseOptions(), pipeline_options,
-                                      MakeExecutor(workers), IrregularInput(BigScene()));
+  const PipelineRun run = RunPipeline(BigScene(),
+                                      PoseOptions(),
+                                      pipeline_options,
+                                      MakeExecutor(workers),
+                                      IrregularInput(BigScene()));
   const std::string diff = testing::FirstDifference(expected.frames, run.output.frames);
   INFO(diff);
   CHECK(diff.empty());
@@ -230,8 +242,7 @@ TEST_CASE("pipeline with 2 workers = Tracker, bit for bit", "[threads][pipeline]
   CheckIdenticalToTracker(2, Lossless());
 }
 
-TEST_CASE("pipeline with 8 workers and tiny queues = Tracker, bit for bit",
-          "[threads][pipeline]") {
+TEST_CASE("pipeline with 8 workers and tiny queues = Tracker, bit for bit", "[threads][pipeline]") {
   CheckIdenticalToTracker(8, LosslessTiny());
 }
 
@@ -281,8 +292,8 @@ TEST_CASE("Stop in the middle of a frame drains like Tracker::Flush", "[threads]
 
   ManualClock clock;
   Collector collector;
-  auto p = MakePipeline(scene, tracker::TrackerOptions{}, Lossless(), MakeExecutor(2), clock,
-                        &collector);
+  auto p = MakePipeline(
+      scene, tracker::TrackerOptions{}, Lossless(), MakeExecutor(2), clock, &collector);
   for (const Input& in : input) REQUIRE(p->Submit(in.frame).status == SubmitStatus::kAccepted);
   p->Stop();
   const std::string diff = testing::FirstDifference(expected.frames, collector.frames);
@@ -322,8 +333,8 @@ TEST_CASE("camera queue overflow drops the oldest camera-frames, counts them, ke
   });
   ManualClock clock;
   Collector collector;
-  auto p = MakePipeline(scene, tracker::TrackerOptions{}, po, std::move(executor), clock,
-                        &collector);
+  auto p =
+      MakePipeline(scene, tracker::TrackerOptions{}, po, std::move(executor), clock, &collector);
   for (const Input& in : input) REQUIRE(p->Submit(in.frame).status == SubmitStatus::kAccepted);
   const PipelineStatus stalled = p->Status();
   release.count_down();
@@ -337,8 +348,8 @@ TEST_CASE("camera queue overflow drops the oldest camera-frames, counts them, ke
   const auto cams = static_cast<std::int64_t>(scene.cameras.size());
   const std::int64_t total = static_cast<std::int64_t>(input.size());
   const std::int64_t consumed = 30 * cams + 1;
-  const std::int64_t bound = total - consumed - po.reorder_capacity -
-                             cams * (1 + po.camera_queue_capacity);
+  const std::int64_t bound =
+      total - consumed - po.reorder_capacity - cams * (1 + po.camera_queue_capacity);
   INFO("dropped " << s.camera_frames_dropped << ", bound " << bound);
   CHECK(s.camera_frames_dropped >= bound);
   CHECK(stalled.camera_frames_dropped == s.camera_frames_dropped);  // all drops happened then
@@ -368,8 +379,8 @@ TEST_CASE("a failing window job is counted and links as an empty window", "[thre
   });
   ManualClock clock;
   Collector collector;
-  auto p = MakePipeline(scene, tracker::TrackerOptions{}, Lossless(), std::move(executor), clock,
-                        &collector);
+  auto p = MakePipeline(
+      scene, tracker::TrackerOptions{}, Lossless(), std::move(executor), clock, &collector);
   for (const Input& in : input) REQUIRE(p->Submit(in.frame).status == SubmitStatus::kAccepted);
   p->Stop();
   const PipelineStatus s = p->Status();
@@ -407,18 +418,21 @@ TEST_CASE("window latency is measured with the pipeline's clock, callback errors
   const std::vector<Input> input = PlainInput(scene, 120);
   ManualClock clock(1000000);
   // Each job takes 1000 µs of manual time.
-  auto executor = std::make_unique<HookedExecutor>([&clock](std::uint64_t) {
-    clock.AdvanceMicros(1000);
-  });
+  auto executor =
+      std::make_unique<HookedExecutor>([&clock](std::uint64_t) { clock.AdvanceMicros(1000); });
   std::string why;
   std::int64_t delivered = 0;  // written on the finalizer thread, read after Stop
-  auto p = Pipeline::Create(geometry::CameraRig(scene.cameras), tracker::TrackerOptions{},
-                            Lossless(), std::move(executor), clock,
-                            [&delivered](tracker::Frame3D f) {
-                              ++delivered;
-                              if (f.frame % 2 == 1) throw std::runtime_error("consumer bug");
-                            },
-                            &why);
+  auto p = Pipeline::Create(
+      geometry::CameraRig(scene.cameras),
+      tracker::TrackerOptions{},
+      Lossless(),
+      std::move(executor),
+      clock,
+      [&delivered](tracker::Frame3D f) {
+        ++delivered;
+        if (f.frame % 2 == 1) throw std::runtime_error("consumer bug");
+      },
+      &why);
   REQUIRE(p);
   for (const Input& in : input) REQUIRE(p->Submit(in.frame).status == SubmitStatus::kAccepted);
   p->Stop();
@@ -439,24 +453,44 @@ TEST_CASE("Pipeline::Create refuses bad configurations with a reason", "[unit][p
   ManualClock clock;
   std::string why;
   auto sink = [](tracker::Frame3D) {};
-  CHECK(Pipeline::Create(geometry::CameraRig({scene.cameras[0]}), {}, {},
-                         std::make_unique<InlineExecutor>(), clock, sink, &why) == nullptr);
+  CHECK(Pipeline::Create(geometry::CameraRig({scene.cameras[0]}),
+                         {},
+                         {},
+                         std::make_unique<InlineExecutor>(),
+                         clock,
+                         sink,
+                         &why) == nullptr);
   CHECK_THAT(why, Catch::Contains("at least 2"));
   PipelineOptions bad;
   bad.reorder_capacity = 0;
-  CHECK(Pipeline::Create(geometry::CameraRig(scene.cameras), {}, bad,
-                         std::make_unique<InlineExecutor>(), clock, sink, &why) == nullptr);
+  CHECK(Pipeline::Create(geometry::CameraRig(scene.cameras),
+                         {},
+                         bad,
+                         std::make_unique<InlineExecutor>(),
+                         clock,
+                         sink,
+                         &why) == nullptr);
   CHECK_THAT(why, Catch::Contains("reorder_capacity"));
   tracker::TrackerOptions bad_tracker;
   bad_tracker.window_step = 0;
-  CHECK(Pipeline::Create(geometry::CameraRig(scene.cameras), bad_tracker, {},
-                         std::make_unique<InlineExecutor>(), clock, sink, &why) == nullptr);
-  CHECK_THAT(why, Catch::Contains("window_step"));
-  CHECK(Pipeline::Create(geometry::CameraRig(scene.cameras), {}, {}, nullptr, clock, sink,
+  CHECK(Pipeline::Create(geometry::CameraRig(scene.cameras),
+                         bad_tracker,
+                         {},
+                         std::make_unique<InlineExecutor>(),
+                         clock,
+                         sink,
                          &why) == nullptr);
+  CHECK_THAT(why, Catch::Contains("window_step"));
+  CHECK(Pipeline::Create(geometry::CameraRig(scene.cameras), {}, {}, nullptr, clock, sink, &why) ==
+        nullptr);
   CHECK_THAT(why, Catch::Contains("executor"));
-  CHECK(Pipeline::Create(geometry::CameraRig(scene.cameras), {}, {},
-                         std::make_unique<InlineExecutor>(), clock, {}, &why) == nullptr);
+  CHECK(Pipeline::Create(geometry::CameraRig(scene.cameras),
+                         {},
+                         {},
+                         std::make_unique<InlineExecutor>(),
+                         clock,
+                         {},
+                         &why) == nullptr);
   CHECK_THAT(why, Catch::Contains("callback"));
 }
 

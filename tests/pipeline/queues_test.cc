@@ -1,8 +1,8 @@
 // CameraQueue (overflow policies), BoundedQueue, SequenceReorderBuffer and the clocks.
 
-#include <catch2/catch.hpp>
 #include <algorithm>
 #include <atomic>
+#include <catch2/catch.hpp>
 #include <thread>
 #include <vector>
 

@@ -2,13 +2,14 @@
 // with file/line/key in the message, camera selection, the calibration override, the canonical
 // text (round trip) and the hash.
 
+#include "service/daemon_config.h"
+
 #include <catch2/catch.hpp>
 #include <string>
 
 #include "config/calibration.h"
 #include "config/config_error.h"
 #include "config/config_test_util.h"
-#include "service/daemon_config.h"
 
 namespace mvtrack::service {
 namespace {
@@ -21,8 +22,8 @@ std::string ExampleDir() { return std::string(MVTRACK_SOURCE_DIR) + "/docs/examp
 
 // A minimal valid document using the example calibration (cameras 0, 1, 2).
 std::string Minimal(const std::string& extra = "") {
-  return "format: mvtrack.daemon/1\ncameras:\n  calibration: " + std::string(kCalibration) +
-         "\n" + extra;
+  return "format: mvtrack.daemon/1\ncameras:\n  calibration: " + std::string(kCalibration) + "\n" +
+         extra;
 }
 
 DaemonConfig Parse(const std::string& text) {
@@ -57,17 +58,17 @@ TEST_CASE("daemon config: the example file is valid and documents the defaults",
 }
 
 TEST_CASE("daemon config: values are read into every section", "[unit]") {
-  const DaemonConfig c = Parse(Minimal(
-      "  ids: [2, 0]\n"
-      "input:\n  lcm_url: \"memq://\"\n  channels: shared\n  max_detections: 50\n"
-      "  lcm_queue_capacity: 77\n"
-      "output:\n  lcm_url: \"file:///tmp/x.lcmlog?mode=w\"\n  tracks_channel: T\n"
-      "  status_channel: S\n  status_period_s: 0.5\n  latency_limit_us: 7\n"
-      "sync:\n  mode: utime\n  tolerance_us: 100\n  deadline_us: 1000\n  idle_flush_s: 0\n"
-      "threads:\n  workers: 3\n  job_queue: 9\n"
-      "queues:\n  camera_capacity: 2\n  camera_overflow: block\n"
-      "logging:\n  level: debug\n  repeat_interval_s: 0.5\n"
-      "tracker:\n  window_size: 20\n  window_step: 10\n"));
+  const DaemonConfig c = Parse(
+      Minimal("  ids: [2, 0]\n"
+              "input:\n  lcm_url: \"memq://\"\n  channels: shared\n  max_detections: 50\n"
+              "  lcm_queue_capacity: 77\n"
+              "output:\n  lcm_url: \"file:///tmp/x.lcmlog?mode=w\"\n  tracks_channel: T\n"
+              "  status_channel: S\n  status_period_s: 0.5\n  latency_limit_us: 7\n"
+              "sync:\n  mode: utime\n  tolerance_us: 100\n  deadline_us: 1000\n  idle_flush_s: 0\n"
+              "threads:\n  workers: 3\n  job_queue: 9\n"
+              "queues:\n  camera_capacity: 2\n  camera_overflow: block\n"
+              "logging:\n  level: debug\n  repeat_interval_s: 0.5\n"
+              "tracker:\n  window_size: 20\n  window_step: 10\n"));
   REQUIRE(c.cameras.size() == 2);
   CHECK(c.cameras[0].id == 0);
   CHECK(c.cameras[1].id == 2);

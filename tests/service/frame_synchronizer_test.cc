@@ -1,8 +1,10 @@
 // FrameSynchronizer: grouping by frame index and by utime, the late-camera deadline, silent
 // cameras, the time-order rejections, flooding, stream restarts and the pending bound.
 
-#include <catch2/catch.hpp>
+#include "service/frame_synchronizer.h"
+
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
@@ -10,8 +12,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#include "service/frame_synchronizer.h"
 
 namespace mvtrack::service {
 namespace {
@@ -57,8 +57,7 @@ SyncOptions Options() {
   return o;
 }
 
-TEST_CASE("synchronizer releases a frame once every camera delivered, cameras sorted",
-          "[unit]") {
+TEST_CASE("synchronizer releases a frame once every camera delivered, cameras sorted", "[unit]") {
   FrameSynchronizer sync({2, 0, 1}, Options());
   CHECK(sync.Add(At(1, 0)).actions.empty());
   CHECK(sync.Add(At(2, 0)).actions.empty());
@@ -119,8 +118,7 @@ TEST_CASE("synchronizer excludes a silent camera and re-includes it when it retu
   CHECK(Released(sync.Add(At(0, f + 1)).actions) == Pairs{{f + 1, 0}, {f + 1, 1}});
 }
 
-TEST_CASE("synchronizer rejects time going backwards, duplicates and far-future frames",
-          "[unit]") {
+TEST_CASE("synchronizer rejects time going backwards, duplicates and far-future frames", "[unit]") {
   FrameSynchronizer sync({0, 1}, Options());
   sync.Add(At(0, 5));
   sync.Add(At(1, 5));
@@ -165,8 +163,8 @@ TEST_CASE("synchronizer drops frames closer than min_frame_interval_us (flooding
     // Camera 1 floods at 10x its rate.
     for (int i = 1; i < 10 && f < 9; ++i) {
       if (i * kPeriod / 10 >= kPeriod / 2) continue;  // these would be beyond the interval
-      flooded += sync.Add(Frame(1, 0, t + 200 + i * kPeriod / 10)).rejection ==
-                 SyncRejection::kFlood;
+      flooded +=
+          sync.Add(Frame(1, 0, t + 200 + i * kPeriod / 10)).rejection == SyncRejection::kFlood;
     }
   }
   CHECK(flooded == 9 * 4);
@@ -174,8 +172,7 @@ TEST_CASE("synchronizer drops frames closer than min_frame_interval_us (flooding
   CHECK(sync.Status().frames_released == 10);
 }
 
-TEST_CASE("synchronizer by utime groups within the tolerance and numbers the frames",
-          "[unit]") {
+TEST_CASE("synchronizer by utime groups within the tolerance and numbers the frames", "[unit]") {
   SyncOptions o = Options();
   o.mode = SyncMode::kUtime;
   o.tolerance_us = 2000;
@@ -247,8 +244,10 @@ TEST_CASE("synchronizer detects a stream restart when more than half of the came
 
 // Four cameras at 25 Hz by frame index; camera 0's clock is `skew_us` off from frame `from` on.
 // Returns, per released frame, the cameras it holds.
-std::vector<std::vector<CameraId>> RunSkewed(FrameSynchronizer* sync, std::int64_t skew_us,
-                                             FrameIndex from, FrameIndex frames,
+std::vector<std::vector<CameraId>> RunSkewed(FrameSynchronizer* sync,
+                                             std::int64_t skew_us,
+                                             FrameIndex from,
+                                             FrameIndex frames,
                                              std::vector<CameraTransition>* transitions) {
   std::vector<std::vector<CameraId>> out;
   std::map<FrameIndex, std::vector<CameraId>> by_frame;
@@ -271,8 +270,10 @@ std::vector<std::vector<CameraId>> RunSkewed(FrameSynchronizer* sync, std::int64
 
 TEST_CASE("clock model: one camera's skewed clock is flagged alone, the others keep tracking",
           "[unit]") {
-  for (const std::int64_t skew : {std::int64_t{250000}, std::int64_t{-250000},
-                                  std::int64_t{2000000}, std::int64_t{3600000000}}) {
+  for (const std::int64_t skew : {std::int64_t{250000},
+                                  std::int64_t{-250000},
+                                  std::int64_t{2000000},
+                                  std::int64_t{3600000000}}) {
     INFO("skew " << skew);
     FrameSynchronizer sync({0, 1, 2, 3}, Options());
     std::vector<CameraTransition> transitions;

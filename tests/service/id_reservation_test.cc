@@ -46,7 +46,9 @@ TEST_CASE("IdReservation: ids start at 1, continue at the reservation's end afte
 TEST_CASE("IdReservation: a malformed or unwritable state is refused with a reason", "[unit]") {
   TempDir dir;
   std::string why;
-  for (const char* bad : {"", "mvtrack.track_ids/1\n", "other/1\nreserved_end=5\n",
+  for (const char* bad : {"",
+                          "mvtrack.track_ids/1\n",
+                          "other/1\nreserved_end=5\n",
                           "mvtrack.track_ids/1\nreserved_end=x\n",
                           "mvtrack.track_ids/1\nreserved_end=0\n",
                           "mvtrack.track_ids/1\nreserved_end=99999999999999999999\n"}) {

@@ -1,10 +1,10 @@
 // RateLimiter and the percentile helper.
 
+#include "service/rate_limiter.h"
+
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <vector>
-
-#include "service/rate_limiter.h"
 
 namespace mvtrack::service {
 namespace {

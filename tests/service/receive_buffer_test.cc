@@ -87,7 +87,11 @@ TEST_CASE("udp drops: a full receive buffer of a real socket is counted", "[unit
   REQUIRE(::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0);
   const std::vector<char> payload(1000, 'x');
   for (int i = 0; i < 200; ++i) {
-    ::sendto(fd, payload.data(), payload.size(), 0, reinterpret_cast<const sockaddr*>(&addr),
+    ::sendto(fd,
+             payload.data(),
+             payload.size(),
+             0,
+             reinterpret_cast<const sockaddr*>(&addr),
              sizeof(addr));
   }
   const std::optional<std::int64_t> after = ProcessUdpDrops();

@@ -4,8 +4,10 @@
 // tracker options with increasing track ids; the record log holds input and output; the LCM
 // edge works over memq://.
 
-#include <catch2/catch.hpp>
+#include "service/service.h"
+
 #include <atomic>
+#include <catch2/catch.hpp>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -19,7 +21,6 @@
 #include "geometry/camera_rig.h"
 #include "service/daemon_config.h"
 #include "service/lcm_runner.h"
-#include "service/service.h"
 #include "sim/synthetic_scene.h"
 #include "tracker/tracker.h"
 #include "transport/channels.h"
@@ -57,16 +58,16 @@ DaemonConfig Config(int workers) {
 }
 
 std::vector<std::uint8_t> Encode(const core::CameraFrame& f) {
-  return transport::EncodeCameraDetections(f, Scene().options.image_width_px,
-                                           Scene().options.image_height_px);
+  return transport::EncodeCameraDetections(
+      f, Scene().options.image_width_px, Scene().options.image_height_px);
 }
 
 // What a Service published, collected from its hooks (thread-safe).
 struct Sink {
   std::mutex mu;
-  std::vector<std::string> lines;                      // on_frame, canonical JSONL
-  std::vector<transport::TracksMessage> tracks;        // decoded tracks3d_t
-  std::vector<mvtrack::tracker_status_t> statuses;     // decoded tracker_status_t
+  std::vector<std::string> lines;                   // on_frame, canonical JSONL
+  std::vector<transport::TracksMessage> tracks;     // decoded tracks3d_t
+  std::vector<mvtrack::tracker_status_t> statuses;  // decoded tracker_status_t
   std::map<std::string, int> channels;
   int undecodable = 0;  // published messages that did not decode (checked on the test thread)
 
@@ -112,7 +113,8 @@ std::vector<std::string> ReferenceLines() {
   for (const auto& cams : Scene().detections) {
     for (const core::CameraFrame& f : cams) {
       const std::vector<std::uint8_t> bytes = Encode(f);
-      const transport::DecodeResult d = transport::DecodeCameraDetections(bytes.data(), bytes.size());
+      const transport::DecodeResult d =
+          transport::DecodeCameraDetections(bytes.data(), bytes.size());
       REQUIRE(d.ok());
       for (const tracker::Frame3D& out : t->Add(d.frame).finalized) {
         lines.push_back(transport::TracksJsonLine(out, core::KeypointLayoutId::kNone));
@@ -186,7 +188,8 @@ TEST_CASE("service counts bad input and reports it in the status message", "[uni
   // Cameras 0 and 1 deliver 10 frames; camera 2 never does; one frame of camera 0 repeats.
   for (std::size_t i = 0; i < 10; ++i) {
     for (int c = 0; c < 2; ++c) {
-      const std::vector<std::uint8_t> b = Encode(Scene().detections[i][static_cast<std::size_t>(c)]);
+      const std::vector<std::uint8_t> b =
+          Encode(Scene().detections[i][static_cast<std::size_t>(c)]);
       s->OnMessage(transport::DetectionsChannelForCamera(c), b.data(), b.size());
     }
   }
@@ -231,7 +234,8 @@ TEST_CASE("service counts bad input and reports it in the status message", "[uni
   // The next period has no new errors: the per-period flags clear, the counters stay.
   clock.SetMicros(8000000);
   const std::vector<std::uint8_t> next = s->BuildStatus();
-  REQUIRE(st.decode(next.data(), 0, static_cast<int>(next.size())) == static_cast<int>(next.size()));
+  REQUIRE(st.decode(next.data(), 0, static_cast<int>(next.size())) ==
+          static_cast<int>(next.size()));
   CHECK(st.period_us == 1000000);
   CHECK(st.cameras[1].decode_errors == 2);
   CHECK((st.cameras[1].flags & mvtrack::camera_status_t::FLAG_DECODE_ERRORS) == 0);
@@ -278,7 +282,8 @@ TEST_CASE("service status carries each camera's lost frames and clock offset", "
   // The next period loses nothing: the flag clears, the counter stays.
   clock.SetMicros(clock.NowMicros() + 1000000);
   const std::vector<std::uint8_t> next = s->BuildStatus();
-  REQUIRE(st.decode(next.data(), 0, static_cast<int>(next.size())) == static_cast<int>(next.size()));
+  REQUIRE(st.decode(next.data(), 0, static_cast<int>(next.size())) ==
+          static_cast<int>(next.size()));
   CHECK(st.cameras[2].lost == 3);
   CHECK((st.cameras[2].flags & mvtrack::camera_status_t::FLAG_LOSING) == 0);
   s->Stop();
@@ -403,8 +408,7 @@ TEST_CASE("service --record log holds every input and output message", "[unit]")
   CHECK_THAT(why, Catch::Contains("--record"));
 }
 
-TEST_CASE("LcmRunner routes memq:// messages to the service and publishes its output",
-          "[unit]") {
+TEST_CASE("LcmRunner routes memq:// messages to the service and publishes its output", "[unit]") {
   DaemonConfig config = Config(1);
   config.input_url = "memq://";
   config.channel_mode = ChannelMode::kPerCamera;

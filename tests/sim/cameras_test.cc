@@ -1,16 +1,16 @@
 // Camera rigs: the look-at construction, the ring (every camera sees the room centre) and the
 // ceiling grid (every camera above the room, pitched down, the floor covered).
 
-#include <catch2/catch.hpp>
+#include "sim/cameras.h"
+
 #include <Eigen/Geometry>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include "sim/cameras.h"
 
 namespace mvtrack::sim {
 namespace {
@@ -120,8 +120,8 @@ TEST_CASE("ceiling grid cameras are above the room, pitched down, and cover the 
       CHECK(forward.z() == Approx(expected_forward_z));
       // The optical axis hits the floor inside the room (border cameras look inwards).
       const Vec3 hit = c + forward * (c.z() / -forward.z());
-      CHECK((hit.x() > 0.0 && hit.x() < o.room_width_m && hit.y() > 0.0 &&
-             hit.y() < o.room_depth_m));
+      CHECK(
+          (hit.x() > 0.0 && hit.x() < o.room_width_m && hit.y() > 0.0 && hit.y() < o.room_depth_m));
     }
     if (n != 32) continue;
     // 32 cameras over 16 x 16 m: every point at chest height (1.2 m) of the walkable area is in

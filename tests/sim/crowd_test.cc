@@ -2,8 +2,10 @@
 // separation (also when they must pass each other in a corridor), walk at plausible speeds facing
 // where they go, have rigid plausible bodies, and enter and leave through the walls on request.
 
-#include <catch2/catch.hpp>
+#include "sim/crowd.h"
+
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -12,7 +14,6 @@
 #include <vector>
 
 #include "sim/body.h"
-#include "sim/crowd.h"
 
 namespace mvtrack::sim {
 namespace {
@@ -133,9 +134,9 @@ TEST_CASE("walking is plausible: speeds, facing, pauses", "[unit][sim]") {
   CHECK(max_speed <= o.max_speed_mps + 1e-9);
   CHECK(mean_speed > 0.5);
   CHECK(mean_speed < 1.5);
-  CHECK(facing > 0.9 * moving);          // people face where they walk
-  CHECK(still > 0);                      // pauses happen ...
-  CHECK(still < samples / 4);            // ... but people mostly walk
+  CHECK(facing > 0.9 * moving);  // people face where they walk
+  CHECK(still > 0);              // pauses happen ...
+  CHECK(still < samples / 4);    // ... but people mostly walk
 }
 
 TEST_CASE("skeletons are rigid, upright, sized and oriented plausibly", "[unit][sim]") {
@@ -144,10 +145,18 @@ TEST_CASE("skeletons are rigid, upright, sized and oriented plausibly", "[unit][
   o.num_people = 5;
   o.num_frames = 150;
   const std::vector<FrameTruth> truth = SimulatePeople(o);
-  const std::vector<std::pair<int, int>> bones = {
-      {kLHip, kLKnee}, {kLKnee, kLAnkle}, {kRHip, kRKnee},        {kRKnee, kRAnkle},
-      {5, 7},          {7, 9},            {6, 8},                 {8, 10},
-      {kLHip, kRHip},  {kLShoulder, kRShoulder}, {kLShoulder, kLHip}, {kLEar, kREar}};
+  const std::vector<std::pair<int, int>> bones = {{kLHip, kLKnee},
+                                                  {kLKnee, kLAnkle},
+                                                  {kRHip, kRKnee},
+                                                  {kRKnee, kRAnkle},
+                                                  {5, 7},
+                                                  {7, 9},
+                                                  {6, 8},
+                                                  {8, 10},
+                                                  {kLHip, kRHip},
+                                                  {kLShoulder, kRShoulder},
+                                                  {kLShoulder, kLHip},
+                                                  {kLEar, kREar}};
   std::map<int, std::vector<double>> first_lengths;
   std::map<int, double> height_of;
   std::set<double> left_knee_heights;
@@ -161,8 +170,9 @@ TEST_CASE("skeletons are rigid, upright, sized and oriented plausibly", "[unit][
       height_of[p.id] = p.height_m;
       std::vector<double> lengths;
       for (const auto& [a, b] : bones) {
-        lengths.push_back((p.joints_m[static_cast<std::size_t>(a)] -
-                           p.joints_m[static_cast<std::size_t>(b)]).norm());
+        lengths.push_back(
+            (p.joints_m[static_cast<std::size_t>(a)] - p.joints_m[static_cast<std::size_t>(b)])
+                .norm());
       }
       auto [it, inserted] = first_lengths.emplace(p.id, lengths);
       double worst_change = 0.0;
@@ -210,7 +220,8 @@ TEST_CASE("enter_and_leave: people enter and leave through the walls", "[unit][s
   for (std::size_t f = 0; f < truth.size(); ++f) {
     const FrameTruth& t = truth[f];
     CHECK(t.people.size() <= 3u);
-    CHECK(std::is_sorted(t.people.begin(), t.people.end(),
+    CHECK(std::is_sorted(t.people.begin(),
+                         t.people.end(),
                          [](const PersonTruth& a, const PersonTruth& b) { return a.id < b.id; }));
     if (t.people.size() >= 2) CHECK(MinPairDistance(t) >= o.min_separation_m);
     for (const PersonTruth& p : t.people) {
@@ -228,8 +239,9 @@ TEST_CASE("enter_and_leave: people enter and leave through the walls", "[unit][s
     INFO("person " << id << " frames " << f << ".." << last[id]);
     // Everyone is present in one contiguous run of frames.
     for (std::size_t g = f; g <= last[id]; ++g) {
-      CHECK(std::any_of(truth[g].people.begin(), truth[g].people.end(),
-                        [&](const PersonTruth& p) { return p.id == id; }));
+      CHECK(std::any_of(truth[g].people.begin(), truth[g].people.end(), [&](const PersonTruth& p) {
+        return p.id == id;
+      }));
     }
     if (f > 0) {  // entered during the run: first seen right behind a wall
       ++entered;

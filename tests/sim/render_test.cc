@@ -2,8 +2,10 @@
 // depth order and the covered fraction, misses / false positives / dropout match the configured
 // rates, and the detection order carries no identity.
 
-#include <catch2/catch.hpp>
+#include "sim/render.h"
+
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -13,15 +15,19 @@
 #include "sim/body.h"
 #include "sim/cameras.h"
 #include "sim/crowd.h"
-#include "sim/render.h"
 #include "sim/synthetic_scene.h"
 
 namespace mvtrack::sim {
 namespace {
 
 // A person standing (or mid-stride) at `x, y`, built from the body model.
-PersonTruth MakePerson(int id, double x, double y, double heading_rad, double height_m,
-                       double phase = 0.0, double amplitude = 0.0) {
+PersonTruth MakePerson(int id,
+                       double x,
+                       double y,
+                       double heading_rad,
+                       double height_m,
+                       double phase = 0.0,
+                       double amplitude = 0.0) {
   BodyState body;
   body.footprint_m = Vec3(x, y, 0.0);
   body.heading_rad = heading_rad;
@@ -65,8 +71,8 @@ SceneOptions CleanOptions() {
 TEST_CASE("clean detections are the exact projections of the truth", "[unit][sim]") {
   const SceneOptions o = CleanOptions();
   const Scene scene = GenerateScene(o);
-  int detections = 0, partially_outside = 0, matched_twice = 0, wrong_labels = 0,
-      bad_scores = 0, boxes_outside_image = 0, bad_confidences = 0, keypoints_outside_box = 0;
+  int detections = 0, partially_outside = 0, matched_twice = 0, wrong_labels = 0, bad_scores = 0,
+      boxes_outside_image = 0, bad_confidences = 0, keypoints_outside_box = 0;
   double worst_match_px = 0.0;
   for (std::size_t f = 0; f < scene.truth.size(); ++f) {
     const FrameTruth& truth = scene.truth[f];
@@ -208,9 +214,8 @@ TEST_CASE("occlusion hides people behind others and lowers covered keypoints", "
   const auto b_view = ProjectPerson(cam, t.people[1]);
   REQUIRE(a_view);
   REQUIRE(b_view);
-  const double covered =
-      CoveredArea(b_view->clipped_box, {a_view->clipped_box}) / (b_view->clipped_box.width() *
-                                                                 b_view->clipped_box.height());
+  const double covered = CoveredArea(b_view->clipped_box, {a_view->clipped_box}) /
+                         (b_view->clipped_box.width() * b_view->clipped_box.height());
   REQUIRE(covered > 0.05);
   REQUIRE(covered < o.occlusion_threshold);
   const core::CameraFrame partial = RenderCamera(o, cam, t, &ids);
@@ -222,8 +227,8 @@ TEST_CASE("occlusion hides people behind others and lowers covered keypoints", "
   for (std::size_t j = 0; j < 17; ++j) {
     const Vec2& kp = b_view->keypoints_px[j];
     const core::BoxPx& ab = a_view->clipped_box;
-    const bool behind_a = kp.x() >= ab.x_min && kp.x() <= ab.x_max && kp.y() >= ab.y_min &&
-                          kp.y() <= ab.y_max;
+    const bool behind_a =
+        kp.x() >= ab.x_min && kp.x() <= ab.x_max && kp.y() >= ab.y_min && kp.y() <= ab.y_max;
     if (behind_a) {
       CHECK(db.keypoints[j].confidence <= 0.5);
       CHECK(db.keypoints[j].confidence > 0.05);
@@ -301,8 +306,7 @@ TEST_CASE("occlusion in a crowd follows the covered fraction of each box", "[uni
           if (!views[i]->keypoint_in_image[j]) continue;
           const Vec2& kp = views[i]->keypoints_px[j];
           const bool covered = std::any_of(nearer.begin(), nearer.end(), [&](const auto& b) {
-            return kp.x() >= b.x_min && kp.x() <= b.x_max && kp.y() >= b.y_min &&
-                   kp.y() <= b.y_max;
+            return kp.x() >= b.x_min && kp.x() <= b.x_max && kp.y() >= b.y_min && kp.y() <= b.y_max;
           });
           if ((d.keypoints[j].confidence <= 0.5) != covered) ++wrong_confidences;
           if (covered) ++low_keypoints;

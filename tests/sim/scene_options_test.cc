@@ -1,6 +1,8 @@
 // SceneOptions::Validate: defaults are valid, each bad field is rejected with a reason naming it,
 // and the people-capacity check matches what the simulator can actually place.
 
+#include "sim/scene_options.h"
+
 #include <catch2/catch.hpp>
 #include <functional>
 #include <limits>
@@ -8,7 +10,6 @@
 #include <vector>
 
 #include "sim/crowd.h"
-#include "sim/scene_options.h"
 
 namespace mvtrack::sim {
 namespace {
@@ -82,8 +83,8 @@ TEST_CASE("the people capacity is the size of the initial grid and is reachable"
   double closest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < truth[0].people.size(); ++i) {
     for (std::size_t j = i + 1; j < truth[0].people.size(); ++j) {
-      closest = std::min(
-          closest, (truth[0].people[i].footprint_m - truth[0].people[j].footprint_m).norm());
+      closest = std::min(closest,
+                         (truth[0].people[i].footprint_m - truth[0].people[j].footprint_m).norm());
     }
   }
   CHECK(closest >= o.min_separation_m + 0.1 - 1e-9);

@@ -2,6 +2,8 @@
 // ring for small rooms and a ceiling grid for store floors, the floor grows with the crowd, and
 // the large preset really covers its floor: almost every person is detectable in >= 2 views.
 
+#include "sim/scene_presets.h"
+
 #include <catch2/catch.hpp>
 #include <map>
 #include <string>
@@ -9,7 +11,6 @@
 #include "sim/cameras.h"
 #include "sim/crowd.h"
 #include "sim/render.h"
-#include "sim/scene_presets.h"
 
 namespace mvtrack::sim {
 namespace {

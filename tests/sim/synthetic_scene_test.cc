@@ -1,14 +1,14 @@
 // Whole scenes: structure and timing, determinism (same options -> identical scene), independent
 // random streams, and a large ceiling-grid scene (32 cameras, 100 people).
 
-#include <catch2/catch.hpp>
+#include "sim/synthetic_scene.h"
+
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
 #include <set>
 #include <vector>
-
-#include "sim/synthetic_scene.h"
 
 namespace mvtrack::sim {
 namespace {
@@ -89,8 +89,7 @@ SceneOptions Busy() {
   return o;
 }
 
-TEST_CASE("scene structure: one truth and one camera frame per camera per frame",
-          "[unit][sim]") {
+TEST_CASE("scene structure: one truth and one camera frame per camera per frame", "[unit][sim]") {
   SceneOptions o = Busy();
   o.fps = 25.0;
   o.start_utime = 1000;
@@ -142,8 +141,7 @@ TEST_CASE("an empty room yields only false positives", "[unit][sim]") {
   CHECK(false_positives > 200);  // Poisson(2) x 150 camera-frames: 300 expected
 }
 
-TEST_CASE("same options give the identical scene, another seed a different one",
-          "[unit][sim]") {
+TEST_CASE("same options give the identical scene, another seed a different one", "[unit][sim]") {
   const Scene a = GenerateScene(Busy());
   const Scene b = GenerateScene(Busy());
   RequireSameScene(a, b);

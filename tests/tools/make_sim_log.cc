@@ -55,10 +55,10 @@ using mvtrack::CameraId;
 namespace transport = mvtrack::transport;
 
 // Camera-frames of the damaged log replaced or accompanied by damage, by frame index modulus.
-constexpr std::int64_t kForeignEvery = 20;       // a foreign event after camera 0's message
-constexpr std::int64_t kFingerprintFrame = 31;   // camera 1's message: first byte flipped
-constexpr std::int64_t kTruncatedFrame = 57;     // camera 2's message: cut to half its size
-constexpr std::int64_t kMismatchFrame = 83;      // camera 1's message on camera 2's channel
+constexpr std::int64_t kForeignEvery = 20;        // a foreign event after camera 0's message
+constexpr std::int64_t kFingerprintFrame = 31;    // camera 1's message: first byte flipped
+constexpr std::int64_t kTruncatedFrame = 57;      // camera 2's message: cut to half its size
+constexpr std::int64_t kMismatchFrame = 83;       // camera 1's message on camera 2's channel
 constexpr std::int64_t kUnknownCameraEvery = 50;  // an extra camera-frame of camera 99
 constexpr CameraId kUnknownCamera = 99;
 
@@ -183,7 +183,8 @@ int Run(int argc, char** argv) {
         log.Write(Channel(cf.camera_id), cf.utime, bytes);
         const transport::DecodeResult decoded =
             transport::DecodeCameraDetections(bytes.data(), bytes.size());
-        if (!decoded.ok()) throw std::runtime_error("own message does not decode: " + decoded.reason);
+        if (!decoded.ok())
+          throw std::runtime_error("own message does not decode: " + decoded.reason);
         emit(tracker->Add(decoded.frame).finalized);
       }
     }
@@ -218,22 +219,25 @@ int Run(int argc, char** argv) {
         if (cf.camera_id == 0 && cf.frame % kForeignEvery == 0) {
           const std::vector<std::uint8_t> junk = {1, 2, 3, 4, 5, 6, 7, 8, 9};
           log.Write(cf.frame % (2 * kForeignEvery) == 0 ? "OTHER_SENSOR" : "MVTRACK_STATUS",
-                    cf.utime, junk);
+                    cf.utime,
+                    junk);
           ++injected["foreign"];
         }
         if (cf.camera_id == 0 && cf.frame % kUnknownCameraEvery == 0) {
           mvtrack::core::CameraFrame stranger = cf;
           stranger.camera_id = kUnknownCamera;
-          log.Write(transport::kDetectionsChannel, cf.utime,
-                    transport::EncodeCameraDetections(stranger, so.image_width_px,
-                                                      so.image_height_px));
+          log.Write(
+              transport::kDetectionsChannel,
+              cf.utime,
+              transport::EncodeCameraDetections(stranger, so.image_width_px, so.image_height_px));
           ++injected["unknown_camera"];
         }
       }
     }
     // A last event that the end of the file cuts short (an interrupted recorder).
     const mvtrack::core::CameraFrame& last = scene.detections.back().front();
-    log.Write(Channel(last.camera_id), last.utime,
+    log.Write(Channel(last.camera_id),
+              last.utime,
               transport::EncodeCameraDetections(last, so.image_width_px, so.image_height_px));
     log.Close();
     const std::uintmax_t size = std::filesystem::file_size(damaged_path);

@@ -3,8 +3,8 @@
 // (box_merge_distance_m), two real people walking side by side are not, and box points at
 // implausible heights (box_min_height_m, box_max_height_m) are removed.
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <random>
 #include <vector>
 

@@ -3,8 +3,8 @@
 // the live 2D tracks and the stream's frame period; persons carry their (camera, 2D track)
 // members; box ends are used only where they are the feet and the head.
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <random>
 #include <vector>
 
@@ -80,18 +80,16 @@ TEST_CASE("A cluster joining two people in time is split where its footprint jum
     const Walker& w = person.frames.back() <= 15 ? a : b;
     for (std::size_t f = 0; f < person.frames.size(); ++f) {
       REQUIRE(person.points[f][0].has_value());
-      CHECK((person.points[f][0]->head<2>() - w.Pelvis(person.frames[f]).head<2>()).norm() <
-            0.2);
+      CHECK((person.points[f][0]->head<2>() - w.Pelvis(person.frames[f]).head<2>()).norm() < 0.2);
     }
   }
   // Members are the person's 2D tracks inside its own frames.
   for (const core::Tracklet3D& person : split.persons) {
     CHECK_FALSE(person.members.empty());
-    CHECK(std::is_sorted(person.members.begin(), person.members.end(),
-                         [](const auto& x, const auto& y) {
-                           return x.camera_id != y.camera_id ? x.camera_id < y.camera_id
-                                                             : x.track_id < y.track_id;
-                         }));
+    CHECK(std::is_sorted(
+        person.members.begin(), person.members.end(), [](const auto& x, const auto& y) {
+          return x.camera_id != y.camera_id ? x.camera_id < y.camera_id : x.track_id < y.track_id;
+        }));
     for (const core::TrackletMember& m : person.members) {
       CHECK(m.first_frame >= person.frames.front());
       CHECK(m.last_frame <= person.frames.back());
@@ -100,8 +98,7 @@ TEST_CASE("A cluster joining two people in time is split where its footprint jum
   }
 }
 
-TEST_CASE("Window jobs list every live 2D track and the measured frame period",
-          "[unit][tracker]") {
+TEST_CASE("Window jobs list every live 2D track and the measured frame period", "[unit][tracker]") {
   const auto cameras = RoomCameras();
   const geometry::CameraRig rig = MakeRig(cameras);
   tracker::TrackerOptions options;
@@ -176,7 +173,8 @@ TEST_CASE("At 2 fps the window grid keeps the durations of the 25 fps frame coun
 
 // One camera-frame with a single box; returns its observation.
 core::Observation2D ObserveBox(const geometry::CameraModel& camera,
-                               const tracker::TrackerOptions& options, const core::BoxPx& box) {
+                               const tracker::TrackerOptions& options,
+                               const core::BoxPx& box) {
   tracker::CameraStage stage(camera, 0, options);
   core::CameraFrame cf;
   cf.camera_id = camera.id;
@@ -198,8 +196,8 @@ TEST_CASE("Box ends: the feet and head on the vertical axis, unknown where the b
   options.layout = core::KeypointLayoutId::kNone;
   REQUIRE(options.box_point == tracker::BoxPoint::kCenterEnds);
   // A camera looking horizontally: verticals are vertical in the image.
-  const geometry::CameraModel level = testing::LookAtCamera(
-      0, Vec3(0.0, -5.0, 1.0), Vec3(0.0, 0.0, 1.0), 1000.0, 1920, 1080);
+  const geometry::CameraModel level =
+      testing::LookAtCamera(0, Vec3(0.0, -5.0, 1.0), Vec3(0.0, 0.0, 1.0), 1000.0, 1920, 1080);
   const core::BoxPx box{900.0, 300.0, 1000.0, 700.0};
   const core::Observation2D o = ObserveBox(level, options, box);
   REQUIRE(o.points_px.size() == 3);
@@ -217,15 +215,15 @@ TEST_CASE("Box ends: the feet and head on the vertical axis, unknown where the b
   CHECK(top.confidence == std::vector<double>{1.0, 1.0, 0.0});
 
   // A camera high above, looking steeply down: no ends at all (box_ends_max_elevation_deg).
-  const geometry::CameraModel steep = testing::LookAtCamera(
-      1, Vec3(0.0, -1.0, 4.0), Vec3(0.0, 0.0, 0.0), 1000.0, 1920, 1080);
+  const geometry::CameraModel steep =
+      testing::LookAtCamera(1, Vec3(0.0, -1.0, 4.0), Vec3(0.0, 0.0, 0.0), 1000.0, 1920, 1080);
   const core::Observation2D above = ObserveBox(steep, options, box);
   CHECK(above.confidence == std::vector<double>{1.0, 0.0, 0.0});
 
   // A camera tilted down 30 degrees: off the image centre the person's vertical axis leans,
   // and the ends lie on it, not straight below and above the box centre.
-  const geometry::CameraModel tilted = testing::LookAtCamera(
-      2, Vec3(0.0, -5.0, 3.9), Vec3(0.0, 0.0, 1.0), 1000.0, 1920, 1080);
+  const geometry::CameraModel tilted =
+      testing::LookAtCamera(2, Vec3(0.0, -5.0, 3.9), Vec3(0.0, 0.0, 1.0), 1000.0, 1920, 1080);
   const core::Observation2D lean = ObserveBox(tilted, options, {1500.0, 300.0, 1600.0, 700.0});
   REQUIRE(lean.confidence[1] == 1.0);
   // The vertical vanishing point lies below the image: towards it the feet are nearer the

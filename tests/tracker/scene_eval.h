@@ -14,10 +14,10 @@
 namespace mvtrack::testing {
 
 struct SceneScore {
-  int gt_instances = 0;      ///< (frame, person) pairs in the scored frames
-  int matched = 0;           ///< matched within the gate
-  int false_tracks = 0;      ///< track instances matched to nobody
-  int id_switches = 0;       ///< a person's matched track id changed
+  int gt_instances = 0;  ///< (frame, person) pairs in the scored frames
+  int matched = 0;       ///< matched within the gate
+  int false_tracks = 0;  ///< track instances matched to nobody
+  int id_switches = 0;   ///< a person's matched track id changed
   std::map<int, std::set<TrackId3D>> ids_of_person;
   double mean_position_error_m = 0.0;
   double mean_joint_error_m = 0.0;  ///< pose mode: mean over valid joints (MPJPE)
@@ -26,8 +26,10 @@ struct SceneScore {
 
 /// Per frame, matches persons to tracks by footprint distance (Hungarian, gate `gate_m`), and
 /// accumulates identity consistency and errors over frames >= first_scored_frame.
-inline SceneScore ScoreRun(const sim::Scene& scene, const std::vector<tracker::Frame3D>& frames,
-                           FrameIndex first_scored_frame, double gate_m = 0.5) {
+inline SceneScore ScoreRun(const sim::Scene& scene,
+                           const std::vector<tracker::Frame3D>& frames,
+                           FrameIndex first_scored_frame,
+                           double gate_m = 0.5) {
   SceneScore s;
   std::map<FrameIndex, const tracker::Frame3D*> by_frame;
   for (const auto& f : frames) by_frame[f.frame] = &f;
@@ -76,7 +78,8 @@ inline SceneScore ScoreRun(const sim::Scene& scene, const std::vector<tracker::F
 }
 
 /// Runs a whole scene through a tracker (all cameras of a frame, in the given camera order).
-inline std::vector<tracker::Frame3D> RunScene(tracker::Tracker* t, const sim::Scene& scene,
+inline std::vector<tracker::Frame3D> RunScene(tracker::Tracker* t,
+                                              const sim::Scene& scene,
                                               bool reverse_camera_order = false) {
   std::vector<tracker::Frame3D> out;
   for (const auto& cams : scene.detections) {

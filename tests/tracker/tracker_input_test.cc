@@ -84,12 +84,14 @@ TEST_CASE("unknown camera, stale frame, duplicate camera, flood: rejected and co
   CHECK(r.rejection == tracker::FrameRejection::kStaleFrame);
 
   core::CameraFrame flood = scene.detections[10][1];
-  flood.detections.assign(10000, flood.detections.empty() ? core::Detection2D{} : flood.detections[0]);
+  flood.detections.assign(10000,
+                          flood.detections.empty() ? core::Detection2D{} : flood.detections[0]);
   r = t->Add(flood);
   CHECK(r.rejection == tracker::FrameRejection::kTooManyDetections);
 
   // Frame indices outside [0, 2^53] (the window arithmetic's range) are refused.
-  for (const FrameIndex bad : {FrameIndex{-1}, std::numeric_limits<FrameIndex>::min(),
+  for (const FrameIndex bad : {FrameIndex{-1},
+                               std::numeric_limits<FrameIndex>::min(),
                                tracker::kMaxFrameIndex + 1,
                                std::numeric_limits<FrameIndex>::max()}) {
     core::CameraFrame odd = scene.detections[10][1];
@@ -178,7 +180,8 @@ TEST_CASE("empty frames and silent cameras produce empty but complete output", "
   for (const auto& f : out) CHECK(f.tracks.empty());
 }
 
-TEST_CASE("one camera alone sees people: nothing can be triangulated, no tracks", "[unit][tracker]") {
+TEST_CASE("one camera alone sees people: nothing can be triangulated, no tracks",
+          "[unit][tracker]") {
   const sim::Scene scene = SmallScene(100);
   auto t = Make(scene);
   std::vector<tracker::Frame3D> out;

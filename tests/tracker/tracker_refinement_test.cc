@@ -55,8 +55,8 @@ tracker::WindowJob DuplicatePartJob(int part_first, int part_last) {
   for (std::size_t c = 0; c < cameras.size(); ++c) {
     job.tracklets.push_back(MakeTracklet(cameras[c], 1, walker, frames, spec, &rng));
     if (c < 2) {
-      job.tracklets.push_back(MakeTracklet(cameras[c], 2, walker, frames, spec, &rng,
-                                           KeepJoints(part_first, part_last)));
+      job.tracklets.push_back(MakeTracklet(
+          cameras[c], 2, walker, frames, spec, &rng, KeepJoints(part_first, part_last)));
     }
   }
   return job;
@@ -134,11 +134,16 @@ TEST_CASE("A joint seen by one camera only is completed from nearby frames", "[u
   job.finalize_to = 30;
   // The head top (13) is seen by camera 3 only on frames 10-19: no pair can triangulate it.
   for (std::size_t c = 0; c < cameras.size(); ++c) {
-    job.tracklets.push_back(MakeTracklet(
-        cameras[c], 1, walker, FrameRange(0, 29), spec, &rng,
-        [c](FrameIndex t, core::Observation2D* obs) {
-          if (c > 0 && t >= 10 && t <= 19) obs->confidence[13] = 0.0;
-        }));
+    job.tracklets.push_back(MakeTracklet(cameras[c],
+                                         1,
+                                         walker,
+                                         FrameRange(0, 29),
+                                         spec,
+                                         &rng,
+                                         [c](FrameIndex t, core::Observation2D* obs) {
+                                           if (c > 0 && t >= 10 && t <= 19)
+                                             obs->confidence[13] = 0.0;
+                                         }));
   }
   tracker::TrackerOptions options = PoseOptions();
   options.triangulation.phi = 0;  // no 2D interpolation: only completion can fill the gap

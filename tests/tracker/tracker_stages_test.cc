@@ -1,8 +1,8 @@
 // The pure stages the Tracker is composed of (FrameGate, CameraStage, WindowBuilder,
 // ProcessWindowJob, WindowFinalizer), tested on their own and recomposed by hand.
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <variant>
 
 #include "tracker/frame3d_equal.h"
@@ -49,10 +49,10 @@ std::vector<tracker::BuilderOutput> RunStagesToWindows(const sim::Scene& scene,
       const tracker::FrameAdmission a = gate.Admit(cf);
       REQUIRE(a.rejection == tracker::FrameRejection::kNone);
       tracker::CameraStageCounters counters;
-      builder.Add(a.events,
-                  stages[static_cast<std::size_t>(a.camera_index)].Process(cf, a.stream_epoch,
-                                                                            &counters),
-                  &outputs);
+      builder.Add(
+          a.events,
+          stages[static_cast<std::size_t>(a.camera_index)].Process(cf, a.stream_epoch, &counters),
+          &outputs);
     }
   }
   gate.Flush();
@@ -117,8 +117,8 @@ TEST_CASE("FrameGate never looks at detection contents", "[unit][tracker]") {
   for (const auto& cams : scene.detections) {
     for (const core::CameraFrame& cf : cams) {
       const tracker::FrameAdmission a = with.Admit(cf);
-      const tracker::FrameAdmission b = without.Admit(Header(cf.camera_id, cf.frame,
-                                                             cf.detections.size()));
+      const tracker::FrameAdmission b =
+          without.Admit(Header(cf.camera_id, cf.frame, cf.detections.size()));
       CHECK(a.rejection == b.rejection);
       CHECK(a.events.close_open_frame == b.events.close_open_frame);
       CHECK(a.events.open_frame == b.events.open_frame);
@@ -278,8 +278,8 @@ TEST_CASE("CameraStage: a newer stream epoch restarts SORT", "[unit][tracker]") 
   stage.Process(bad, 1, &counters);
   CHECK(counters.detections_rejected == 2);
   CHECK(!counters.first_rejection_reason.empty());
-  CHECK(counters.detections_used == static_cast<int>(scene.detections[11][1].detections.size()) -
-                                        counters.detections_filtered);
+  CHECK(counters.detections_used ==
+        static_cast<int>(scene.detections[11][1].detections.size()) - counters.detections_filtered);
 }
 
 TEST_CASE("windows processed out of order on one reused workspace give the Tracker's output",

@@ -1,8 +1,8 @@
+#include "tracking2d/box_iou.h"
+
 #include <catch2/catch.hpp>
 #include <limits>
 #include <random>
-
-#include "tracking2d/box_iou.h"
 
 namespace mvtrack::tracking2d {
 namespace {

@@ -1,12 +1,11 @@
-#include <catch2/catch.hpp>
+#include "tracking2d/kalman_box_tracker.h"
+
+#include <Eigen/Cholesky>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <optional>
 #include <random>
-
-#include <Eigen/Cholesky>
-
-#include "tracking2d/kalman_box_tracker.h"
 
 namespace mvtrack::tracking2d {
 namespace {

@@ -1,3 +1,5 @@
+#include "tracking2d/sort_tracker.h"
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <limits>
@@ -7,8 +9,6 @@
 #include <set>
 #include <string>
 #include <vector>
-
-#include "tracking2d/sort_tracker.h"
 
 namespace mvtrack::tracking2d {
 namespace {

@@ -1,11 +1,11 @@
 // Channel names and the per-camera detections convention.
 
+#include "transport/channels.h"
+
 #include <catch2/catch.hpp>
 #include <climits>
 #include <regex>
 #include <string>
-
-#include "transport/channels.h"
 
 namespace mvtrack::transport {
 namespace {
@@ -27,12 +27,21 @@ TEST_CASE("per-camera channels map to camera ids and back", "[unit]") {
 }
 
 TEST_CASE("CameraIdFromChannel rejects everything but canonical per-camera names", "[unit]") {
-  for (const char* channel :
-       {"MVTRACK_DETECTIONS", "MVTRACK_DETECTIONS_", "MVTRACK_DETECTIONS_-1",
-        "MVTRACK_DETECTIONS_+1", "MVTRACK_DETECTIONS_07", "MVTRACK_DETECTIONS_00",
-        "MVTRACK_DETECTIONS_1a", "MVTRACK_DETECTIONS_ 1", "MVTRACK_DETECTIONS_2147483648",
-        "MVTRACK_DETECTIONS_99999999999999999999", "MVTRACK_DETECTIONS__1", "MVTRACK_TRACKS",
-        "mvtrack_detections_1", "XMVTRACK_DETECTIONS_1", ""}) {
+  for (const char* channel : {"MVTRACK_DETECTIONS",
+                              "MVTRACK_DETECTIONS_",
+                              "MVTRACK_DETECTIONS_-1",
+                              "MVTRACK_DETECTIONS_+1",
+                              "MVTRACK_DETECTIONS_07",
+                              "MVTRACK_DETECTIONS_00",
+                              "MVTRACK_DETECTIONS_1a",
+                              "MVTRACK_DETECTIONS_ 1",
+                              "MVTRACK_DETECTIONS_2147483648",
+                              "MVTRACK_DETECTIONS_99999999999999999999",
+                              "MVTRACK_DETECTIONS__1",
+                              "MVTRACK_TRACKS",
+                              "mvtrack_detections_1",
+                              "XMVTRACK_DETECTIONS_1",
+                              ""}) {
     INFO(channel);
     CHECK_FALSE(CameraIdFromChannel(channel).has_value());
   }

@@ -139,8 +139,7 @@ TEST_CASE("a foreign fingerprint is kBadFingerprint and names a known type", "[u
   RequireRejected(bytes, DecodeStatus::kBadFingerprint, "another type or another version");
 
   tracker::Frame3D tracks;
-  const std::vector<std::uint8_t> other =
-      EncodeTracks(tracks, core::KeypointLayoutId::kNone, 0, 0);
+  const std::vector<std::uint8_t> other = EncodeTracks(tracks, core::KeypointLayoutId::kNone, 0, 0);
   RequireRejected(other, DecodeStatus::kBadFingerprint, "the bytes are a mvtrack tracks3d_t");
 }
 
@@ -162,8 +161,7 @@ TEST_CASE("negative counts are kMalformed and name field and element", "[unit]")
     RequireRejected(bytes, DecodeStatus::kMalformed, prefix + "num_keypoints -5 is negative");
     bytes = good;
     PutBigEndian(&bytes, offsets.detections[i].num_embedding, 0x8000, 2);  // INT16_MIN
-    RequireRejected(bytes, DecodeStatus::kMalformed,
-                    prefix + "num_embedding -32768 is negative");
+    RequireRejected(bytes, DecodeStatus::kMalformed, prefix + "num_embedding -32768 is negative");
   }
 }
 
@@ -179,10 +177,10 @@ TEST_CASE("huge counts never allocate: over the limit or beyond the bytes", "[un
 
   std::vector<std::uint8_t> bytes = good;
   PutBigEndian(&bytes, offsets.num_detections, INT32_MAX, 4);
-  RequireRejected(bytes, DecodeStatus::kLimitExceeded,
-                  "num_detections 2147483647 exceeds the limit 1000");
-  RequireRejected(bytes, DecodeStatus::kTruncated, "num_detections 2147483647 needs at least",
-                  unlimited);
+  RequireRejected(
+      bytes, DecodeStatus::kLimitExceeded, "num_detections 2147483647 exceeds the limit 1000");
+  RequireRejected(
+      bytes, DecodeStatus::kTruncated, "num_detections 2147483647 needs at least", unlimited);
   // The generated decoder alone would size a vector of 2^31 - 1 detection_t (~ 200 GB).
   PutBigEndian(&bytes, offsets.num_detections, 1001, 4);
   RequireRejected(bytes, DecodeStatus::kLimitExceeded, "exceeds the limit 1000");
@@ -191,21 +189,20 @@ TEST_CASE("huge counts never allocate: over the limit or beyond the bytes", "[un
     const std::string prefix = "detection " + std::to_string(i) + ": ";
     bytes = good;
     PutBigEndian(&bytes, offsets.detections[i].num_keypoints, 32767, 2);
-    RequireRejected(bytes, DecodeStatus::kLimitExceeded,
-                    prefix + "num_keypoints 32767 exceeds the limit 64");
-    RequireRejected(bytes, DecodeStatus::kTruncated, prefix + "num_keypoints 32767 needs",
-                    unlimited);
+    RequireRejected(
+        bytes, DecodeStatus::kLimitExceeded, prefix + "num_keypoints 32767 exceeds the limit 64");
+    RequireRejected(
+        bytes, DecodeStatus::kTruncated, prefix + "num_keypoints 32767 needs", unlimited);
     bytes = good;
     PutBigEndian(&bytes, offsets.detections[i].num_embedding, 4097, 2);
-    RequireRejected(bytes, DecodeStatus::kLimitExceeded,
-                    prefix + "num_embedding 4097 exceeds the limit 4096");
-    RequireRejected(bytes, DecodeStatus::kTruncated, prefix + "num_embedding 4097 needs",
-                    unlimited);
+    RequireRejected(
+        bytes, DecodeStatus::kLimitExceeded, prefix + "num_embedding 4097 exceeds the limit 4096");
+    RequireRejected(
+        bytes, DecodeStatus::kTruncated, prefix + "num_embedding 4097 needs", unlimited);
   }
 }
 
-TEST_CASE("the allocation probe sees what the generated decoder alone would allocate",
-          "[unit]") {
+TEST_CASE("the allocation probe sees what the generated decoder alone would allocate", "[unit]") {
   // The same forged count through both decoders: LCM's sizes the vector first (the probe must
   // see it, or the "no large allocation" checks above would be vacuous), ours does not.
   const core::CameraFrame frame = MakeRealisticFrame(14);
@@ -222,8 +219,8 @@ TEST_CASE("the allocation probe sees what the generated decoder alone would allo
   CHECK(generated_largest >= 32767 * sizeof(float));
   DecodeLimits limits;
   limits.max_embedding = 32767;
-  RequireRejected(bytes, DecodeStatus::kTruncated, "detection 2: num_embedding 32767 needs",
-                  limits);
+  RequireRejected(
+      bytes, DecodeStatus::kTruncated, "detection 2: num_embedding 32767 needs", limits);
 }
 
 TEST_CASE("limits are enforced exactly at their value", "[unit]") {
@@ -236,24 +233,29 @@ TEST_CASE("limits are enforced exactly at their value", "[unit]") {
   limits.max_string = 6;  // "coco17", "body25"
   CHECK(DecodeCameraDetections(bytes.data(), bytes.size(), limits).ok());
   limits.max_detections = 4;
-  RequireRejected(bytes, DecodeStatus::kLimitExceeded, "num_detections 5 exceeds the limit 4",
-                  limits);
+  RequireRejected(
+      bytes, DecodeStatus::kLimitExceeded, "num_detections 5 exceeds the limit 4", limits);
   limits.max_detections = 5;
   limits.max_keypoints = 24;
-  RequireRejected(bytes, DecodeStatus::kLimitExceeded,
-                  "detection 3: num_keypoints 25 exceeds the limit 24", limits);
+  RequireRejected(bytes,
+                  DecodeStatus::kLimitExceeded,
+                  "detection 3: num_keypoints 25 exceeds the limit 24",
+                  limits);
   limits.max_keypoints = 25;
   limits.max_embedding = 15;
-  RequireRejected(bytes, DecodeStatus::kLimitExceeded,
-                  "detection 2: num_embedding 16 exceeds the limit 15", limits);
+  RequireRejected(bytes,
+                  DecodeStatus::kLimitExceeded,
+                  "detection 2: num_embedding 16 exceeds the limit 15",
+                  limits);
   limits.max_embedding = 16;
   limits.max_string = 5;
-  RequireRejected(bytes, DecodeStatus::kLimitExceeded,
-                  "detection 1: keypoint_layout of 6 bytes exceeds the limit 5", limits);
+  RequireRejected(bytes,
+                  DecodeStatus::kLimitExceeded,
+                  "detection 1: keypoint_layout of 6 bytes exceeds the limit 5",
+                  limits);
 }
 
-TEST_CASE("invalid string lengths are rejected before the generated decoder sees them",
-          "[unit]") {
+TEST_CASE("invalid string lengths are rejected before the generated decoder sees them", "[unit]") {
   const core::CameraFrame frame = MakeRealisticFrame(10);
   const mvtrack::camera_detections_t msg = ToLcm(frame, kWidth, kHeight);
   const std::vector<std::uint8_t> good = EncodeLcm(msg);
@@ -266,8 +268,7 @@ TEST_CASE("invalid string lengths are rejected before the generated decoder sees
     std::vector<std::uint8_t> bytes = good;
     PutBigEndian(&bytes, offsets.detections[0].keypoint_layout, 0, 4);
     mvtrack::camera_detections_t raw;
-    CHECK_THROWS_AS(raw.decode(bytes.data(), 0, static_cast<int>(bytes.size())),
-                    std::length_error);
+    CHECK_THROWS_AS(raw.decode(bytes.data(), 0, static_cast<int>(bytes.size())), std::length_error);
   }
   for (std::size_t i = 0; i < offsets.detections.size(); ++i) {
     const std::string prefix = "detection " + std::to_string(i) + ": ";
@@ -281,10 +282,13 @@ TEST_CASE("invalid string lengths are rejected before the generated decoder sees
       PutBigEndian(&bytes, offset, static_cast<std::uint32_t>(-1), 4);
       RequireRejected(bytes, DecodeStatus::kMalformed, prefix + field + " length -1 is invalid");
       PutBigEndian(&bytes, offset, INT32_MAX, 4);
-      RequireRejected(bytes, DecodeStatus::kLimitExceeded,
+      RequireRejected(bytes,
+                      DecodeStatus::kLimitExceeded,
                       prefix + field + " of 2147483646 bytes exceeds the limit 64");
-      RequireRejected(bytes, DecodeStatus::kTruncated,
-                      prefix + field + " length 2147483647 exceeds the", unlimited_strings);
+      RequireRejected(bytes,
+                      DecodeStatus::kTruncated,
+                      prefix + field + " length 2147483647 exceeds the",
+                      unlimited_strings);
     }
   }
 }
@@ -299,12 +303,12 @@ TEST_CASE("string contents: NUL terminator, printable ASCII, known layout", "[un
 
   std::vector<std::uint8_t> bytes = good;
   bytes[layout_text + 5] = '8';  // "coco18"
-  RequireRejected(bytes, DecodeStatus::kMalformed,
-                  "detection 1: unknown keypoint_layout \"coco18\"");
+  RequireRejected(
+      bytes, DecodeStatus::kMalformed, "detection 1: unknown keypoint_layout \"coco18\"");
   bytes = good;
   bytes[layout_text + 6] = 'x';  // terminator overwritten
-  RequireRejected(bytes, DecodeStatus::kMalformed,
-                  "detection 1: keypoint_layout is not NUL-terminated");
+  RequireRejected(
+      bytes, DecodeStatus::kMalformed, "detection 1: keypoint_layout is not NUL-terminated");
   bytes = good;
   bytes[layout_text + 2] = 0;  // embedded NUL
   RequireRejected(bytes, DecodeStatus::kMalformed, "contains byte 0 at index 2");
@@ -319,7 +323,8 @@ TEST_CASE("oversize messages and trailing bytes are rejected", "[unit]") {
   limits.max_message_bytes = good.size();
   CHECK(DecodeCameraDetections(good.data(), good.size(), limits).ok());
   limits.max_message_bytes = good.size() - 1;
-  RequireRejected(good, DecodeStatus::kTooLarge,
+  RequireRejected(good,
+                  DecodeStatus::kTooLarge,
                   "message of " + std::to_string(good.size()) + " bytes exceeds max_message_bytes",
                   limits);
   std::vector<std::uint8_t> longer = good;
@@ -358,8 +363,8 @@ void Mutate(std::mt19937* rng, std::vector<std::uint8_t>* bytes) {
       break;
     }
     case 2: {  // an extreme 2- or 4-byte value somewhere (hits counts and string lengths)
-      const std::uint64_t extremes[] = {0, 0xFFFFFFFFu, 0x7FFFFFFFu, 0x80000000u, 1, 0x7FFFu,
-                                        0x8000u};
+      const std::uint64_t extremes[] = {
+          0, 0xFFFFFFFFu, 0x7FFFFFFFu, 0x80000000u, 1, 0x7FFFu, 0x8000u};
       const std::size_t width = pick(2) == 0 ? 2 : 4;
       if (bytes->size() < width) break;
       PutBigEndian(bytes, pick(bytes->size() - width + 1), extremes[pick(7)], width);
@@ -381,8 +386,7 @@ void Mutate(std::mt19937* rng, std::vector<std::uint8_t>* bytes) {
   }
 }
 
-TEST_CASE("20000 random mutations never crash and every kOk re-encodes consistently",
-          "[unit]") {
+TEST_CASE("20000 random mutations never crash and every kOk re-encodes consistently", "[unit]") {
   std::mt19937 rng(20240611);
   // Box only, COCO-17 pose, COCO-17 pose + embedding, box only (the BODY-25 pose is dropped to
   // keep the loop fast: mutations then hit counts and strings more often, too).

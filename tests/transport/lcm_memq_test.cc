@@ -24,7 +24,8 @@ struct Received {
 
 // Raw handler: never lets anything escape into LCM's C code (DecodeCameraDetections does not
 // throw), so no try/catch is needed here.
-void OnDetections(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
+void OnDetections(const lcm::ReceiveBuffer* rbuf,
+                  const std::string& channel,
                   std::vector<Received>* out) {
   Received r;
   r.channel = channel;
@@ -33,7 +34,8 @@ void OnDetections(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
   out->push_back(std::move(r));
 }
 
-void OnTracks(const lcm::ReceiveBuffer* rbuf, const std::string&,
+void OnTracks(const lcm::ReceiveBuffer* rbuf,
+              const std::string&,
               std::vector<TracksDecodeResult>* out) {
   out->push_back(DecodeTracks(rbuf->data, rbuf->data_size));
 }

@@ -1,5 +1,7 @@
 // LogWriter / LogReader against real LCM log files, including hostile and damaged ones.
 
+#include "transport/log_io.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,7 +17,6 @@
 
 #include "transport/channels.h"
 #include "transport/codec.h"
-#include "transport/log_io.h"
 #include "transport/test_messages.h"
 
 namespace mvtrack::transport {
@@ -69,12 +70,14 @@ std::vector<Sample> MakeSamples() {
   for (int i = 0; i < 3; ++i) {
     core::CameraFrame frame = testing::MakeRealisticFrame(static_cast<std::uint32_t>(i));
     frame.camera_id = i;
-    samples.push_back({DetectionsChannelForCamera(i), frame.utime + i,
+    samples.push_back({DetectionsChannelForCamera(i),
+                       frame.utime + i,
                        EncodeCameraDetections(frame, 1920, 1080)});
   }
-  samples.push_back({kTracksChannel, 1'700'000'100'000'000,
-                     EncodeTracks(testing::MakeTracksFrame(1, true),
-                                  core::KeypointLayoutId::kCoco17, 1, 2)});
+  samples.push_back(
+      {kTracksChannel,
+       1'700'000'100'000'000,
+       EncodeTracks(testing::MakeTracksFrame(1, true), core::KeypointLayoutId::kCoco17, 1, 2)});
   samples.push_back({kStatusChannel, 5, {}});  // an empty payload is a valid event
   return samples;
 }
@@ -230,7 +233,8 @@ TEST_CASE("a log cut at any byte ends cleanly with the complete events", "[unit]
       {kStatusChannel, 1, {}},
       {"A", 2, {1, 2, 3, 4, 5}},
       {DetectionsChannelForCamera(12), 3, std::vector<std::uint8_t>(60, 0xED)},
-      {kTracksChannel, 4,
+      {kTracksChannel,
+       4,
        EncodeTracks(testing::MakeTracksFrame(2, false), core::KeypointLayoutId::kNone, 0, 0)}};
   const std::string full_path = dir.File("full.lcmlog");
   {
@@ -273,8 +277,10 @@ TEST_CASE("a log cut at any byte ends cleanly with the complete events", "[unit]
 }
 
 // A log of one event whose header is patched at `offset` (relative to the event start).
-std::vector<std::uint8_t> PatchedSingleEvent(std::size_t offset, std::uint64_t value,
-                                             std::size_t width, std::size_t extra_bytes) {
+std::vector<std::uint8_t> PatchedSingleEvent(std::size_t offset,
+                                             std::uint64_t value,
+                                             std::size_t width,
+                                             std::size_t extra_bytes) {
   std::vector<std::uint8_t> log = {0xED, 0xA1, 0xDA, 0x01};
   log.resize(28, 0);
   PutBigEndian(&log, 12, 1000, 8);  // timestamp
@@ -331,8 +337,7 @@ TEST_CASE("hostile event headers are reported as corrupt, never allocated or cra
   CHECK_THAT(reader->error(), Catch::Matchers::Contains("data length 4 is outside [0, 3]"));
 }
 
-TEST_CASE("garbage between events is skipped and counted, trailing garbage is corrupt",
-          "[unit]") {
+TEST_CASE("garbage between events is skipped and counted, trailing garbage is corrupt", "[unit]") {
   ScratchDir dir("garbage");
   const std::vector<Sample> samples = MakeSamples();
   const std::vector<std::size_t> starts = EventStarts(samples);

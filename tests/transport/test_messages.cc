@@ -14,7 +14,8 @@ double FloatExact(std::mt19937* rng, double lo, double hi) {
   return std::round(u(*rng) * 64.0) / 64.0;
 }
 
-core::Detection2D MakeDetection(std::mt19937* rng, core::KeypointLayoutId layout,
+core::Detection2D MakeDetection(std::mt19937* rng,
+                                core::KeypointLayoutId layout,
                                 int embedding_size) {
   core::Detection2D d;
   const double x = FloatExact(rng, 0.0, 1500.0);
@@ -25,8 +26,8 @@ core::Detection2D MakeDetection(std::mt19937* rng, core::KeypointLayoutId layout
   const int n = core::GetKeypointLayout(layout).num_joints();
   for (int j = 0; j < n; ++j) {
     core::Keypoint2D kp;
-    kp.position_px = Vec2(FloatExact(rng, d.box.x_min, d.box.x_max),
-                          FloatExact(rng, d.box.y_min, d.box.y_max));
+    kp.position_px =
+        Vec2(FloatExact(rng, d.box.x_min, d.box.x_max), FloatExact(rng, d.box.y_min, d.box.y_max));
     kp.confidence = j % 5 == 4 ? 0.0 : FloatExact(rng, 0.1, 1.0);
     d.keypoints.push_back(kp);
   }
@@ -89,7 +90,8 @@ tracker::Frame3D MakeTracksFrame(std::uint32_t seed, bool pose) {
         if ((j + static_cast<int>(i)) % 6 == 5) {
           t.joints.emplace_back(std::nullopt);
         } else {
-          t.joints.emplace_back(Vec3(FloatExact(&rng, -5.0, 5.0), FloatExact(&rng, -5.0, 5.0),
+          t.joints.emplace_back(Vec3(FloatExact(&rng, -5.0, 5.0),
+                                     FloatExact(&rng, -5.0, 5.0),
                                      FloatExact(&rng, 0.0, 2.0)));
         }
       }
@@ -197,8 +199,8 @@ std::string DiffCameraFrames(const core::CameraFrame& a, const core::CameraFrame
     const double box_b[] = {db.box.x_min, db.box.y_min, db.box.x_max, db.box.y_max, db.score};
     for (std::size_t f = 0; f < 5; ++f) {
       if (!SameBits(box_a[f], box_b[f])) {
-        return BitsDiffer(Where("detection", i) + " box/score field " + std::to_string(f),
-                          box_a[f], box_b[f]);
+        return BitsDiffer(
+            Where("detection", i) + " box/score field " + std::to_string(f), box_a[f], box_b[f]);
       }
     }
     if (da.layout != db.layout) return Where("detection", i) + ".layout";

@@ -25,7 +25,8 @@ using testing::PutBigEndian;
 // The frame as the encoder must write it: tracks by id, cameras ascending and unique.
 tracker::Frame3D Canonical(tracker::Frame3D frame) {
   std::stable_sort(
-      frame.tracks.begin(), frame.tracks.end(),
+      frame.tracks.begin(),
+      frame.tracks.end(),
       [](const tracker::Track3D& a, const tracker::Track3D& b) { return a.id < b.id; });
   for (tracker::Track3D& t : frame.tracks) {
     std::sort(t.cameras.begin(), t.cameras.end());
@@ -49,7 +50,7 @@ mvtrack::tracks3d_t ReferenceMessage(const tracker::Frame3D& canonical,
   for (const tracker::Track3D& track : canonical.tracks) {
     mvtrack::track3d_t t;
     t.id = track.id;
-    t.state = track.state == linking::TrackState::kTentative  ? mvtrack::track3d_t::STATE_TENTATIVE
+    t.state = track.state == linking::TrackState::kTentative   ? mvtrack::track3d_t::STATE_TENTATIVE
               : track.state == linking::TrackState::kConfirmed ? mvtrack::track3d_t::STATE_CONFIRMED
                                                                : mvtrack::track3d_t::STATE_LOST;
     for (int c = 0; c < 3; ++c) t.position[c] = track.position[c];
@@ -115,9 +116,8 @@ TEST_CASE("tracks round trip in pose and box mode", "[unit]") {
 TEST_CASE("the tracks encoding is byte-identical to the documented wire form", "[unit]") {
   for (const bool pose : {true, false}) {
     const tracker::Frame3D frame = MakeTracksFrame(2, pose);
-    const std::vector<std::uint8_t> ours =
-        EncodeTracks(frame, pose ? core::KeypointLayoutId::kCoco17 : core::KeypointLayoutId::kNone,
-                     77, 5);
+    const std::vector<std::uint8_t> ours = EncodeTracks(
+        frame, pose ? core::KeypointLayoutId::kCoco17 : core::KeypointLayoutId::kNone, 77, 5);
     const std::vector<std::uint8_t> reference =
         EncodeLcm(ReferenceMessage(Canonical(frame), pose ? "coco17" : "", 77, 5));
     CHECK(ours == reference);
@@ -182,8 +182,8 @@ TEST_CASE("track structure errors name the track and field", "[unit]") {
   RequireRejected(bytes, DecodeStatus::kMalformed, "num_tracks -1 is negative");
   PutBigEndian(&bytes, offsets.num_tracks, INT32_MAX, 4);
   RequireRejected(bytes, DecodeStatus::kLimitExceeded, "num_tracks 2147483647 exceeds the limit");
-  RequireRejected(bytes, DecodeStatus::kTruncated, "num_tracks 2147483647 needs at least",
-                  unlimited);
+  RequireRejected(
+      bytes, DecodeStatus::kTruncated, "num_tracks 2147483647 needs at least", unlimited);
 
   for (std::size_t i = 0; i < offsets.tracks.size(); ++i) {
     const std::string prefix =
@@ -196,18 +196,16 @@ TEST_CASE("track structure errors name the track and field", "[unit]") {
     RequireRejected(bytes, DecodeStatus::kMalformed, prefix + "num_cameras -1 is negative");
     PutBigEndian(&bytes, offsets.tracks[i].num_cameras, 32767, 2);
     RequireRejected(bytes, DecodeStatus::kLimitExceeded, prefix + "num_cameras 32767 exceeds");
-    RequireRejected(bytes, DecodeStatus::kTruncated, prefix + "num_cameras 32767 needs",
-                    unlimited);
+    RequireRejected(bytes, DecodeStatus::kTruncated, prefix + "num_cameras 32767 needs", unlimited);
     bytes = good;
     PutBigEndian(&bytes, offsets.tracks[i].num_joints, 0x8000, 2);
     RequireRejected(bytes, DecodeStatus::kMalformed, prefix + "num_joints -32768 is negative");
     PutBigEndian(&bytes, offsets.tracks[i].num_joints, 32767, 2);
     RequireRejected(bytes, DecodeStatus::kLimitExceeded, prefix + "num_joints 32767 exceeds");
-    RequireRejected(bytes, DecodeStatus::kTruncated, prefix + "num_joints 32767 needs",
-                    unlimited);
+    RequireRejected(bytes, DecodeStatus::kTruncated, prefix + "num_joints 32767 needs", unlimited);
     PutBigEndian(&bytes, offsets.tracks[i].num_joints, 1, 2);
-    RequireRejected(bytes, DecodeStatus::kMalformed,
-                    prefix + "num_joints 1 is neither 0 nor the 17 joints");
+    RequireRejected(
+        bytes, DecodeStatus::kMalformed, prefix + "num_joints 1 is neither 0 nor the 17 joints");
   }
 
   // A joint count that does not match the layout: 17 joints in a box-mode message.
@@ -239,8 +237,7 @@ TEST_CASE("5000 random mutations of a tracks message never crash", "[unit]") {
   // Two pose tracks (ids 7 and 3: unsorted) keep the loop fast.
   tracker::Frame3D frame = MakeTracksFrame(6, true);
   frame.tracks.resize(2);
-  const std::vector<std::uint8_t> good =
-      EncodeTracks(frame, core::KeypointLayoutId::kCoco17, 1, 2);
+  const std::vector<std::uint8_t> good = EncodeTracks(frame, core::KeypointLayoutId::kCoco17, 1, 2);
   int ok = 0;
   for (int iteration = 0; iteration < 5000; ++iteration) {
     std::vector<std::uint8_t> bytes = good;
@@ -262,14 +259,14 @@ TEST_CASE("5000 random mutations of a tracks message never crash", "[unit]") {
       continue;
     }
     ++ok;
-    const std::vector<std::uint8_t> again = EncodeTracks(
-        result.message.frame, result.message.layout, result.message.publish_utime,
-        result.message.latency_us);
+    const std::vector<std::uint8_t> again = EncodeTracks(result.message.frame,
+                                                         result.message.layout,
+                                                         result.message.publish_utime,
+                                                         result.message.latency_us);
     const TracksDecodeResult second = DecodeTracks(again.data(), again.size());
     if (!second.ok()) FAIL("iteration " << iteration << ": " << second.reason);
     // Re-encoding sorts by id and canonicalizes cameras; ENDED is written as LOST.
-    const std::string diff =
-        DiffFrames3D(second.message.frame, Canonical(result.message.frame));
+    const std::string diff = DiffFrames3D(second.message.frame, Canonical(result.message.frame));
     if (!diff.empty()) FAIL("iteration " << iteration << ": re-encoding changed " << diff);
   }
   CHECK(ok > 500);

@@ -1,6 +1,8 @@
 // The canonical tracks JSON-lines format: exact output (the lines below are the format's
 // specification), number formatting, and the parser.
 
+#include "transport/tracks_jsonl.h"
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -12,7 +14,6 @@
 #include <vector>
 
 #include "transport/test_messages.h"
-#include "transport/tracks_jsonl.h"
 
 namespace mvtrack::transport {
 namespace {
@@ -117,7 +118,8 @@ TEST_CASE("non-finite joints print null, a non-finite position prints null", "[u
   const std::optional<tracker::Frame3D> parsed = ParseTracksJsonLine(
       "{\"frame\": 0, \"layout\": \"none\", \"tracks\": [{\"id\": 1, \"joints\": [], "
       "\"position\": null}], \"utime\": 0}",
-      nullptr, nullptr);
+      nullptr,
+      nullptr);
   REQUIRE(parsed.has_value());
   CHECK(std::isnan(parsed->tracks[0].position.x()));
 }
@@ -177,7 +179,8 @@ TEST_CASE("parse(format(x)) == x within the printed precision", "[unit]") {
     CHECK(parsed->utime == frame.utime);
     REQUIRE(parsed->tracks.size() == frame.tracks.size());
     std::vector<tracker::Track3D> sorted = frame.tracks;
-    std::sort(sorted.begin(), sorted.end(),
+    std::sort(sorted.begin(),
+              sorted.end(),
               [](const tracker::Track3D& a, const tracker::Track3D& b) { return a.id < b.id; });
     constexpr double kTolerance = 0.5e-4 + 1e-12;
     for (std::size_t i = 0; i < sorted.size(); ++i) {
@@ -250,8 +253,9 @@ TEST_CASE("the parser rejects malformed lines with a reason", "[unit]") {
       {head + tail.substr(0, tail.size() - 1) + ", \"extra\": 1}",
        "extra: unknown key \"extra\" (allowed: frame, layout, tracks, utime)"},
       {head + tail + " x", "column 58: syntax error while parsing value - invalid literal"},
-      {head + tail + "\n{}", "column 58: syntax error while parsing value - unexpected '{'; expected "
-                              "end of input"},
+      {head + tail + "\n{}",
+       "column 58: syntax error while parsing value - unexpected '{'; expected "
+       "end of input"},
       {"{\"frame\": \"1\", \"layout\": \"none\", \"tracks\": [], \"utime\": 2}",
        "column 11: frame: expected an integer, found a string"},
       {"{\"frame\": 1.5, \"layout\": \"none\", \"tracks\": [], \"utime\": 2}",
@@ -272,8 +276,7 @@ TEST_CASE("the parser rejects malformed lines with a reason", "[unit]") {
       {"{\"frame\": 1, \"layout\": \"none\", \"tracks\": {}, \"utime\": 2}",
        "tracks: expected an array, found an object"},
       {head + track + ", " + track + tail, "duplicate track id 4"},
-      {head + "{\"joints\": [], \"position\": [1, 2, 3]}" + tail,
-       "tracks[0]: missing key \"id\""},
+      {head + "{\"joints\": [], \"position\": [1, 2, 3]}" + tail, "tracks[0]: missing key \"id\""},
       {head + "{\"id\": 1, \"position\": [1, 2, 3]}" + tail, "tracks[0]: missing key \"joints\""},
       {head + "{\"id\": 1, \"joints\": []}" + tail, "tracks[0]: missing key \"position\""},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [1, 2]}" + tail,
@@ -282,8 +285,7 @@ TEST_CASE("the parser rejects malformed lines with a reason", "[unit]") {
        "tracks[0].position: expected [x, y, z] (3 values), found 4 values"},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [1., 2, 3]}" + tail,
        "expected digit after '.'"},
-      {head + "{\"id\": 1, \"joints\": [], \"position\": [NaN, 2, 3]}" + tail,
-       "invalid literal"},
+      {head + "{\"id\": 1, \"joints\": [], \"position\": [NaN, 2, 3]}" + tail, "invalid literal"},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [1e999, 2, 3]}" + tail,
        "column 80: number overflow parsing '1e999'"},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [\"1\", 2, 3]}" + tail,

@@ -18,8 +18,11 @@ using testing::Walker;
 
 // Camera `c`'s observation of the walker at frame t: centre (pelvis), feet (the floor under
 // it), head (1.8 m above the floor), each shifted by `shift_px` (feet only) to corrupt it.
-core::Tracklet2D EndsTracklet(const geometry::CameraModel& camera, const Walker& w,
-                              FrameIndex first, FrameIndex last, double feet_shift_px) {
+core::Tracklet2D EndsTracklet(const geometry::CameraModel& camera,
+                              const Walker& w,
+                              FrameIndex first,
+                              FrameIndex last,
+                              double feet_shift_px) {
   core::Tracklet2D t;
   t.camera_id = camera.id;
   t.track_id = 1;
@@ -28,7 +31,8 @@ core::Tracklet2D EndsTracklet(const geometry::CameraModel& camera, const Walker&
     const Vec3 feet(pelvis.x(), pelvis.y(), 0.0);
     const Vec3 head(pelvis.x(), pelvis.y(), 1.8);
     core::Observation2D o;
-    o.points_px = {*camera.ProjectUndistorted(pelvis), *camera.ProjectUndistorted(feet),
+    o.points_px = {*camera.ProjectUndistorted(pelvis),
+                   *camera.ProjectUndistorted(feet),
                    *camera.ProjectUndistorted(head)};
     o.points_px[1].y() += feet_shift_px;
     o.confidence = {1.0, 1.0, 1.0};

@@ -77,7 +77,8 @@ std::vector<int> NaiveCompleteLinkage(const std::vector<Vec3>& p, double kappa) 
 
 /// Largest pairwise distance inside each label; and the smallest complete-linkage distance
 /// between two different labels.
-void CheckCompleteLinkageInvariants(const std::vector<Vec3>& p, const std::vector<int>& labels,
+void CheckCompleteLinkageInvariants(const std::vector<Vec3>& p,
+                                    const std::vector<int>& labels,
                                     double kappa) {
   const int num_labels = *std::max_element(labels.begin(), labels.end()) + 1;
   // link[a][b] = max distance between members of labels a and b.
@@ -197,8 +198,8 @@ TEST_CASE("LargestClusterCentroid breaks ties deterministically", "[unit]") {
 
   SECTION("a larger cluster beats a tighter one") {
     std::vector<Vec3> candidates = blob(a, 0.001);
-    const std::vector<Vec3> four = {b, b + Vec3(0.08, 0.0, 0.0), b + Vec3(0.0, 0.08, 0.0),
-                                    b + Vec3(0.0, 0.0, 0.08)};
+    const std::vector<Vec3> four = {
+        b, b + Vec3(0.08, 0.0, 0.0), b + Vec3(0.0, 0.08, 0.0), b + Vec3(0.0, 0.0, 0.08)};
     candidates.insert(candidates.end(), four.begin(), four.end());
     const auto vote = LargestClusterCentroid(candidates, 0.2);
     REQUIRE(vote.has_value());

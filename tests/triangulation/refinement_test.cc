@@ -1,8 +1,10 @@
 // Per-window refinement of 3D tracklets (lib/triangulation/refinement.h): duplicate distance,
 // temporal outlier rejection, completion of missing points.
 
-#include <catch2/catch.hpp>
+#include "triangulation/refinement.h"
+
 #include <Eigen/Geometry>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -11,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "triangulation/refinement.h"
 #include "triangulation/synthetic_person.h"
 
 namespace mvtrack {
@@ -34,8 +35,10 @@ core::Tracklet3D MakeTracklet3D(const std::vector<FrameIndex>& frames, F points)
 
 // A rigid, non-planar five-point "head" turning about the vertical axis and walking.
 std::vector<Vec3> HeadAt(FrameIndex t) {
-  const std::vector<Vec3> local = {Vec3(0.10, 0.0, 0.0), Vec3(0.07, 0.04, 0.03),
-                                   Vec3(0.07, -0.04, 0.03), Vec3(0.0, 0.08, 0.0),
+  const std::vector<Vec3> local = {Vec3(0.10, 0.0, 0.0),
+                                   Vec3(0.07, 0.04, 0.03),
+                                   Vec3(0.07, -0.04, 0.03),
+                                   Vec3(0.0, 0.08, 0.0),
                                    Vec3(0.0, -0.08, 0.0)};
   const double angle = 0.08 * static_cast<double>(t);  // 4.6 degrees per frame
   const Mat3 r = Eigen::AngleAxisd(angle, Vec3::UnitZ()).toRotationMatrix();
@@ -144,9 +147,8 @@ TEST_CASE("FootprintDistance is the median ground-plane distance of common frame
   });
   CHECK(triangulation::FootprintDistance(a, two) == Approx(0.3));
   // No common frame.
-  core::Tracklet3D late = MakeTracklet3D(Range(10, 12), [](FrameIndex) {
-    return std::vector<Vec3>{Vec3(0, 0, 0)};
-  });
+  core::Tracklet3D late =
+      MakeTracklet3D(Range(10, 12), [](FrameIndex) { return std::vector<Vec3>{Vec3(0, 0, 0)}; });
   CHECK(std::isinf(triangulation::FootprintDistance(a, late, &frames)));
   CHECK(frames == 0);
 }
@@ -183,9 +185,8 @@ TEST_CASE("ReprojectionResidual and InconsistentTracklets find another person's 
   testing::Walker b = a;
   b.start += Vec3(0.0, 1.5, 0.0);
   const auto frames = testing::FrameRange(0, 29);
-  core::Tracklet3D person = MakeTracklet3D(frames, [&](FrameIndex t) {
-    return std::vector<Vec3>{a.Pelvis(t)};
-  });
+  core::Tracklet3D person =
+      MakeTracklet3D(frames, [&](FrameIndex t) { return std::vector<Vec3>{a.Pelvis(t)}; });
   std::mt19937 rng(8);
   const testing::ViewSpec spec{true, 0.5};
   std::vector<core::Tracklet2D> tracklets;
@@ -216,8 +217,8 @@ TEST_CASE("ReprojectionResidual and InconsistentTracklets find another person's 
   for (core::Observation2D& obs : unsure.observations) obs.confidence[0] = 0.05;
   CHECK_FALSE(triangulation::ReprojectionResidual(rig, unsure, person, 0.1).has_value());
   tracklets.push_back(unsure);
-  CHECK(triangulation::InconsistentTracklets(rig, tracklets, {0, 1, 2, 3, 4}, person, 0.2,
-                                             0.1) == std::vector<int>{3});
+  CHECK(triangulation::InconsistentTracklets(rig, tracklets, {0, 1, 2, 3, 4}, person, 0.2, 0.1) ==
+        std::vector<int>{3});
   // The median over frames follows the majority of frames: with A's projections in 14 of 30
   // frames the tracklet is still B (split off), with them in 16 of 30 it is A (kept).
   core::Tracklet2D mostly_b = tracklets[3];
@@ -265,9 +266,8 @@ TEST_CASE("RejectTemporalOutliers removes spikes and keeps fast straight motion"
     CHECK(t.points[f][1].has_value());
   }
   // Disabled: nothing happens.
-  core::Tracklet3D u = MakeTracklet3D(Range(0, 6), [](FrameIndex f) {
-    return std::vector<Vec3>{Vec3(0, 0, f == 3 ? 5.0 : 0.0)};
-  });
+  core::Tracklet3D u = MakeTracklet3D(
+      Range(0, 6), [](FrameIndex f) { return std::vector<Vec3>{Vec3(0, 0, f == 3 ? 5.0 : 0.0)}; });
   o.outlier_half_window = 0;
   CHECK(triangulation::RejectTemporalOutliers(&u, o) == 0);
   o.outlier_half_window = 3;

@@ -32,7 +32,7 @@ inline constexpr double kFps = 30.0;
 
 /// A person walking in a straight line with swinging arms and legs (1 Hz gait).
 struct Walker {
-  Vec3 start = Vec3(-1.5, -1.0, 0.0);   ///< ground position at frame 0, metres
+  Vec3 start = Vec3(-1.5, -1.0, 0.0);  ///< ground position at frame 0, metres
   Vec3 velocity_mps = Vec3(1.2, 0.6, 0.0);
 
   /// Ground-truth joints at frame t (world frame, metres, z up).
@@ -43,11 +43,20 @@ struct Walker {
     const Vec3 left = Vec3::UnitZ().cross(forward);
     const double s = std::sin(2.0 * std::numbers::pi * time_s);
     // {forward swing amplitude, lateral offset, height} per joint.
-    static constexpr double kLocal[kNumJoints][3] = {
-        {0.15, -0.10, 0.10},  {0.08, -0.10, 0.50},  {0.0, -0.10, 0.95},  {0.0, 0.10, 0.95},
-        {-0.08, 0.10, 0.50},  {-0.15, 0.10, 0.10},  {-0.20, -0.25, 0.85}, {-0.10, -0.22, 1.15},
-        {0.0, -0.20, 1.45},   {0.0, 0.20, 1.45},    {0.10, 0.22, 1.15},  {0.20, 0.25, 0.85},
-        {0.0, 0.0, 1.55},     {0.0, 0.0, 1.80}};
+    static constexpr double kLocal[kNumJoints][3] = {{0.15, -0.10, 0.10},
+                                                     {0.08, -0.10, 0.50},
+                                                     {0.0, -0.10, 0.95},
+                                                     {0.0, 0.10, 0.95},
+                                                     {-0.08, 0.10, 0.50},
+                                                     {-0.15, 0.10, 0.10},
+                                                     {-0.20, -0.25, 0.85},
+                                                     {-0.10, -0.22, 1.15},
+                                                     {0.0, -0.20, 1.45},
+                                                     {0.0, 0.20, 1.45},
+                                                     {0.10, 0.22, 1.15},
+                                                     {0.20, 0.25, 0.85},
+                                                     {0.0, 0.0, 1.55},
+                                                     {0.0, 0.0, 1.80}};
     std::vector<Vec3> joints;
     joints.reserve(kNumJoints);
     for (const auto& j : kLocal) {
@@ -67,8 +76,8 @@ struct Walker {
 /// 6 m x 6 m room centred on the origin, looking at (0, 0, 1); 1920x1080, f = 1000 px.
 inline std::vector<geometry::CameraModel> RoomCameras() {
   const CameraId ids[4] = {3, 5, 8, 13};
-  const Vec3 corners[4] = {Vec3(3.0, 3.0, 2.6), Vec3(-3.0, 3.0, 2.6), Vec3(-3.0, -3.0, 2.6),
-                           Vec3(3.0, -3.0, 2.6)};
+  const Vec3 corners[4] = {
+      Vec3(3.0, 3.0, 2.6), Vec3(-3.0, 3.0, 2.6), Vec3(-3.0, -3.0, 2.6), Vec3(3.0, -3.0, 2.6)};
   std::vector<geometry::CameraModel> cameras;
   for (int i = 0; i < 4; ++i) {
     cameras.push_back(LookAtCamera(ids[i], corners[i], Vec3(0.0, 0.0, 1.0), 1000.0, 1920, 1080));
@@ -145,7 +154,8 @@ inline core::Tracklet2D MakeTracklet(
 }
 
 /// Frames [first, last] except those in `skip`.
-inline std::vector<FrameIndex> FrameRange(FrameIndex first, FrameIndex last,
+inline std::vector<FrameIndex> FrameRange(FrameIndex first,
+                                          FrameIndex last,
                                           const std::vector<FrameIndex>& skip = {}) {
   std::vector<FrameIndex> frames;
   for (FrameIndex t = first; t <= last; ++t) {

@@ -39,8 +39,10 @@ struct ErrorSummary {
   int missing = 0;  ///< slots without a point
 };
 
-ErrorSummary Evaluate(const core::Tracklet3D& out, const Walker& walker,
-                      const std::vector<FrameIndex>& frames, bool box_mode) {
+ErrorSummary Evaluate(const core::Tracklet3D& out,
+                      const Walker& walker,
+                      const std::vector<FrameIndex>& frames,
+                      bool box_mode) {
   ErrorSummary s;
   for (const FrameIndex t : frames) {
     const std::vector<Vec3> truth =
@@ -63,12 +65,14 @@ ErrorSummary Evaluate(const core::Tracklet3D& out, const Walker& walker,
 
 /// Tracklets of `walker` in every camera of `cameras` over frames [0, last], one per camera.
 std::vector<core::Tracklet2D> AllViews(const std::vector<geometry::CameraModel>& cameras,
-                                       const Walker& walker, FrameIndex last, const ViewSpec& spec,
+                                       const Walker& walker,
+                                       FrameIndex last,
+                                       const ViewSpec& spec,
                                        std::mt19937* rng) {
   std::vector<core::Tracklet2D> tracklets;
   for (std::size_t c = 0; c < cameras.size(); ++c) {
-    tracklets.push_back(MakeTracklet(cameras[c], static_cast<TrackId2D>(c + 1), walker,
-                                     FrameRange(0, last), spec, rng));
+    tracklets.push_back(MakeTracklet(
+        cameras[c], static_cast<TrackId2D>(c + 1), walker, FrameRange(0, last), spec, rng));
   }
   return tracklets;
 }
@@ -143,19 +147,25 @@ TEST_CASE("One corrupted view: CMMT and RANSAC stay accurate while DLT degrades"
   const ViewSpec spec{false, 1.0};
   std::vector<core::Tracklet2D> tracklets;
   for (std::size_t c = 0; c < cameras.size(); ++c) {
-    tracklets.push_back(MakeTracklet(
-        cameras[c], static_cast<TrackId2D>(c + 1), walker, FrameRange(0, 13), spec, &rng,
-        [&](FrameIndex t, core::Observation2D* obs) {
-          if (c == 2 && t >= 3 && t <= 7) {
-            // Association failure: another person's joints (the paper's main outlier source).
-            const auto body = other.Joints(t);
-            *obs = testing::Observe(cameras[c], body, body, 1.0, &rng);
-          }
-          if (c == 1 && (t == 10 || t == 11)) {
-            // Gross 2D estimation error: every joint shifted by (120, -80) px.
-            for (Vec2& x : obs->points_px) x += Vec2(120.0, -80.0);
-          }
-        }));
+    tracklets.push_back(MakeTracklet(cameras[c],
+                                     static_cast<TrackId2D>(c + 1),
+                                     walker,
+                                     FrameRange(0, 13),
+                                     spec,
+                                     &rng,
+                                     [&](FrameIndex t, core::Observation2D* obs) {
+                                       if (c == 2 && t >= 3 && t <= 7) {
+                                         // Association failure: another person's joints (the
+                                         // paper's main outlier source).
+                                         const auto body = other.Joints(t);
+                                         *obs = testing::Observe(cameras[c], body, body, 1.0, &rng);
+                                       }
+                                       if (c == 1 && (t == 10 || t == 11)) {
+                                         // Gross 2D estimation error: every joint shifted by (120,
+                                         // -80) px.
+                                         for (Vec2& x : obs->points_px) x += Vec2(120.0, -80.0);
+                                       }
+                                     }));
   }
   const std::vector<int> cluster = {0, 1, 2, 3};
   ErrorSummary on_corrupted[3], overall[3];
@@ -192,13 +202,19 @@ TEST_CASE("Two of six views corrupted (box mode): CMMT and RANSAC stay accurate,
   std::mt19937 rng(77);
   std::vector<core::Tracklet2D> tracklets;
   for (std::size_t c = 0; c < cameras.size(); ++c) {
-    tracklets.push_back(MakeTracklet(
-        cameras[c], static_cast<TrackId2D>(c), walker, FrameRange(0, 19), ViewSpec{true, 0.5},
-        &rng, [&](FrameIndex t, core::Observation2D* obs) {
-          if (t % 2 != 0) return;
-          if (c == 1) for (Vec2& x : obs->points_px) x += Vec2(90.0, 40.0);
-          if (c == 4) for (Vec2& x : obs->points_px) x += Vec2(-60.0, 110.0);
-        }));
+    tracklets.push_back(MakeTracklet(cameras[c],
+                                     static_cast<TrackId2D>(c),
+                                     walker,
+                                     FrameRange(0, 19),
+                                     ViewSpec{true, 0.5},
+                                     &rng,
+                                     [&](FrameIndex t, core::Observation2D* obs) {
+                                       if (t % 2 != 0) return;
+                                       if (c == 1)
+                                         for (Vec2& x : obs->points_px) x += Vec2(90.0, 40.0);
+                                       if (c == 4)
+                                         for (Vec2& x : obs->points_px) x += Vec2(-60.0, 110.0);
+                                     }));
   }
   const std::vector<int> cluster = {0, 1, 2, 3, 4, 5};
   std::vector<FrameIndex> even;
@@ -227,17 +243,20 @@ TEST_CASE("Missing observations: CMMT fills frames where DLT has fewer than two 
   tracklets.push_back(MakeTracklet(cameras[0], 1, walker, FrameRange(0, 11), spec, &rng));
   for (std::size_t c = 1; c < 4; ++c) {
     // Cameras 1..3 lose the person at frames 5-6 (camera 0 alone sees them) and one more frame.
-    tracklets.push_back(MakeTracklet(cameras[c], static_cast<TrackId2D>(c + 1), walker,
+    tracklets.push_back(MakeTracklet(cameras[c],
+                                     static_cast<TrackId2D>(c + 1),
+                                     walker,
                                      FrameRange(0, 11, {5, 6, static_cast<FrameIndex>(7 + c)}),
-                                     spec, &rng));
+                                     spec,
+                                     &rng));
   }
   const std::vector<int> cluster = {0, 1, 2, 3};
   const std::vector<FrameIndex> gap = {5, 6};
 
-  const auto dlt = TriangulatePerson(rig, tracklets, cluster, 0, 12, kNumJoints,
-                                     WithMethod(TriangulationMethod::kDlt));
-  const auto ransac = TriangulatePerson(rig, tracklets, cluster, 0, 12, kNumJoints,
-                                        WithMethod(TriangulationMethod::kRansac));
+  const auto dlt = TriangulatePerson(
+      rig, tracklets, cluster, 0, 12, kNumJoints, WithMethod(TriangulationMethod::kDlt));
+  const auto ransac = TriangulatePerson(
+      rig, tracklets, cluster, 0, 12, kNumJoints, WithMethod(TriangulationMethod::kRansac));
   TriangulationStats stats;
   PersonTriangulator cmmt_triangulator(WithMethod(TriangulationMethod::kCmmt));
   const auto cmmt =
@@ -354,8 +373,8 @@ TEST_CASE("CMMT gaps longer than phi stay empty (box mode)", "[unit]") {
   const ViewSpec box{true, 0.0};
   tracklets.push_back(MakeTracklet(cameras[0], 1, walker, FrameRange(0, 39), box, &rng));
   for (std::size_t c = 1; c < 4; ++c) {
-    tracklets.push_back(MakeTracklet(cameras[c], static_cast<TrackId2D>(c + 1), walker,
-                                     FrameRange(0, 39, gap), box, &rng));
+    tracklets.push_back(MakeTracklet(
+        cameras[c], static_cast<TrackId2D>(c + 1), walker, FrameRange(0, 39, gap), box, &rng));
   }
   const std::vector<int> cluster = {0, 1, 2, 3};
   // A 17-frame gap: no frame inside has both endpoints within phi = 7.
@@ -463,9 +482,11 @@ TEST_CASE("Low-confidence points are ignored", "[unit]") {
   // confidence weight 0.05 damps it.
   TriangulationOptions accept_all = WithMethod(TriangulationMethod::kDlt);
   accept_all.min_confidence = 0.0;
-  const ErrorSummary polluted = Evaluate(
-      TriangulatePerson(rig, tracklets, cluster, 0, 10, kNumJoints, accept_all), walker,
-      FrameRange(0, 9), false);
+  const ErrorSummary polluted =
+      Evaluate(TriangulatePerson(rig, tracklets, cluster, 0, 10, kNumJoints, accept_all),
+               walker,
+               FrameRange(0, 9),
+               false);
   CAPTURE(polluted.max_m);
   CHECK(polluted.missing == 0);
   CHECK(polluted.max_m > 1e-3);
@@ -482,9 +503,16 @@ TEST_CASE("DLT weights views by confidence", "[unit]") {
       for (Vec2& x : obs.points_px) x += Vec2(40.0, 0.0);
       for (double& c : obs.confidence) c = confidence;
     }
-    return Evaluate(TriangulatePerson(rig, tracklets, {0, 1, 2, 3}, 0, 10, kNumJoints,
+    return Evaluate(TriangulatePerson(rig,
+                                      tracklets,
+                                      {0, 1, 2, 3},
+                                      0,
+                                      10,
+                                      kNumJoints,
                                       WithMethod(TriangulationMethod::kDlt)),
-                    walker, FrameRange(0, 9), false)
+                    walker,
+                    FrameRange(0, 9),
+                    false)
         .mean_m;
   };
   const double full = error_with_confidence(1.0);
@@ -504,9 +532,19 @@ TEST_CASE("CMMT abstains when candidates disagree without a majority", "[unit]")
   };
   const std::vector<core::Tracklet2D> tracklets = {
       MakeTracklet(cameras[0], 1, walker, FrameRange(0, 4), ViewSpec{true, 0.0}, &rng),
-      MakeTracklet(cameras[1], 2, walker, FrameRange(0, 4), ViewSpec{true, 0.0}, &rng,
+      MakeTracklet(cameras[1],
+                   2,
+                   walker,
+                   FrameRange(0, 4),
+                   ViewSpec{true, 0.0},
+                   &rng,
                    shifted(Vec2(0.0, 150.0))),
-      MakeTracklet(cameras[2], 3, walker, FrameRange(0, 4), ViewSpec{true, 0.0}, &rng,
+      MakeTracklet(cameras[2],
+                   3,
+                   walker,
+                   FrameRange(0, 4),
+                   ViewSpec{true, 0.0},
+                   &rng,
                    shifted(Vec2(-150.0, 0.0)))};
   const auto rig = testing::MakeRig({cameras[0], cameras[1], cameras[2]});
   TriangulationOptions options;
@@ -533,21 +571,31 @@ TEST_CASE("max_views keeps the most confident view and then the widest baselines
   };
   // Camera ids are chosen so that neither "lowest ids" nor "confidence, then lowest id" would pick
   // the clean views.
-  const std::vector<geometry::CameraModel> cameras = {cam(5, 3.0, 3.0),   cam(6, -3.0, 3.0),
-                                                      cam(4, -3.0, -3.0), cam(1, 2.6, 3.0),
-                                                      cam(2, -3.0, -2.6), cam(3, -2.6, 3.0)};
+  const std::vector<geometry::CameraModel> cameras = {cam(5, 3.0, 3.0),
+                                                      cam(6, -3.0, 3.0),
+                                                      cam(4, -3.0, -3.0),
+                                                      cam(1, 2.6, 3.0),
+                                                      cam(2, -3.0, -2.6),
+                                                      cam(3, -2.6, 3.0)};
   const auto rig = testing::MakeRig(cameras);
   const Walker walker;
   std::mt19937 rng(41);
   std::vector<core::Tracklet2D> tracklets;
   for (std::size_t c = 0; c < cameras.size(); ++c) {
-    tracklets.push_back(MakeTracklet(
-        cameras[c], static_cast<TrackId2D>(c), walker, FrameRange(0, 5), ViewSpec{true, 0.0}, &rng,
-        [c](FrameIndex, core::Observation2D* obs) {
-          obs->confidence[0] = c == 0 ? 1.0 : 0.9;
-          // The near-duplicates E, F, G (half of the views) are corrupted.
-          if (c >= 3) obs->points_px[0] += Vec2(60.0 * static_cast<double>(c), -50.0);
-        }));
+    tracklets.push_back(MakeTracklet(cameras[c],
+                                     static_cast<TrackId2D>(c),
+                                     walker,
+                                     FrameRange(0, 5),
+                                     ViewSpec{true, 0.0},
+                                     &rng,
+                                     [c](FrameIndex, core::Observation2D* obs) {
+                                       obs->confidence[0] = c == 0 ? 1.0 : 0.9;
+                                       // The near-duplicates E, F, G (half of the views) are
+                                       // corrupted.
+                                       if (c >= 3)
+                                         obs->points_px[0] +=
+                                             Vec2(60.0 * static_cast<double>(c), -50.0);
+                                     }));
   }
   const std::vector<int> cluster = {0, 1, 2, 3, 4, 5};
   // Expected choice: A (most confident), then C (farthest from A), then B (min distance 6 m to

@@ -137,9 +137,18 @@ TEST_CASE("status event: health, flag names and every camera field", "[unit]") {
   REQUIRE(e["cameras"].size() == 3);
   CHECK(e["cameras"][0]["flags"] == json::array({"LOSING"}));
   CHECK(e["cameras"][0]["lost"] == 4);
-  for (const char* key : {"camera_id", "rate_hz", "last_utime", "last_receive_utime", "received",
-                          "late", "dropped", "rejected", "decode_errors", "clock_offset_us",
-                          "queue_depth", "queue_capacity"}) {
+  for (const char* key : {"camera_id",
+                          "rate_hz",
+                          "last_utime",
+                          "last_receive_utime",
+                          "received",
+                          "late",
+                          "dropped",
+                          "rejected",
+                          "decode_errors",
+                          "clock_offset_us",
+                          "queue_depth",
+                          "queue_capacity"}) {
     CHECK(e["cameras"][1].contains(key));
   }
 }

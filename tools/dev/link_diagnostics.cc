@@ -135,8 +135,10 @@ int LabelOf(const core::Tracklet3D& person, const std::map<FrameIndex, sim::Fram
 
 // Median over the person's frames of the distance to the nearest GT footprint, and the mean
 // footprint.
-void Describe(const core::Tracklet3D& person, const std::map<FrameIndex, sim::FrameTruth>& truth,
-              double* median_gt_distance, mvtrack::Vec3* mean) {
+void Describe(const core::Tracklet3D& person,
+              const std::map<FrameIndex, sim::FrameTruth>& truth,
+              double* median_gt_distance,
+              mvtrack::Vec3* mean) {
   std::vector<double> d;
   *mean = mvtrack::Vec3::Zero();
   int frames = 0;
@@ -293,7 +295,8 @@ int main(int argc, char** argv) {
             shared = linking::SharedMembers(old->members, person);
             track_members = static_cast<int>(old->members.size());
             gap = person.frames.front() - old->last_seen_frame;
-            const auto init = linking::InitialMotion(person, trk->linker().context(),
+            const auto init = linking::InitialMotion(person,
+                                                     trk->linker().context(),
                                                      trk->linker().options().motion,
                                                      trk->linker().seconds_per_frame());
             FrameIndex first = 0;
@@ -342,8 +345,8 @@ int main(int argc, char** argv) {
         double gd = 0.0;
         mvtrack::Vec3 mean;
         Describe(person, truth, &gd, &mean);
-        decisions << '\t' << mean.x() << '\t' << mean.y() << '\t' << mean.z() << '\t' << gd
-                  << '\t' << person.frames.size() << '\t' << person.cameras.size();
+        decisions << '\t' << mean.x() << '\t' << mean.y() << '\t' << mean.z() << '\t' << gd << '\t'
+                  << person.frames.size() << '\t' << person.cameras.size();
         // Median height of every point index (box center_ends: centre, feet, head).
         for (std::size_t k = 0; k < 3; ++k) {
           std::vector<double> z;

@@ -12,7 +12,8 @@
 
 namespace mvtrack::cli {
 
-Args& Args::Option(const std::string& name, const std::string& help,
+Args& Args::Option(const std::string& name,
+                   const std::string& help,
                    const std::string& default_value) {
   options_[name] = Spec{help, default_value, false};
   option_order_.push_back(name);
@@ -37,7 +38,8 @@ std::string Args::Help(const std::string& usage_line, const std::string& descrip
   os << "usage: " << usage_line << "\n\n" << description << "\n";
   if (!positional_specs_.empty()) {
     os << "\narguments:\n";
-    for (const auto& [name, help] : positional_specs_) os << "  " << name << "\n      " << help << "\n";
+    for (const auto& [name, help] : positional_specs_)
+      os << "  " << name << "\n      " << help << "\n";
   }
   os << "\noptions:\n";
   for (const std::string& name : option_order_) {
@@ -50,7 +52,9 @@ std::string Args::Help(const std::string& usage_line, const std::string& descrip
   return os.str();
 }
 
-bool Args::Parse(int argc, char** argv, const std::string& usage_line,
+bool Args::Parse(int argc,
+                 char** argv,
+                 const std::string& usage_line,
                  const std::string& description) {
   std::vector<std::string> positionals;
   for (int i = 1; i < argc; ++i) {
@@ -177,8 +181,8 @@ std::vector<eval::FrameRange> ParseFrameRanges(const std::string& text, const st
   return ranges;
 }
 
-int RunSubcommand(const char* program, const char* name, int (*run)(int, char**), int argc,
-                  char** argv) {
+int RunSubcommand(
+    const char* program, const char* name, int (*run)(int, char**), int argc, char** argv) {
   try {
     return run(argc, argv);
   } catch (const UsageError& e) {

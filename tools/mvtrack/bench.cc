@@ -8,6 +8,7 @@
 // excluding detection (the detections come precomputed from the simulator, as the paper's speed
 // study excludes its detector) and excluding the simulation itself.
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -32,11 +33,9 @@
 #include <tuple>
 #include <vector>
 
-#include <Eigen/Dense>
-
 #include "config/tracker_options.h"
-#include "json/document.h"
 #include "eval/tracking_metrics.h"
+#include "json/document.h"
 #include "mvtrack/cli.h"
 #include "mvtrack/sim_scene.h"
 #include "pipeline/clock.h"
@@ -128,7 +127,7 @@ struct PreparedScene {
   std::vector<geometry::CameraModel> cameras;
   std::vector<core::CameraFrame> camera_frames;  // frame-major, cameras in rig order
   eval::EvalSequence truth;
-  double coverage = 0.0;       // person-frames detected in >= 2 cameras / person-frames
+  double coverage = 0.0;  // person-frames detected in >= 2 cameras / person-frames
   double generate_s = 0.0;
 };
 
@@ -153,8 +152,8 @@ PreparedScene Prepare(const sim::SceneOptions& options) {
     for (core::CameraFrame& cf : rendered.cameras) s.camera_frames.push_back(std::move(cf));
     s.truth.push_back(TruthEvalFrame(truth, options.poses));
   }
-  s.coverage = person_frames > 0 ? static_cast<double>(covered) / static_cast<double>(person_frames)
-                                 : 0.0;
+  s.coverage =
+      person_frames > 0 ? static_cast<double>(covered) / static_cast<double>(person_frames) : 0.0;
   s.generate_s = SecondsSince(start);
   return s;
 }
@@ -186,7 +185,8 @@ struct Accuracy {
 };
 
 // The accuracy of `frames` against `truth` over `ranges` (empty: every frame).
-Accuracy Score(const eval::EvalSequence& truth, const std::vector<tracker::Frame3D>& frames,
+Accuracy Score(const eval::EvalSequence& truth,
+               const std::vector<tracker::Frame3D>& frames,
                const std::vector<eval::FrameRange>& ranges = {}) {
   eval::EvalSequence pred;
   pred.reserve(frames.size());
@@ -246,9 +246,13 @@ TimedRun RunOnce(const PreparedScene& scene, int threads) {
   pipeline::SteadyClock clock;
   std::vector<tracker::Frame3D>* out = &run.frames;
   auto p = pipeline::Pipeline::Create(
-      geometry::CameraRig(scene.cameras), to, po,
-      std::make_unique<pipeline::ThreadPoolExecutor>(tpo), clock,
-      [out](tracker::Frame3D f) { out->push_back(std::move(f)); }, &why);
+      geometry::CameraRig(scene.cameras),
+      to,
+      po,
+      std::make_unique<pipeline::ThreadPoolExecutor>(tpo),
+      clock,
+      [out](tracker::Frame3D f) { out->push_back(std::move(f)); },
+      &why);
   if (!p) throw std::runtime_error("pipeline: " + why);
   const double cpu_start = ProcessCpuSeconds();
   const auto start = Clock::now();
@@ -271,9 +275,9 @@ struct PointResult {
   int repeats = 0;
   double median_s = 0.0;
   double min_s = 0.0;
-  double fps = 0.0;            // frames / median_s
-  double cpu_fps = 0.0;        // frames / median CPU seconds (all threads)
-  double camera_fps = 0.0;     // fps * cameras
+  double fps = 0.0;              // frames / median_s
+  double cpu_fps = 0.0;          // frames / median CPU seconds (all threads)
+  double camera_fps = 0.0;       // fps * cameras
   double realtime_factor = 0.0;  // fps / scene fps
   double peak_rss_mib = 0.0;
   double coverage = 0.0;
@@ -291,9 +295,16 @@ double PaperFps(int cameras, int people, bool poses) {
   return 0.0;
 }
 
-PointResult MeasurePoint(const std::string& suite, int cameras, int people, bool poses,
-                         const std::vector<int>& thread_counts, int frames, int min_repeats,
-                         double min_total_s, std::uint64_t seed, std::vector<PointResult>* all) {
+PointResult MeasurePoint(const std::string& suite,
+                         int cameras,
+                         int people,
+                         bool poses,
+                         const std::vector<int>& thread_counts,
+                         int frames,
+                         int min_repeats,
+                         double min_total_s,
+                         std::uint64_t seed,
+                         std::vector<PointResult>* all) {
   ResetPeakRss();
   sim::SceneOptions so = sim::SizedScene(cameras, people, poses, seed);
   so.num_frames = frames;
@@ -336,18 +347,25 @@ PointResult MeasurePoint(const std::string& suite, int cameras, int people, bool
     r.realtime_factor = r.fps / so.fps;
     r.peak_rss_mib = PeakRssMiB();
     r.paper_fps = suite == "paper" ? PaperFps(cameras, people, poses) : 0.0;
-    std::fprintf(stderr,
-                 "  %-6s %2d cams %3d people %-5s %s: %9.0f FPS (median of %d; %.0f per CPU "
-                 "second), MOTA %.3f IDF1 %.3f%s, peak RSS %.0f MiB\n",
-                 suite.c_str(), cameras, people, poses ? "poses" : "boxes",
-                 threads == 0 ? "1 thread (inline)  "
-                              : (std::to_string(threads) + " worker(s) pipeline").c_str(),
-                 r.fps, r.repeats, r.cpu_fps, r.accuracy.mota, r.accuracy.idf1,
-                 poses ? (", MPJPE " + std::to_string(r.accuracy.mpjpe_m * 1000.0).substr(0, 5) +
-                          " mm")
-                             .c_str()
-                       : "",
-                 r.peak_rss_mib);
+    std::fprintf(
+        stderr,
+        "  %-6s %2d cams %3d people %-5s %s: %9.0f FPS (median of %d; %.0f per CPU "
+        "second), MOTA %.3f IDF1 %.3f%s, peak RSS %.0f MiB\n",
+        suite.c_str(),
+        cameras,
+        people,
+        poses ? "poses" : "boxes",
+        threads == 0 ? "1 thread (inline)  "
+                     : (std::to_string(threads) + " worker(s) pipeline").c_str(),
+        r.fps,
+        r.repeats,
+        r.cpu_fps,
+        r.accuracy.mota,
+        r.accuracy.idf1,
+        poses ? (", MPJPE " + std::to_string(r.accuracy.mpjpe_m * 1000.0).substr(0, 5) + " mm")
+                    .c_str()
+              : "",
+        r.peak_rss_mib);
     all->push_back(r);
     last = r;
   }
@@ -355,7 +373,30 @@ PointResult MeasurePoint(const std::string& suite, int cameras, int people, bool
 }
 
 json::OrderedDocument PointJson(const PointResult& r) {
-  json::OrderedDocument o = {{"suite", r.suite}, {"cameras", r.cameras}, {"people", r.people}, {"mode", r.poses ? "poses" : "boxes"}, {"runner", r.threads == 0 ? "tracker_inline" : "pipeline"}, {"worker_threads", r.threads == 0 ? 1 : r.threads}, {"frames", r.frames}, {"repeats", r.repeats}, {"median_s", r.median_s}, {"min_s", r.min_s}, {"fps", r.fps}, {"fps_per_cpu_second", r.cpu_fps}, {"camera_frames_per_s", r.camera_fps}, {"realtime_factor_at_30fps", r.realtime_factor}, {"mota", r.accuracy.mota}, {"idf1", r.accuracy.idf1}, {"hota", r.accuracy.hota}, {"mpjpe_m", r.accuracy.mpjpe_m}, {"id_switches", r.accuracy.switches}, {"id_transfers", r.accuracy.id_transfers}, {"coverage_two_views", r.coverage}, {"detections_per_frame", r.detections_per_frame}, {"peak_rss_mib", r.peak_rss_mib}, {"scene_generation_s", r.generate_s}};
+  json::OrderedDocument o = {{"suite", r.suite},
+                             {"cameras", r.cameras},
+                             {"people", r.people},
+                             {"mode", r.poses ? "poses" : "boxes"},
+                             {"runner", r.threads == 0 ? "tracker_inline" : "pipeline"},
+                             {"worker_threads", r.threads == 0 ? 1 : r.threads},
+                             {"frames", r.frames},
+                             {"repeats", r.repeats},
+                             {"median_s", r.median_s},
+                             {"min_s", r.min_s},
+                             {"fps", r.fps},
+                             {"fps_per_cpu_second", r.cpu_fps},
+                             {"camera_frames_per_s", r.camera_fps},
+                             {"realtime_factor_at_30fps", r.realtime_factor},
+                             {"mota", r.accuracy.mota},
+                             {"idf1", r.accuracy.idf1},
+                             {"hota", r.accuracy.hota},
+                             {"mpjpe_m", r.accuracy.mpjpe_m},
+                             {"id_switches", r.accuracy.switches},
+                             {"id_transfers", r.accuracy.id_transfers},
+                             {"coverage_two_views", r.coverage},
+                             {"detections_per_frame", r.detections_per_frame},
+                             {"peak_rss_mib", r.peak_rss_mib},
+                             {"scene_generation_s", r.generate_s}};
   if (r.paper_fps > 0.0) {
     o["paper_fps"] = r.paper_fps;
     o["ratio_to_paper"] = r.fps / r.paper_fps;
@@ -379,8 +420,8 @@ struct IdentityResult {
   Accuracy head;  // the first 10 % of the frames
 };
 
-IdentityResult MeasureIdentity(int cameras, int people, bool poses, bool enter_leave, int frames,
-                               std::uint64_t seed) {
+IdentityResult MeasureIdentity(
+    int cameras, int people, bool poses, bool enter_leave, int frames, std::uint64_t seed) {
   sim::SceneOptions so = sim::SizedScene(cameras, people, poses, seed);
   so.num_frames = frames;
   so.enter_and_leave = enter_leave;
@@ -399,9 +440,17 @@ IdentityResult MeasureIdentity(int cameras, int people, bool poses, bool enter_l
   std::fprintf(stderr,
                "  identity %2d cams %3d people %-5s %s %d frames seed %llu: IDF1 %.3f (first 10 %% "
                "%.3f), HOTA %.3f, MOTA %.3f, ids %lld / %lld GT, IDTR %lld, IDFRAG %lld\n",
-               cameras, people, poses ? "poses" : "boxes", enter_leave ? "enter/leave" : "closed",
-               frames, static_cast<unsigned long long>(seed), r.whole.idf1, r.head.idf1,
-               r.whole.hota, r.whole.mota, static_cast<long long>(r.whole.predicted_ids),
+               cameras,
+               people,
+               poses ? "poses" : "boxes",
+               enter_leave ? "enter/leave" : "closed",
+               frames,
+               static_cast<unsigned long long>(seed),
+               r.whole.idf1,
+               r.head.idf1,
+               r.whole.hota,
+               r.whole.mota,
+               static_cast<long long>(r.whole.predicted_ids),
                static_cast<long long>(r.whole.gt_ids),
                static_cast<long long>(r.whole.id_transfers),
                static_cast<long long>(r.whole.id_fragmentations));
@@ -409,7 +458,14 @@ IdentityResult MeasureIdentity(int cameras, int people, bool poses, bool enter_l
 }
 
 json::OrderedDocument AccuracyJson(const Accuracy& a) {
-  return {{"mota", a.mota}, {"idf1", a.idf1}, {"hota", a.hota}, {"id_switches", a.switches}, {"id_transfers", a.id_transfers}, {"id_fragmentations", a.id_fragmentations}, {"gt_ids", a.gt_ids}, {"predicted_ids", a.predicted_ids}};
+  return {{"mota", a.mota},
+          {"idf1", a.idf1},
+          {"hota", a.hota},
+          {"id_switches", a.switches},
+          {"id_transfers", a.id_transfers},
+          {"id_fragmentations", a.id_fragmentations},
+          {"gt_ids", a.gt_ids},
+          {"predicted_ids", a.predicted_ids}};
 }
 
 // --- latency --------------------------------------------------------------------------------
@@ -439,8 +495,8 @@ double Percentile(std::vector<double> v, double q) {
 // measures, per window, the time from its closing camera-frame (the first one of the frame
 // after the window's last frame) being submitted to the last frame it finalizes being handed to
 // the output callback.
-LatencyResult MeasureLatency(int cameras, int people, bool poses, int threads, int frames,
-                             std::uint64_t seed) {
+LatencyResult MeasureLatency(
+    int cameras, int people, bool poses, int threads, int frames, std::uint64_t seed) {
   sim::SceneOptions so = sim::SizedScene(cameras, people, poses, seed);
   so.num_frames = frames;
   const PreparedScene scene = Prepare(so);
@@ -455,8 +511,11 @@ LatencyResult MeasureLatency(int cameras, int people, bool poses, int threads, i
   std::map<FrameIndex, std::int64_t> published_us;
   std::string why;
   auto p = pipeline::Pipeline::Create(
-      geometry::CameraRig(scene.cameras), to, po,
-      std::make_unique<pipeline::ThreadPoolExecutor>(tpo), clock,
+      geometry::CameraRig(scene.cameras),
+      to,
+      po,
+      std::make_unique<pipeline::ThreadPoolExecutor>(tpo),
+      clock,
       [&](tracker::Frame3D f) {
         const std::int64_t now = clock.NowMicros();
         std::lock_guard<std::mutex> lock(mu);
@@ -513,8 +572,16 @@ LatencyResult MeasureLatency(int cameras, int people, bool poses, int threads, i
   std::fprintf(stderr,
                "  latency %d cams %d people %s, %d worker(s): p50 %.2f ms, p99 %.2f ms, max %.2f "
                "ms over %lld windows; MOTA %.3f IDF1 %.3f\n",
-               cameras, people, poses ? "poses" : "boxes", threads, r.p50_ms, r.p99_ms, r.max_ms,
-               static_cast<long long>(r.windows), r.accuracy.mota, r.accuracy.idf1);
+               cameras,
+               people,
+               poses ? "poses" : "boxes",
+               threads,
+               r.p50_ms,
+               r.p99_ms,
+               r.max_ms,
+               static_cast<long long>(r.windows),
+               r.accuracy.mota,
+               r.accuracy.idf1);
   return r;
 }
 
@@ -537,8 +604,14 @@ struct SoakResult {
 
 // Streams a long enter-and-leave scene through a Pipeline as fast as possible (simulated on
 // the fly, so memory does not hold the scene), sampling the RSS, and scores it in chunks.
-SoakResult MeasureSoak(int cameras, int people, bool poses, int threads, std::int64_t frames,
-                       std::int64_t sample_every, std::int64_t chunk_frames, std::uint64_t seed) {
+SoakResult MeasureSoak(int cameras,
+                       int people,
+                       bool poses,
+                       int threads,
+                       std::int64_t frames,
+                       std::int64_t sample_every,
+                       std::int64_t chunk_frames,
+                       std::uint64_t seed) {
   sim::SceneOptions so = sim::SizedScene(cameras, people, poses, seed);
   so.enter_and_leave = true;
   so.num_frames = static_cast<int>(std::min<std::int64_t>(frames, 1 << 30));
@@ -553,8 +626,11 @@ SoakResult MeasureSoak(int cameras, int people, bool poses, int threads, std::in
   std::deque<tracker::Frame3D> out;
   std::string why;
   auto p = pipeline::Pipeline::Create(
-      geometry::CameraRig(rig_cameras), to, po,
-      std::make_unique<pipeline::ThreadPoolExecutor>(tpo), clock,
+      geometry::CameraRig(rig_cameras),
+      to,
+      po,
+      std::make_unique<pipeline::ThreadPoolExecutor>(tpo),
+      clock,
       [&](tracker::Frame3D f) {
         std::lock_guard<std::mutex> lock(mu);
         out.push_back(std::move(f));
@@ -614,8 +690,11 @@ SoakResult MeasureSoak(int cameras, int people, bool poses, int threads, std::in
     }
     if (Clock::now() - last_progress > std::chrono::seconds(5)) {
       last_progress = Clock::now();
-      std::fprintf(stderr, "\r  soak: frame %lld / %lld, RSS %.1f MiB", static_cast<long long>(f),
-                   static_cast<long long>(frames), RssMiB());
+      std::fprintf(stderr,
+                   "\r  soak: frame %lld / %lld, RSS %.1f MiB",
+                   static_cast<long long>(f),
+                   static_cast<long long>(frames),
+                   RssMiB());
     }
   }
   p->Flush();
@@ -637,9 +716,16 @@ SoakResult MeasureSoak(int cameras, int people, bool poses, int threads, std::in
   std::fprintf(stderr,
                "\r  soak: %lld frames (%d cams, %d people entering and leaving, %s, %d workers) "
                "in %.0f s; RSS %.1f -> %.1f MiB (peak %.1f), growth after warm-up %.2f MiB\n",
-               static_cast<long long>(frames), cameras, people, poses ? "poses" : "boxes",
-               threads, r.wall_s, r.rss_mib.front().second, r.rss_mib.back().second,
-               r.peak_rss_mib, r.rss_growth_after_warmup_mib);
+               static_cast<long long>(frames),
+               cameras,
+               people,
+               poses ? "poses" : "boxes",
+               threads,
+               r.wall_s,
+               r.rss_mib.front().second,
+               r.rss_mib.back().second,
+               r.peak_rss_mib,
+               r.rss_growth_after_warmup_mib);
   return r;
 }
 
@@ -679,33 +765,60 @@ void DrawPanel(
            static_cast<int>(std::lround((std::log10(y) - std::log10(ylo)) /
                                         (std::log10(yhi) - std::log10(ylo)) * (bottom - top)));
   };
-  cv::putText(*img, title, {area.x + 70, area.y + 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, black, 1,
+  cv::putText(*img,
+              title,
+              {area.x + 70, area.y + 25},
+              cv::FONT_HERSHEY_SIMPLEX,
+              0.6,
+              black,
+              1,
               cv::LINE_AA);
   for (double d = ylo; d <= yhi * 1.0001; d *= 10.0) {
     cv::line(*img, {left, py(d)}, {right, py(d)}, grey, 1);
     char buf[32];
     std::snprintf(buf, sizeof(buf), d >= 1e3 ? "%.0e" : "%.0f", d);
-    cv::putText(*img, buf, {area.x + 8, py(d) + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.45, black, 1,
-                cv::LINE_AA);
+    cv::putText(
+        *img, buf, {area.x + 8, py(d) + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.45, black, 1, cv::LINE_AA);
   }
   for (const int x : xs) {
     cv::line(*img, {px(x), bottom}, {px(x), bottom + 5}, black, 1);
-    cv::putText(*img, std::to_string(x), {px(x) - 6, bottom + 20}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
-                black, 1, cv::LINE_AA);
+    cv::putText(*img,
+                std::to_string(x),
+                {px(x) - 6, bottom + 20},
+                cv::FONT_HERSHEY_SIMPLEX,
+                0.45,
+                black,
+                1,
+                cv::LINE_AA);
   }
   cv::rectangle(*img, {left, top}, {right, bottom}, black, 1);
-  cv::putText(*img, x_label, {(left + right) / 2 - 30, bottom + 42}, cv::FONT_HERSHEY_SIMPLEX,
-              0.5, black, 1, cv::LINE_AA);
-  cv::putText(*img, "FPS", {area.x + 8, top - 10}, cv::FONT_HERSHEY_SIMPLEX, 0.5, black, 1,
+  cv::putText(*img,
+              x_label,
+              {(left + right) / 2 - 30, bottom + 42},
+              cv::FONT_HERSHEY_SIMPLEX,
+              0.5,
+              black,
+              1,
               cv::LINE_AA);
+  cv::putText(
+      *img, "FPS", {area.x + 8, top - 10}, cv::FONT_HERSHEY_SIMPLEX, 0.5, black, 1, cv::LINE_AA);
   if (realtime_line > 0.0) {
     cv::line(*img, {left, py(realtime_line)}, {right, py(realtime_line)}, cv::Scalar(0, 0, 220), 1);
-    cv::putText(*img, "real time (30 FPS)", {right - 150, py(realtime_line) - 6},
-                cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 220), 1, cv::LINE_AA);
+    cv::putText(*img,
+                "real time (30 FPS)",
+                {right - 150, py(realtime_line) - 6},
+                cv::FONT_HERSHEY_SIMPLEX,
+                0.4,
+                cv::Scalar(0, 0, 220),
+                1,
+                cv::LINE_AA);
   }
-  static const std::array<cv::Scalar, 6> kColors = {
-      cv::Scalar(180, 119, 31), cv::Scalar(14, 127, 255), cv::Scalar(44, 160, 44),
-      cv::Scalar(40, 39, 214),  cv::Scalar(189, 103, 148), cv::Scalar(75, 86, 140)};
+  static const std::array<cv::Scalar, 6> kColors = {cv::Scalar(180, 119, 31),
+                                                    cv::Scalar(14, 127, 255),
+                                                    cv::Scalar(44, 160, 44),
+                                                    cv::Scalar(40, 39, 214),
+                                                    cv::Scalar(189, 103, 148),
+                                                    cv::Scalar(75, 86, 140)};
   int legend_y = top + 18;
   for (std::size_t li = 0; li < lines.size(); ++li) {
     const cv::Scalar color = kColors[li % kColors.size()];
@@ -718,15 +831,21 @@ void DrawPanel(
       }
     }
     cv::line(*img, {right - 150, legend_y - 4}, {right - 125, legend_y - 4}, color, 2);
-    cv::putText(*img, lines[li].first, {right - 120, legend_y}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
-                black, 1, cv::LINE_AA);
+    cv::putText(*img,
+                lines[li].first,
+                {right - 120, legend_y},
+                cv::FONT_HERSHEY_SIMPLEX,
+                0.45,
+                black,
+                1,
+                cv::LINE_AA);
     legend_y += 18;
   }
   for (const auto& [x, y, label] : markers) {
     const cv::Point p(px(x), py(y));
     cv::drawMarker(*img, p, black, cv::MARKER_TILTED_CROSS, 12, 2, cv::LINE_AA);
-    cv::putText(*img, label, {p.x + 8, p.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, black, 1,
-                cv::LINE_AA);
+    cv::putText(
+        *img, label, {p.x + 8, p.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, black, 1, cv::LINE_AA);
   }
 }
 
@@ -762,9 +881,14 @@ void WritePlot(const std::string& path, const std::vector<PointResult>& points) 
     if (xs.back() >= 6) {
       markers = {{2, 1643.0, "paper 2p"}, {6, 186.0, "paper 2p"}, {2, 1286.0, "paper 8p"}};
     }
-    DrawPanel(&img, cv::Rect(panel * w, 0, w, h),
+    DrawPanel(&img,
+              cv::Rect(panel * w, 0, w, h),
               std::string("mvtrack, ") + (poses ? "poses" : "boxes") + ", 1 thread (x = paper)",
-              "cameras", xs, lines, markers, 30.0);
+              "cameras",
+              xs,
+              lines,
+              markers,
+              30.0);
     ++panel;
   }
   if (!scale.empty()) {
@@ -783,8 +907,8 @@ void WritePlot(const std::string& path, const std::vector<PointResult>& points) 
       std::sort(pts.begin(), pts.end());
       lines.emplace_back(name, pts);
     }
-    DrawPanel(&img, cv::Rect(panel * w, 0, w, h), "store floor, boxes", "people", xs, lines, {},
-              30.0);
+    DrawPanel(
+        &img, cv::Rect(panel * w, 0, w, h), "store floor, boxes", "people", xs, lines, {}, 30.0);
   }
   if (!cv::imwrite(path, img)) throw std::runtime_error(path + ": cannot write the PNG");
 }
@@ -809,9 +933,8 @@ std::string PointsTable(const std::vector<PointResult>& points, const std::strin
          (r.poses ? "poses" : "boxes") + " | " +
          (r.threads == 0 ? std::string("1 (inline)") : std::to_string(r.threads) + " workers") +
          " | " + Fmt("%.0f", r.fps) + " | " + Fmt("%.0f", r.cpu_fps) + " | " +
-         Fmt("%.0f", r.camera_fps) + " | " +
-         (r.paper_fps > 0 ? Fmt("%.0f", r.paper_fps) : "") + " | " +
-         (r.paper_fps > 0 ? Fmt("%.1f×", r.fps / r.paper_fps) : "") + " | " +
+         Fmt("%.0f", r.camera_fps) + " | " + (r.paper_fps > 0 ? Fmt("%.0f", r.paper_fps) : "") +
+         " | " + (r.paper_fps > 0 ? Fmt("%.1f×", r.fps / r.paper_fps) : "") + " | " +
          Fmt("%.3f", r.accuracy.mota) + " | " + Fmt("%.3f", r.accuracy.idf1) + " | " +
          Fmt("%.3f", r.accuracy.hota) + " | " + std::to_string(r.accuracy.id_transfers) + " | " +
          Fmt("%.1f", r.accuracy.mpjpe_m * 1000.0) + " | " + Fmt("%.2f", r.coverage) + " | " +
@@ -951,14 +1074,19 @@ int RunBench(int argc, char** argv) {
 
   const std::string build_type = MVTRACK_BUILD_TYPE;
   if (build_type != "Release" && build_type != "RelWithDebInfo") {
-    std::fprintf(stderr, "mvtrack bench: warning: this is a '%s' build; measure with Release or "
-                         "RelWithDebInfo\n", build_type.c_str());
+    std::fprintf(stderr,
+                 "mvtrack bench: warning: this is a '%s' build; measure with Release or "
+                 "RelWithDebInfo\n",
+                 build_type.c_str());
   }
   const std::string load_before = ReadFirstLine("/proc/loadavg");
   const std::string started = UtcNow();
   const auto bench_start = Clock::now();
-  std::fprintf(stderr, "mvtrack bench: %s, %u hardware threads, load %s\n", CpuModel().c_str(),
-               std::thread::hardware_concurrency(), load_before.c_str());
+  std::fprintf(stderr,
+               "mvtrack bench: %s, %u hardware threads, load %s\n",
+               CpuModel().c_str(),
+               std::thread::hardware_concurrency(),
+               load_before.c_str());
 
   std::vector<PointResult> points;
   std::vector<IdentityResult> identities;
@@ -1005,8 +1133,8 @@ int RunBench(int argc, char** argv) {
         for (const int p : IntList(args.Get("people"), "people", 0, 100000)) {
           for (const bool poses : {false, true}) {
             if ((poses && mode == "boxes") || (!poses && mode == "poses")) continue;
-            MeasurePoint("custom", c, p, poses, threads, frames, repeats, min_seconds, seed,
-                         &points);
+            MeasurePoint(
+                "custom", c, p, poses, threads, frames, repeats, min_seconds, seed, &points);
           }
         }
       }
@@ -1031,11 +1159,36 @@ int RunBench(int argc, char** argv) {
   std::vector<json::OrderedDocument> point_json, latency_json, soak_json;
   for (const PointResult& r : points) point_json.push_back(PointJson(r));
   for (const LatencyResult& l : latencies) {
-    latency_json.push_back(json::OrderedDocument{{"cameras", l.cameras}, {"people", l.people}, {"mode", l.poses ? "poses" : "boxes"}, {"worker_threads", l.threads}, {"frames", l.frames}, {"windows", l.windows}, {"p50_ms", l.p50_ms}, {"p99_ms", l.p99_ms}, {"max_ms", l.max_ms}, {"pipeline_job_to_link_mean_ms", l.pipeline_mean_ms}, {"pipeline_job_to_link_max_ms", l.pipeline_max_ms}, {"late_frames", l.late_frames}, {"mota", l.accuracy.mota}, {"idf1", l.accuracy.idf1}, {"hota", l.accuracy.hota}, {"id_transfers", l.accuracy.id_transfers}, {"mpjpe_m", l.accuracy.mpjpe_m}});
+    latency_json.push_back(
+        json::OrderedDocument{{"cameras", l.cameras},
+                              {"people", l.people},
+                              {"mode", l.poses ? "poses" : "boxes"},
+                              {"worker_threads", l.threads},
+                              {"frames", l.frames},
+                              {"windows", l.windows},
+                              {"p50_ms", l.p50_ms},
+                              {"p99_ms", l.p99_ms},
+                              {"max_ms", l.max_ms},
+                              {"pipeline_job_to_link_mean_ms", l.pipeline_mean_ms},
+                              {"pipeline_job_to_link_max_ms", l.pipeline_max_ms},
+                              {"late_frames", l.late_frames},
+                              {"mota", l.accuracy.mota},
+                              {"idf1", l.accuracy.idf1},
+                              {"hota", l.accuracy.hota},
+                              {"id_transfers", l.accuracy.id_transfers},
+                              {"mpjpe_m", l.accuracy.mpjpe_m}});
   }
   std::vector<json::OrderedDocument> identity_json;
   for (const IdentityResult& r : identities) {
-    identity_json.push_back(json::OrderedDocument{{"cameras", r.cameras}, {"people", r.people}, {"mode", r.poses ? "poses" : "boxes"}, {"enter_and_leave", r.enter_leave}, {"frames", r.frames}, {"seed", static_cast<std::int64_t>(r.seed)}, {"fps", r.fps}, {"whole_run", AccuracyJson(r.whole)}, {"first_10_percent", AccuracyJson(r.head)}});
+    identity_json.push_back(json::OrderedDocument{{"cameras", r.cameras},
+                                                  {"people", r.people},
+                                                  {"mode", r.poses ? "poses" : "boxes"},
+                                                  {"enter_and_leave", r.enter_leave},
+                                                  {"frames", r.frames},
+                                                  {"seed", static_cast<std::int64_t>(r.seed)},
+                                                  {"fps", r.fps},
+                                                  {"whole_run", AccuracyJson(r.whole)},
+                                                  {"first_10_percent", AccuracyJson(r.head)}});
   }
   for (const SoakResult& s : soaks) {
     std::vector<json::OrderedDocument> samples, chunks;
@@ -1045,16 +1198,46 @@ int RunBench(int argc, char** argv) {
     for (const Accuracy& a : s.chunks) {
       chunks.push_back(AccuracyJson(a));
     }
-    soak_json.push_back(
-        json::OrderedDocument{{"cameras", s.cameras}, {"people", s.people}, {"mode", s.poses ? "poses" : "boxes"}, {"enter_and_leave", true}, {"worker_threads", s.threads}, {"frames", s.frames}, {"wall_s", s.wall_s}, {"simulate_s", s.simulate_s}, {"fps_including_simulation", static_cast<double>(s.frames) / s.wall_s}, {"peak_rss_mib", s.peak_rss_mib}, {"rss_growth_after_warmup_mib", s.rss_growth_after_warmup_mib}, {"tracks_born", s.tracks_born}, {"chunk_frames", s.chunk_frames}, {"rss_samples_frame_mib", samples}, {"chunk_accuracy", chunks}});
+    soak_json.push_back(json::OrderedDocument{
+        {"cameras", s.cameras},
+        {"people", s.people},
+        {"mode", s.poses ? "poses" : "boxes"},
+        {"enter_and_leave", true},
+        {"worker_threads", s.threads},
+        {"frames", s.frames},
+        {"wall_s", s.wall_s},
+        {"simulate_s", s.simulate_s},
+        {"fps_including_simulation", static_cast<double>(s.frames) / s.wall_s},
+        {"peak_rss_mib", s.peak_rss_mib},
+        {"rss_growth_after_warmup_mib", s.rss_growth_after_warmup_mib},
+        {"tracks_born", s.tracks_born},
+        {"chunk_frames", s.chunk_frames},
+        {"rss_samples_frame_mib", samples},
+        {"chunk_accuracy", chunks}});
   }
   json::OrderedDocument growth = json::OrderedDocument::object();
   for (const bool poses : {false, true}) {
     const auto [b, c] = GrowthExponents(points, poses);
     growth[poses ? "poses" : "boxes"] = {{"cameras_exponent", b}, {"people_exponent", c}};
   }
-  const json::OrderedDocument results = {{"schema", "mvtrack.bench/1"}, {"version", MVTRACK_VERSION}, {"build_type", build_type}, {"started_utc", started}, {"cpu", CpuModel()}, {"hardware_threads", std::thread::hardware_concurrency()}, {"loadavg_before", load_before}, {"loadavg_after", load_after}, {"total_s", total_s}, {"fps_definition", "multi-view frames (one camera-frame from every camera) per second of tracking "
-               "time, detections in to tracks out; detection and simulation excluded"}, {"growth_exponents", growth}, {"points", point_json}, {"identity", identity_json}, {"latency", latency_json}, {"soak", soak_json}};
+  const json::OrderedDocument results = {
+      {"schema", "mvtrack.bench/1"},
+      {"version", MVTRACK_VERSION},
+      {"build_type", build_type},
+      {"started_utc", started},
+      {"cpu", CpuModel()},
+      {"hardware_threads", std::thread::hardware_concurrency()},
+      {"loadavg_before", load_before},
+      {"loadavg_after", load_after},
+      {"total_s", total_s},
+      {"fps_definition",
+       "multi-view frames (one camera-frame from every camera) per second of tracking "
+       "time, detections in to tracks out; detection and simulation excluded"},
+      {"growth_exponents", growth},
+      {"points", point_json},
+      {"identity", identity_json},
+      {"latency", latency_json},
+      {"soak", soak_json}};
   const std::string results_text = json::Dump(results, 2) + "\n";
   {
     std::ofstream f(out / "results.json", std::ios::trunc);
@@ -1083,17 +1266,18 @@ int RunBench(int argc, char** argv) {
     }
   }
   if (!identities.empty()) {
-    md += "### identity over long runs\n\n| cameras × people | mode | people | frames | seed | "
-          "MOTA | IDF1 | IDF1 first 10 % | HOTA | GT ids | predicted ids | IDTR | IDFRAG | FPS "
-          "|\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    md +=
+        "### identity over long runs\n\n| cameras × people | mode | people | frames | seed | "
+        "MOTA | IDF1 | IDF1 first 10 % | HOTA | GT ids | predicted ids | IDTR | IDFRAG | FPS "
+        "|\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const IdentityResult& r : identities) {
       md += "| " + std::to_string(r.cameras) + " × " + std::to_string(r.people) + " | " +
             (r.poses ? "poses" : "boxes") + " | " + (r.enter_leave ? "enter/leave" : "stay") +
             " | " + std::to_string(r.frames) + " | " + std::to_string(r.seed) + " | " +
-            Fmt("%.1f", 100.0 * r.whole.mota) + " | " + Fmt("%.1f", 100.0 * r.whole.idf1) +
-            " | " + Fmt("%.1f", 100.0 * r.head.idf1) + " | " + Fmt("%.1f", 100.0 * r.whole.hota) +
-            " | " + std::to_string(r.whole.gt_ids) + " | " + std::to_string(r.whole.predicted_ids) +
-            " | " + std::to_string(r.whole.id_transfers) + " | " +
+            Fmt("%.1f", 100.0 * r.whole.mota) + " | " + Fmt("%.1f", 100.0 * r.whole.idf1) + " | " +
+            Fmt("%.1f", 100.0 * r.head.idf1) + " | " + Fmt("%.1f", 100.0 * r.whole.hota) + " | " +
+            std::to_string(r.whole.gt_ids) + " | " + std::to_string(r.whole.predicted_ids) + " | " +
+            std::to_string(r.whole.id_transfers) + " | " +
             std::to_string(r.whole.id_fragmentations) + " | " + Fmt("%.0f", r.fps) + " |\n";
     }
     md += "\n";
@@ -1109,8 +1293,7 @@ int RunBench(int argc, char** argv) {
             std::to_string(l.windows) + " | " + Fmt("%.2f", l.p50_ms) + " | " +
             Fmt("%.2f", l.p99_ms) + " | " + Fmt("%.2f", l.max_ms) + " | " +
             Fmt("%.3f", l.accuracy.mota) + " | " + Fmt("%.3f", l.accuracy.idf1) + " | " +
-            Fmt("%.3f", l.accuracy.hota) + " | " + std::to_string(l.accuracy.id_transfers) +
-            " |\n";
+            Fmt("%.3f", l.accuracy.hota) + " | " + std::to_string(l.accuracy.id_transfers) + " |\n";
     }
     md += "\n";
   }
@@ -1136,8 +1319,8 @@ int RunBench(int argc, char** argv) {
           std::to_string(s.chunk_frames) +
           " frames: " + Fmt("%.2f", s.rss_growth_after_warmup_mib) + " MiB. Accuracy, mean over " +
           std::to_string(s.chunks.size()) + " chunks of " + std::to_string(s.chunk_frames) +
-          " frames: MOTA " + Fmt("%.3f", mota / n) + ", IDF1 " + Fmt("%.3f", idf1 / n) +
-          ", HOTA " + Fmt("%.3f", hota / n) + ", id transfers " + std::to_string(transfers) +
+          " frames: MOTA " + Fmt("%.3f", mota / n) + ", IDF1 " + Fmt("%.3f", idf1 / n) + ", HOTA " +
+          Fmt("%.3f", hota / n) + ", id transfers " + std::to_string(transfers) +
           " in all.\n\nRSS samples (frame: MiB): ";
     for (std::size_t i = 0; i < s.rss_mib.size();
          i += std::max<std::size_t>(1, s.rss_mib.size() / 12)) {
@@ -1153,8 +1336,10 @@ int RunBench(int argc, char** argv) {
   }
   WritePlot((out / "fps.png").string(), points);
   std::cout << md;
-  std::fprintf(stderr, "mvtrack bench: wrote %s/results.json, results.md, fps.png in %.0f s\n",
-               out.string().c_str(), total_s);
+  std::fprintf(stderr,
+               "mvtrack bench: wrote %s/results.json, results.md, fps.png in %.0f s\n",
+               out.string().c_str(),
+               total_s);
   return 0;
 }
 

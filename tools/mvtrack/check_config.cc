@@ -14,9 +14,9 @@
 #include "config/config_error.h"
 #include "config/tracker_options.h"
 #include "core/keypoint_layout.h"
+#include "formats/tracks_io.h"
 #include "geometry/camera_rig.h"
 #include "mvtrack/cli.h"
-#include "formats/tracks_io.h"
 #include "service/daemon_config.h"
 #include "tracker/tracker.h"
 
@@ -50,11 +50,10 @@ int CheckDaemonConfig(const std::string& path, const std::string& calibration_ov
   for (const geometry::CameraModel& c : config.cameras) {
     ids += (ids.empty() ? "" : ", ") + std::to_string(c.id);
   }
-  std::cout << service::DaemonConfigToYaml(config) << "# ok: " << path
-            << ": daemon configuration, " << config.cameras.size() << " camera(s) (ids " << ids
-            << ") from " << config.calibration_path << ", sync "
-            << service::SyncModeName(config.sync.mode) << ", "
-            << config.EffectiveWorkers() << " worker(s), hash "
+  std::cout << service::DaemonConfigToYaml(config) << "# ok: " << path << ": daemon configuration, "
+            << config.cameras.size() << " camera(s) (ids " << ids << ") from "
+            << config.calibration_path << ", sync " << service::SyncModeName(config.sync.mode)
+            << ", " << config.EffectiveWorkers() << " worker(s), hash "
             << service::DaemonConfigHash(config) << "\n";
   return 0;
 }
@@ -63,23 +62,28 @@ int CheckDaemonConfig(const std::string& path, const std::string& calibration_ov
 
 int RunCheckConfig(int argc, char** argv) {
   Args args;
-  args.Positional("OPTIONS.yaml", "tracker options file (a `tracker:` YAML document) or daemon "
-                                  "configuration (format: mvtrack.daemon/1)")
-      .Option("calibration", "also validate this calibration file (mvtrack.calibration/1) and "
-                             "that the tracker accepts the rig with these options; for a daemon "
-                             "configuration: use it instead of cameras.calibration");
-  if (!args.Parse(argc, argv, "mvtrack check-config OPTIONS.yaml [--calibration CAL.yaml]",
-                  "Validates a tracker options file strictly (unknown keys, wrong types and values\n"
-                  "out of range are errors naming the file, line and key) and prints the effective\n"
-                  "options, every key with its value, as a canonical `tracker:` document on stdout\n"
-                  "(usable as an options file), followed by a one-line summary as a YAML comment.\n"
-                  "With --calibration the camera file is validated too, and the tracker is built\n"
-                  "with both (a rig needs at least two cameras).\n\n"
-                  "A daemon configuration (a document with `format: mvtrack.daemon/1`, see\n"
-                  "docs/DAEMON.md) is validated whole, with the calibration it names (relative to\n"
-                  "its own directory) and the tracker built from both, and its effective\n"
-                  "configuration is printed (what mvtrackd logs at start), with its hash.\n\n"
-                  "Exit status: 0 valid, 1 invalid (the error is printed on stderr), 2 usage error.")) {
+  args.Positional("OPTIONS.yaml",
+                  "tracker options file (a `tracker:` YAML document) or daemon "
+                  "configuration (format: mvtrack.daemon/1)")
+      .Option("calibration",
+              "also validate this calibration file (mvtrack.calibration/1) and "
+              "that the tracker accepts the rig with these options; for a daemon "
+              "configuration: use it instead of cameras.calibration");
+  if (!args.Parse(
+          argc,
+          argv,
+          "mvtrack check-config OPTIONS.yaml [--calibration CAL.yaml]",
+          "Validates a tracker options file strictly (unknown keys, wrong types and values\n"
+          "out of range are errors naming the file, line and key) and prints the effective\n"
+          "options, every key with its value, as a canonical `tracker:` document on stdout\n"
+          "(usable as an options file), followed by a one-line summary as a YAML comment.\n"
+          "With --calibration the camera file is validated too, and the tracker is built\n"
+          "with both (a rig needs at least two cameras).\n\n"
+          "A daemon configuration (a document with `format: mvtrack.daemon/1`, see\n"
+          "docs/DAEMON.md) is validated whole, with the calibration it names (relative to\n"
+          "its own directory) and the tracker built from both, and its effective\n"
+          "configuration is printed (what mvtrackd logs at start), with its hash.\n\n"
+          "Exit status: 0 valid, 1 invalid (the error is printed on stderr), 2 usage error.")) {
     return 0;
   }
   const std::string options_path = args.Get("OPTIONS.yaml");
@@ -124,8 +128,8 @@ int RunCheckConfig(int argc, char** argv) {
                 << options_path << ": " << why << "\n";
       return 1;
     }
-    summary << "; " << args.Get("calibration") << ": " << num_cameras << " camera(s) (ids "
-            << ids << ")";
+    summary << "; " << args.Get("calibration") << ": " << num_cameras << " camera(s) (ids " << ids
+            << ")";
   }
   std::cout << config::TrackerOptionsToYaml(options) << summary.str() << "\n";
   return 0;

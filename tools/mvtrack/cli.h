@@ -27,7 +27,9 @@ class UsageError : public std::runtime_error {
 class Args {
  public:
   /// Declares an option taking a value, or a boolean flag.
-  Args& Option(const std::string& name, const std::string& help, const std::string& default_value = "");
+  Args& Option(const std::string& name,
+               const std::string& help,
+               const std::string& default_value = "");
   Args& Flag(const std::string& name, const std::string& help);
   Args& Positional(const std::string& name, const std::string& help, bool required = true);
 
@@ -68,8 +70,8 @@ std::vector<eval::FrameRange> ParseFrameRanges(const std::string& text, const st
 /// Runs one subcommand: `run(argc, argv)` with the exit codes of every subcommand (a
 /// UsageError prints "<program> <name>: <message>" and gives 2, another exception "... error:"
 /// and 1) (args.cc; shared by `mvtrack` and `mvtrack-pictures`).
-int RunSubcommand(const char* program, const char* name, int (*run)(int, char**), int argc,
-                  char** argv);
+int RunSubcommand(
+    const char* program, const char* name, int (*run)(int, char**), int argc, char** argv);
 
 /// `mvtrack demo`: simulate a scene, track it, print tracks and accuracy (demo.cc).
 int RunDemo(int argc, char** argv);

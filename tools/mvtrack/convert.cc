@@ -29,11 +29,11 @@
 #include "datasets/shelf.h"
 #include "datasets/wildtrack.h"
 #include "eval/sequence.h"
-#include "mvtrack/cli.h"
 #include "formats/convert_output.h"
 #include "formats/detection_importers.h"
 #include "formats/jsonl_detections.h"
 #include "formats/tracks_io.h"
+#include "mvtrack/cli.h"
 #include "transport/channels.h"
 #include "transport/tracks_jsonl.h"
 
@@ -281,12 +281,14 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
   const formats::DetectionsLogStats& st = sink.stats();
 
   // Calibration.
-  config::SaveCalibration(out.File(formats::kConvertCalibrationFile).string(), ds.cameras, job.camera_names);
+  config::SaveCalibration(
+      out.File(formats::kConvertCalibrationFile).string(), ds.cameras, job.camera_names);
 
   // Ground truth, peer output, ground points.
   if (!ds.ground_truth.empty()) {
-    out.WriteText(formats::kConvertGroundTruthFile,
-                  formats::SequenceToTracksJsonl(ds.ground_truth, ds.gt_layout, ds.fps, "ground truth"));
+    out.WriteText(
+        formats::kConvertGroundTruthFile,
+        formats::SequenceToTracksJsonl(ds.ground_truth, ds.gt_layout, ds.fps, "ground truth"));
   }
   if (job.peer.has_value()) {
     out.WriteText(formats::kConvertPeerFile,
@@ -355,9 +357,10 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
     for (const eval::EvalFrame& f : ds.ground_truth) {
       positions += static_cast<std::int64_t>(f.objects.size());
     }
-    r << "  " << formats::kConvertGroundTruthFile << ": canonical tracks JSONL (transport::TracksJsonLine), "
-      << ds.ground_truth.size() << " lines (frames " << ds.ground_truth.front().frame << "-"
-      << ds.ground_truth.back().frame << "), " << positions << " annotated positions, z = 0.\n"
+    r << "  " << formats::kConvertGroundTruthFile
+      << ": canonical tracks JSONL (transport::TracksJsonLine), " << ds.ground_truth.size()
+      << " lines (frames " << ds.ground_truth.front().frame << "-" << ds.ground_truth.back().frame
+      << "), " << positions << " annotated positions, z = 0.\n"
       << "      There are NO person ids: track ids are the index of the position within its\n"
       << "      frame. Score footprints only (mvtrack eval --points: MODA, MODP, precision,\n"
       << "      recall) inside the annotated area, --area MIN_X,MAX_X,MIN_Y,MAX_Y = " << job.gt_area
@@ -367,10 +370,12 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
     for (const eval::EvalFrame& f : ds.ground_truth) {
       for (const eval::EvalObject& o : f.objects) ++frames_per_actor[o.id];
     }
-    r << "  " << formats::kConvertGroundTruthFile << ": canonical tracks JSONL (transport::TracksJsonLine), "
-      << ds.ground_truth.size() << " lines, one per frame (also frames without people);\n"
+    r << "  " << formats::kConvertGroundTruthFile
+      << ": canonical tracks JSONL (transport::TracksJsonLine), " << ds.ground_truth.size()
+      << " lines, one per frame (also frames without people);\n"
       << "      the ground-truth actors as tracks: id = actor id, position = footprint (hip\n"
-      << "      midpoint dropped onto z = 0), joints in layout " << formats::LayoutName(ds.gt_layout)
+      << "      midpoint dropped onto z = 0), joints in layout "
+      << formats::LayoutName(ds.gt_layout)
       << " (metres, null = missing).\n      Actors (frames present):";
     for (const auto& [id, n] : frames_per_actor) r << " " << id << " (" << n << ")";
     r << ".\n";
@@ -388,7 +393,8 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
     r << ".\n      Peer protocol notes: " << p.protocol_notes << "\n";
   }
   if (job.ground_points.has_value()) {
-    r << "  " << formats::kConvertGroundPointsFile << ": MVDeTr's ground points as canonical tracks JSONL "
+    r << "  " << formats::kConvertGroundPointsFile
+      << ": MVDeTr's ground points as canonical tracks JSONL "
       << "(layout none), " << job.ground_points->size() << " lines, " << ground_point_count
       << " points.\n"
       << "      Each point is one merged person position (box bottom centres mapped to the\n"
@@ -401,11 +407,12 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
   }
   r << "  " << formats::kConvertReadmeFile << ": this file.\n\n";
   r << "Tracking it (from this directory):\n"
-    << "  mvtrack replay --calibration " << formats::kConvertCalibrationFile << " --mode " << job.replay_mode
-    << " --layout " << job.replay_layout << " --jsonl tracks.jsonl " << formats::kConvertLogFile << "\n";
+    << "  mvtrack replay --calibration " << formats::kConvertCalibrationFile << " --mode "
+    << job.replay_mode << " --layout " << job.replay_layout << " --jsonl tracks.jsonl "
+    << formats::kConvertLogFile << "\n";
   if (!ds.ground_truth.empty() && job.gt_without_ids) {
-    r << "  mvtrack eval --gt " << formats::kConvertGroundTruthFile << " tracks.jsonl --points --area "
-      << job.gt_area << "\n";
+    r << "  mvtrack eval --gt " << formats::kConvertGroundTruthFile
+      << " tracks.jsonl --points --area " << job.gt_area << "\n";
   } else if (!ds.ground_truth.empty()) {
     r << "  mvtrack eval --gt " << formats::kConvertGroundTruthFile << " tracks.jsonl";
     if (!ds.protocol_frames.empty()) {
@@ -742,7 +749,8 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
   if (!in) throw std::runtime_error(detections_path + ": cannot open the detections file");
 
   formats::ConvertOutputDir out(c.out, c.overwrite);
-  Progress(c, "reading " + detections_path + ", writing " + out.File(formats::kConvertLogFile).string());
+  Progress(
+      c, "reading " + detections_path + ", writing " + out.File(formats::kConvertLogFile).string());
   formats::DetectionsLogSink sink(&out, c.channel);
   formats::JsonlDetectionsReader reader(&in, detections_path, reader_options);
   std::vector<formats::JsonlCameraFrame> pending;  // the lines of the current frame
@@ -765,8 +773,9 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
     if (std::chrono::steady_clock::now() >= next_report) {
       std::string share;
       if (!size_error && total_bytes > 0) {
-        share = " (" + std::to_string(100 * reader.bytes_read() /
-                                      static_cast<std::int64_t>(total_bytes)) + " %)";
+        share = " (" +
+                std::to_string(100 * reader.bytes_read() / static_cast<std::int64_t>(total_bytes)) +
+                " %)";
       }
       Progress(c, std::to_string(reader.lines_read()) + " lines read" + share);
       next_report = std::chrono::steady_clock::now() + std::chrono::seconds(1);
@@ -834,9 +843,9 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
 
 // What differs between the two per-camera formats.
 struct PerCameraFormat {
-  const char* name;        // "motchallenge" or "coco"
-  const char* file_kind;   // "det.txt" or "keypoints.json"
-  const char* long_name;   // for the README
+  const char* name;               // "motchallenge" or "coco"
+  const char* file_kind;          // "det.txt" or "keypoints.json"
+  const char* long_name;          // for the README
   FrameIndex first_frame_number;  // frame at --start-utime: 1 (MOTChallenge) or 0 (COCO)
 };
 
@@ -896,24 +905,22 @@ std::pair<FrameIndex, FrameIndex> ParseFrameRange(const std::string& text, Frame
 }
 
 void AddPerCameraOptions(Args* args) {
-  args->Option("detections",
-               "the per-camera files: CAMERA_ID=FILE[,CAMERA_ID=FILE...] (required)")
+  args->Option("detections", "the per-camera files: CAMERA_ID=FILE[,CAMERA_ID=FILE...] (required)")
       .Option("calibration", "the cameras, mvtrack.calibration/1 (required)")
       .Option("fps", "frame rate of the synchronized cameras, frames per second (required)")
-      .Option("start-utime",
-              "capture time of the first frame number, µs since the Unix epoch", "0")
+      .Option("start-utime", "capture time of the first frame number, µs since the Unix epoch", "0")
       .Option("frames",
               "FIRST:LAST frames to write (default: the smallest to the largest frame in any "
               "file); frames without detections give empty events")
       .Flag("clamp-scores", "clamp scores and keypoint confidences outside [0, 1] into it");
 }
 
-int ConvertPerCameraFiles(const Args& args,
-                          const CommonSettings& c,
-                          const PerCameraFormat& format,
-                          const std::function<formats::ImportedDetections(const std::string&,
-                                                                 const std::string&)>& read,
-                          const std::vector<std::string>& what) {
+int ConvertPerCameraFiles(
+    const Args& args,
+    const CommonSettings& c,
+    const PerCameraFormat& format,
+    const std::function<formats::ImportedDetections(const std::string&, const std::string&)>& read,
+    const std::vector<std::string>& what) {
   if (!args.Has("detections")) throw UsageError("--detections CAMERA_ID=FILE,... is required");
   if (!args.Has("calibration")) throw UsageError("--calibration CAL.yaml is required");
   if (!args.Has("fps")) throw UsageError("--fps F is required");
@@ -964,18 +971,20 @@ int ConvertPerCameraFiles(const Args& args,
     last = range->second;
   }
   if (!first.has_value()) {
-    throw std::runtime_error("no detections in any file; give --frames FIRST:LAST to write "
-                             "empty frames");
+    throw std::runtime_error(
+        "no detections in any file; give --frames FIRST:LAST to write "
+        "empty frames");
   }
 
   formats::ConvertOutputDir out(c.out, c.overwrite);
-  Progress(c, "writing " + out.File(formats::kConvertLogFile).string() + ", frames " +
-                  std::to_string(*first) + "-" + std::to_string(*last));
+  Progress(c,
+           "writing " + out.File(formats::kConvertLogFile).string() + ", frames " +
+               std::to_string(*first) + "-" + std::to_string(*last));
   formats::DetectionsLogSink sink(&out, c.channel);
   const std::vector<core::Detection2D> none;
   for (FrameIndex frame = *first; frame <= *last; ++frame) {
-    const Utime utime =
-        formats::ImportFrameUtime(frame, format.first_frame_number, fps, static_cast<Utime>(start_utime));
+    const Utime utime = formats::ImportFrameUtime(
+        frame, format.first_frame_number, fps, static_cast<Utime>(start_utime));
     std::vector<core::CameraFrame> frames;
     frames.reserve(per_camera.size());
     for (const auto& [id, imported] : per_camera) {
@@ -1046,8 +1055,8 @@ int ConvertPerCameraFiles(const Args& args,
 int ConvertMotChallenge(int argc, char** argv, const std::string& command_line) {
   Args args;
   AddPerCameraOptions(&args);
-  args.Option("pixel-origin",
-              "coordinate of the top-left pixel in the files: 1 (MOTChallenge) or 0", "1");
+  args.Option(
+      "pixel-origin", "coordinate of the top-left pixel in the files: 1 (MOTChallenge) or 0", "1");
   AddCommonOptions(&args, false);
   if (!args.Parse(
           argc,
@@ -1081,7 +1090,7 @@ int ConvertMotChallenge(int argc, char** argv, const std::string& command_line) 
         return formats::ReadMotChallengeDetections(text, path, options);
       },
       {"Box-only detections (layout none), box = [left, top, left + width, top + height] - " +
-           origin + " (pixel origin " + origin + "), score = conf; id and x, y, z ignored."});
+       origin + " (pixel origin " + origin + "), score = conf; id and x, y, z ignored."});
 }
 
 int ConvertCoco(int argc, char** argv, const std::string& command_line) {
@@ -1130,8 +1139,8 @@ int ConvertCoco(int argc, char** argv, const std::string& command_line) {
       [&](const std::string& text, const std::string& path) {
         return formats::ReadCocoKeypoints(text, path, options);
       },
-      {"COCO-17 poses (layout coco17), keypoint confidence = the keypoints' third value (" +
-           score + "); box = bbox [x, y, x + w, y + h], else the keypoint",
+      {"COCO-17 poses (layout coco17), keypoint confidence = the keypoints' third value (" + score +
+           "); box = bbox [x, y, x + w, y + h], else the keypoint",
        "bounds grown by 10 % of their height per side; score = \"score\", else the mean "
        "detected keypoint confidence."});
 }
@@ -1154,9 +1163,11 @@ constexpr Format kFormats[] = {
      "WILDTRACK: MVDeTr boxes of 7 views (box mode) + MVDeTr ground points",
      ConvertWildtrack},
     {"jsonl", "generic JSON-lines detections + a calibration (docs/FORMATS.md)", ConvertJsonl},
-    {"motchallenge", "MOTChallenge det.txt boxes, one file per camera + a calibration",
+    {"motchallenge",
+     "MOTChallenge det.txt boxes, one file per camera + a calibration",
      ConvertMotChallenge},
-    {"coco", "COCO-style keypoint JSON (pose detector output) per camera + a calibration",
+    {"coco",
+     "COCO-style keypoint JSON (pose detector output) per camera + a calibration",
      ConvertCoco},
 };
 

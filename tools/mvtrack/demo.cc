@@ -46,15 +46,22 @@ eval::EvalSequence TrackSequence(const std::vector<tracker::Frame3D>& frames) {
 }
 
 void PrintFrame(const tracker::Frame3D& f, const sim::Scene& scene) {
-  std::printf("frame %4lld  utime %lld  %zu track(s), %zu person(s) in the room\n",
-              static_cast<long long>(f.frame), static_cast<long long>(f.utime), f.tracks.size(),
-              scene.truth[static_cast<std::size_t>(f.frame - scene.truth.front().frame)].people.size());
+  std::printf(
+      "frame %4lld  utime %lld  %zu track(s), %zu person(s) in the room\n",
+      static_cast<long long>(f.frame),
+      static_cast<long long>(f.utime),
+      f.tracks.size(),
+      scene.truth[static_cast<std::size_t>(f.frame - scene.truth.front().frame)].people.size());
   for (const tracker::Track3D& t : f.tracks) {
     std::string cams;
     for (CameraId c : t.cameras) cams += (cams.empty() ? "" : ",") + std::to_string(c);
     std::printf("    id %3lld  footprint (%6.2f, %6.2f) m  conf %.2f  age %4lld  cameras {%s}\n",
-                static_cast<long long>(t.id), t.position.x(), t.position.y(), t.confidence,
-                static_cast<long long>(t.age_frames), cams.c_str());
+                static_cast<long long>(t.id),
+                t.position.x(),
+                t.position.y(),
+                t.confidence,
+                static_cast<long long>(t.age_frames),
+                cams.c_str());
   }
 }
 
@@ -62,7 +69,9 @@ void PrintFrame(const tracker::Frame3D& f, const sim::Scene& scene) {
 
 int RunDemo(int argc, char** argv) {
   Args args;
-  args.Option("mode", "what to track: 'poses' (2D poses -> 3D poses) or 'boxes' (boxes -> footprints)", "poses")
+  args.Option("mode",
+              "what to track: 'poses' (2D poses -> 3D poses) or 'boxes' (boxes -> footprints)",
+              "poses")
       .Option("cameras", "number of cameras on a ring around the room", "3")
       .Option("people", "number of people walking in the room", "3")
       .Option("frames", "frames to simulate (30 fps)", "300")
@@ -72,7 +81,9 @@ int RunDemo(int argc, char** argv) {
       .Option("false-positives", "mean false-positive detections per camera-frame", "0.2")
       .Option("print-every", "print the tracks of every N-th frame (0: none)", "30")
       .Flag("json", "print the accuracy report as JSON instead of a table");
-  if (!args.Parse(argc, argv, "mvtrack demo [options]",
+  if (!args.Parse(argc,
+                  argv,
+                  "mvtrack demo [options]",
                   "Simulates a room with calibrated cameras and walking people, feeds the noisy\n"
                   "detections to the tracker exactly as a live system would (camera-frame by\n"
                   "camera-frame), prints the tracks, and scores them against the simulation's\n"
@@ -104,7 +115,11 @@ int RunDemo(int argc, char** argv) {
   if (!t) throw std::runtime_error("tracker: " + why);
 
   std::printf("mvtrack demo: %d cameras, %d people, %d frames at %.0f fps, %s mode (seed %llu)\n",
-              so.num_cameras, so.num_people, so.num_frames, so.fps, mode.c_str(),
+              so.num_cameras,
+              so.num_people,
+              so.num_frames,
+              so.fps,
+              mode.c_str(),
               static_cast<unsigned long long>(so.seed));
   std::vector<tracker::Frame3D> frames;
   const auto start = std::chrono::steady_clock::now();
@@ -127,18 +142,22 @@ int RunDemo(int argc, char** argv) {
   report.tracking = eval::EvaluateTracking(TruthSequence(scene, poses), TrackSequence(frames), eo);
   if (!report.tracking->valid) throw std::runtime_error("evaluation: " + report.tracking->error);
   const tracker::TrackerStats& st = t->stats();
-  std::printf("\ntracked %lld frames in %.3f s (%.0f frames/s, single thread); %lld windows, "
-              "%lld tracks born; %lld detections used, %lld rejected, %lld filtered\n\n",
-              static_cast<long long>(frames.size()), seconds,
-              static_cast<double>(frames.size()) / seconds,
-              static_cast<long long>(st.windows_processed), static_cast<long long>(st.tracks_born),
-              static_cast<long long>(st.detections_used),
-              static_cast<long long>(st.detections_rejected),
-              static_cast<long long>(st.detections_filtered));
+  std::printf(
+      "\ntracked %lld frames in %.3f s (%.0f frames/s, single thread); %lld windows, "
+      "%lld tracks born; %lld detections used, %lld rejected, %lld filtered\n\n",
+      static_cast<long long>(frames.size()),
+      seconds,
+      static_cast<double>(frames.size()) / seconds,
+      static_cast<long long>(st.windows_processed),
+      static_cast<long long>(st.tracks_born),
+      static_cast<long long>(st.detections_used),
+      static_cast<long long>(st.detections_rejected),
+      static_cast<long long>(st.detections_filtered));
   if (args.Has("json")) {
     std::cout << eval::ReportToJson(report, 4);
   } else {
-    std::cout << "accuracy against the simulation's ground truth:\n" << eval::FormatReportTable(report);
+    std::cout << "accuracy against the simulation's ground truth:\n"
+              << eval::FormatReportTable(report);
   }
   return 0;
 }

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "mvtrack/cli.h"
 #include "formats/tracks_io.h"
+#include "mvtrack/cli.h"
 
 namespace mvtrack::cli {
 namespace {
@@ -63,8 +63,10 @@ struct FrameComparison {
 
 // Structural comparison (utime, layout, ids, joint counts, null-ness) and point distances;
 // `equal` applies `tolerance` to the distances.
-FrameComparison CompareFrames(const tracker::Frame3D& a, core::KeypointLayoutId layout_a,
-                              const tracker::Frame3D& b, core::KeypointLayoutId layout_b,
+FrameComparison CompareFrames(const tracker::Frame3D& a,
+                              core::KeypointLayoutId layout_a,
+                              const tracker::Frame3D& b,
+                              core::KeypointLayoutId layout_b,
                               double tolerance) {
   FrameComparison c;
   auto differ = [&c](const std::string& what) {
@@ -74,10 +76,14 @@ FrameComparison CompareFrames(const tracker::Frame3D& a, core::KeypointLayoutId 
   if (a.utime != b.utime) {
     differ("utime " + std::to_string(a.utime) + " vs " + std::to_string(b.utime));
   }
-  if (layout_a != layout_b) differ("layout " + formats::LayoutName(layout_a) + " vs " + formats::LayoutName(layout_b));
+  if (layout_a != layout_b)
+    differ("layout " + formats::LayoutName(layout_a) + " vs " + formats::LayoutName(layout_b));
   if (a.tracks.size() != b.tracks.size() ||
-      !std::equal(a.tracks.begin(), a.tracks.end(), b.tracks.begin(),
-                  [](const tracker::Track3D& x, const tracker::Track3D& y) { return x.id == y.id; })) {
+      !std::equal(
+          a.tracks.begin(),
+          a.tracks.end(),
+          b.tracks.begin(),
+          [](const tracker::Track3D& x, const tracker::Track3D& y) { return x.id == y.id; })) {
     differ("track ids " + IdList(a) + " vs " + IdList(b));
     return c;
   }
@@ -125,7 +131,8 @@ std::string FrameList(const std::vector<FrameIndex>& frames) {
 }
 
 std::string Source(const formats::TrackFile& f, const formats::TrackFileFrame& frame) {
-  return (f.format == formats::TrackFileFormat::kJsonl ? "line " : "event ") + std::to_string(frame.source);
+  return (f.format == formats::TrackFileFormat::kJsonl ? "line " : "event ") +
+         std::to_string(frame.source);
 }
 
 }  // namespace
@@ -139,7 +146,9 @@ int RunDiff(int argc, char** argv) {
               "position and joint differ by up to this distance (utime, layout, track ids and "
               "missing joints must still agree)",
               "0");
-  if (!args.Parse(argc, argv, "mvtrack diff A B [--tolerance M]",
+  if (!args.Parse(argc,
+                  argv,
+                  "mvtrack diff A B [--tolerance M]",
                   "Compares two track outputs frame by frame (frames are matched by frame index;\n"
                   "either file may be canonical tracks JSONL or an LCM log of tracks3d_t). Prints\n"
                   "the first differing frame with both canonical lines, what differs in it, and a\n"
@@ -213,8 +222,8 @@ int RunDiff(int argc, char** argv) {
   std::cout << "A: " << a.Describe() << "\n";
   std::cout << "B: " << b.Describe() << "\n";
   if (a.layout && b.layout && *a.layout != *b.layout) {
-    std::cout << "layouts differ: A " << formats::LayoutName(*a.layout) << ", B " << formats::LayoutName(*b.layout)
-              << "\n";
+    std::cout << "layouts differ: A " << formats::LayoutName(*a.layout) << ", B "
+              << formats::LayoutName(*b.layout) << "\n";
   }
   const std::size_t common = in_a.size() - only_a.size();
   std::cout << "frames: " << common << " in both, " << only_a.size() << " only in A"
@@ -223,8 +232,7 @@ int RunDiff(int argc, char** argv) {
             << differing.size() << " differing"
             << (differing.empty() ? "" : " (" + FrameList(differing) + ")") << "\n";
   if (max_distance) {
-    std::cout << "largest distance between corresponding points: " << Metres(*max_distance)
-              << "\n";
+    std::cout << "largest distance between corresponding points: " << Metres(*max_distance) << "\n";
   }
   const bool identical = only_a.empty() && only_b.empty() && differing.empty();
   std::cout << (identical ? "identical" : "DIFFERENT")

@@ -3,8 +3,8 @@
 // (tracks_io.h); ground-truth actors are tracks whose ids are the actor ids.
 
 #include <charconv>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -22,8 +22,8 @@
 #include "eval/report.h"
 #include "eval/sequence.h"
 #include "eval/tracking_metrics.h"
-#include "mvtrack/cli.h"
 #include "formats/tracks_io.h"
+#include "mvtrack/cli.h"
 
 namespace mvtrack::cli {
 namespace {
@@ -50,8 +50,10 @@ bool HasJoints(const formats::TrackFile& file) {
 // The frames of `file` as an evaluation sequence; joints dropped (`keep_joints` false), kept, or
 // mapped with `mapping` (when not null; head_top then follows `head_rule` when the target is
 // shelf14).
-eval::EvalSequence ToSequence(const formats::TrackFile& file, bool keep_joints,
-                              const core::KeypointMapping* mapping, eval::HeadRule head_rule) {
+eval::EvalSequence ToSequence(const formats::TrackFile& file,
+                              bool keep_joints,
+                              const core::KeypointMapping* mapping,
+                              eval::HeadRule head_rule) {
   eval::EvalSequence seq;
   seq.reserve(file.frames.size());
   std::vector<Vec3> points;
@@ -171,9 +173,9 @@ int RunPointComparison(const Args& args,
   out << "predictions:  " << pred.Describe() << "\n";
   out << "joints: not compared (--points: footprints only, ids ignored on both sides)\n\n";
   eval::EvaluationReport report;
-  report.points = eval::ComparePoints(
-      ToSequence(gt, false, nullptr, eval::HeadRule::kCampus),
-      ToSequence(pred, false, nullptr, eval::HeadRule::kCampus), options);
+  report.points = eval::ComparePoints(ToSequence(gt, false, nullptr, eval::HeadRule::kCampus),
+                                      ToSequence(pred, false, nullptr, eval::HeadRule::kCampus),
+                                      options);
   if (!report.points->valid) {
     std::cerr << "mvtrack eval: point comparison failed: " << report.points->error << "\n";
     return 1;
@@ -188,14 +190,17 @@ int RunPointComparison(const Args& args,
 int RunEval(int argc, char** argv) {
   Args args;
   args.Positional("TRACKS", "the predictions (instead of --pred)", /*required=*/false)
-      .Option("gt", "ground truth: canonical tracks JSONL (actors as tracks) or an LCM tracks log "
-                    "(required)")
+      .Option("gt",
+              "ground truth: canonical tracks JSONL (actors as tracks) or an LCM tracks log "
+              "(required)")
       .Option("pred", "the predictions: JSONL or LCM tracks log (or give them as TRACKS)")
-      .Option("layout", "keypoint layout joints are compared in: coco17, body25, shelf14, "
-                        "panoptic19 (default: the ground truth's); the other side is mapped to it "
-                        "with core::MakeKeypointMapping")
-      .Option("distance", "how GT and tracks are matched: footprint (ground-plane distance) or "
-                          "joints (mean 3D joint distance)",
+      .Option("layout",
+              "keypoint layout joints are compared in: coco17, body25, shelf14, "
+              "panoptic19 (default: the ground truth's); the other side is mapped to it "
+              "with core::MakeKeypointMapping")
+      .Option("distance",
+              "how GT and tracks are matched: footprint (ground-plane distance) or "
+              "joints (mean 3D joint distance)",
               "footprint")
       .Option("threshold", "matching gate, metres", "0.5")
       .Option("frames", "evaluate only these frames: A-B[,C-D...] (inclusive; default: all)")
@@ -218,10 +223,12 @@ int RunEval(int argc, char** argv) {
               "--points only: MIN_X,MAX_X,MIN_Y,MAX_Y (metres): points of either side outside "
               "this floor rectangle are dropped before matching (a dataset's annotated area; "
               "WILDTRACK: -3,9,-9,27)")
-      .Flag("pcp", "also score PCP (alpha 0.5): the Shelf/Campus parts when the layout is shelf14, "
-                   "else every bone of the layout")
-      .Option("json", "also write the report as JSON (schema mvtrack.eval/1) to this file "
-                      "('-': stdout, the table then goes to stderr)");
+      .Flag("pcp",
+            "also score PCP (alpha 0.5): the Shelf/Campus parts when the layout is shelf14, "
+            "else every bone of the layout")
+      .Option("json",
+              "also write the report as JSON (schema mvtrack.eval/1) to this file "
+              "('-': stdout, the table then goes to stderr)");
   if (!args.Parse(
           argc,
           argv,
@@ -343,7 +350,8 @@ int RunEval(int argc, char** argv) {
     std::set<FrameIndex> gt_frames;
     for (const formats::TrackFileFrame& f : gt.frames) gt_frames.insert(f.frame.frame);
     std::int64_t common = 0;
-    for (const formats::TrackFileFrame& f : pred.frames) common += gt_frames.count(f.frame.frame) ? 1 : 0;
+    for (const formats::TrackFileFrame& f : pred.frames)
+      common += gt_frames.count(f.frame.frame) ? 1 : 0;
     out << "frames: " << gt.frames.size() << " in the ground truth, " << pred.frames.size()
         << " predicted, " << common << " in both\n";
   }

@@ -38,21 +38,23 @@ constexpr Command kCommands[] = {
     {"replay", "track a recorded detections log (deterministic, offline)", mvtrack::cli::RunReplay},
     {"eval", "score tracks against ground truth (MOTA, IDF1, MPJPE, PCP)", mvtrack::cli::RunEval},
     {"diff", "compare two track outputs frame by frame", mvtrack::cli::RunDiff},
-    {"check-config", "validate a tracker options file (and a calibration)",
+    {"check-config",
+     "validate a tracker options file (and a calibration)",
      mvtrack::cli::RunCheckConfig},
-    {"convert", "convert a dataset or JSON-lines detections into a detections log",
+    {"convert",
+     "convert a dataset or JSON-lines detections into a detections log",
      mvtrack::cli::RunConvert},
-    {"sim", "write a simulated recording (detections log, calibration, ground truth)",
+    {"sim",
+     "write a simulated recording (detections log, calibration, ground truth)",
      mvtrack::cli::RunSim},
-    {"bench", "measure speed, latency and memory on simulated scenes (with accuracy)",
-     nullptr},
-    {"view", "render tracks over the floor and the cameras (PNG, contact sheet, MP4)",
-     nullptr},
-    {"calib", "import a calibration from other formats; check a calibration",
-     nullptr},
-    {"web", "serve a live floor view, JSON events, metrics and health over HTTP",
+    {"bench", "measure speed, latency and memory on simulated scenes (with accuracy)", nullptr},
+    {"view", "render tracks over the floor and the cameras (PNG, contact sheet, MP4)", nullptr},
+    {"calib", "import a calibration from other formats; check a calibration", nullptr},
+    {"web",
+     "serve a live floor view, JSON events, metrics and health over HTTP",
      mvtrack::cli::RunWeb},
-    {"status", "print the tracker's latest status; exit 0/1/2/3 (OK/WARNING/CRITICAL/UNKNOWN)",
+    {"status",
+     "print the tracker's latest status; exit 0/1/2/3 (OK/WARNING/CRITICAL/UNKNOWN)",
      mvtrack::cli::RunStatus},
 };
 
@@ -60,7 +62,8 @@ void PrintUsage(std::ostream& os) {
   os << "usage: mvtrack <command> [options]   (mvtrack <command> --help for details)\n\n"
         "Multi-view multi-person 3D tracking (Yang et al., the unified MM-tracking framework).\n\n"
         "commands:\n";
-  for (const Command& c : kCommands) os << "  " << c.name << std::string(14 - std::strlen(c.name), ' ') << c.summary << "\n";
+  for (const Command& c : kCommands)
+    os << "  " << c.name << std::string(14 - std::strlen(c.name), ' ') << c.summary << "\n";
   os << "  version       print the version\n";
 }
 
@@ -78,10 +81,12 @@ int main(int argc, char** argv) {
   }
   for (const Command& c : kCommands) {
     if (std::strcmp(argv[1], c.name) != 0) continue;
-    if (c.run != nullptr) return mvtrack::cli::RunSubcommand("mvtrack", c.name, c.run, argc - 1, argv + 1);
+    if (c.run != nullptr)
+      return mvtrack::cli::RunSubcommand("mvtrack", c.name, c.run, argc - 1, argv + 1);
     const std::string helper = PicturesHelper();
     if (helper.empty()) {
-      std::cerr << "mvtrack " << c.name << ": error: the helper mvtrack-pictures is not installed "
+      std::cerr << "mvtrack " << c.name
+                << ": error: the helper mvtrack-pictures is not installed "
                    "next to mvtrack\n";
       return 1;
     }

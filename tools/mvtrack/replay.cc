@@ -25,9 +25,9 @@
 #include "config/calibration_check.h"
 #include "config/tracker_options.h"
 #include "core/keypoint_layout.h"
+#include "formats/tracks_io.h"
 #include "geometry/camera_rig.h"
 #include "mvtrack/cli.h"
-#include "formats/tracks_io.h"
 #include "pipeline/clock.h"
 #include "pipeline/executor.h"
 #include "pipeline/pipeline.h"
@@ -62,8 +62,7 @@ class Progress {
   }
   void Print(const std::string& text) {
     last_ = Clock::now();
-    std::cerr << (tty_ ? "\r" : "") << "replay: " << text << (tty_ ? "\x1b[K" : "\n")
-              << std::flush;
+    std::cerr << (tty_ ? "\r" : "") << "replay: " << text << (tty_ ? "\x1b[K" : "\n") << std::flush;
     open_line_ = tty_;
   }
   // Ends a line left open on a terminal.
@@ -81,10 +80,10 @@ class Progress {
 
 // The decoded input and what was wrong with it.
 struct LoadedInput {
-  std::vector<core::CameraFrame> frames;  // camera-frames in log order
-  std::vector<std::int64_t> event_times_us;  // the log timestamp of each of `frames`
-  std::int64_t events = 0;                // events read
-  std::int64_t detection_events = 0;      // events on a detections channel
+  std::vector<core::CameraFrame> frames;                 // camera-frames in log order
+  std::vector<std::int64_t> event_times_us;              // the log timestamp of each of `frames`
+  std::int64_t events = 0;                               // events read
+  std::int64_t detection_events = 0;                     // events on a detections channel
   std::map<std::string, std::int64_t> foreign_channels;  // other channels: event counts
   std::map<std::string, std::int64_t> bad_messages;      // by reason kind
   std::int64_t bad_messages_total = 0;
@@ -95,11 +94,12 @@ struct LoadedInput {
 };
 
 std::string EventWhere(const std::string& path, const transport::LogEvent& e) {
-  return path + ": event " + std::to_string(e.event_number) + " on " + e.channel + " (t=" +
-         std::to_string(e.timestamp_us) + " us)";
+  return path + ": event " + std::to_string(e.event_number) + " on " + e.channel +
+         " (t=" + std::to_string(e.timestamp_us) + " us)";
 }
 
-LoadedInput LoadDetections(const std::string& path, const geometry::CameraRig& rig,
+LoadedInput LoadDetections(const std::string& path,
+                           const geometry::CameraRig& rig,
                            Progress* progress) {
   std::string why;
   std::unique_ptr<transport::LogReader> reader = transport::LogReader::Open(path, &why);
@@ -132,9 +132,9 @@ LoadedInput LoadDetections(const std::string& path, const geometry::CameraRig& r
     transport::DecodeResult decoded =
         transport::DecodeCameraDetections(event->data.data(), event->data.size());
     if (!decoded.ok()) {
-      bad(transport::ToString(decoded.status), EventWhere(path, *event) + ": " +
-                                                   transport::ToString(decoded.status) + ": " +
-                                                   decoded.reason);
+      bad(transport::ToString(decoded.status),
+          EventWhere(path, *event) + ": " + transport::ToString(decoded.status) + ": " +
+              decoded.reason);
       continue;
     }
     const std::optional<CameraId> channel_camera = transport::CameraIdFromChannel(event->channel);
@@ -170,7 +170,8 @@ LoadedInput LoadDetections(const std::string& path, const geometry::CameraRig& r
 
 std::string CountsText(const std::map<std::string, std::int64_t>& counts) {
   std::string s;
-  for (const auto& [name, n] : counts) s += (s.empty() ? "" : ", ") + name + " " + std::to_string(n);
+  for (const auto& [name, n] : counts)
+    s += (s.empty() ? "" : ", ") + name + " " + std::to_string(n);
   return s;
 }
 
@@ -186,41 +187,46 @@ bool SamePath(const std::string& a, const std::string& b) {
 
 int RunReplay(int argc, char** argv) {
   Args args;
-  args.Positional("INPUT.lcmlog", "detections log (camera_detections_t on MVTRACK_DETECTIONS or "
-                                  "MVTRACK_DETECTIONS_<camera id>)")
+  args.Positional("INPUT.lcmlog",
+                  "detections log (camera_detections_t on MVTRACK_DETECTIONS or "
+                  "MVTRACK_DETECTIONS_<camera id>)")
       .Option("calibration", "camera calibration, mvtrack.calibration/1 (required)")
-      .Option("config", "tracker options file (a `tracker:` YAML document; default: the paper's "
-                        "defaults)")
+      .Option("config",
+              "tracker options file (a `tracker:` YAML document; default: the paper's "
+              "defaults)")
       .Option("mode", "override tracker.mode: boxes or poses")
       .Option("layout", "override tracker.layout: coco17, body25, shelf14, panoptic19 or none")
-      .Option("threads", "window-job workers: 0 = run jobs inline on the scheduler thread, N = a "
-                         "pool of N worker threads; the output is identical for every value",
+      .Option("threads",
+              "window-job workers: 0 = run jobs inline on the scheduler thread, N = a "
+              "pool of N worker threads; the output is identical for every value",
               "0")
       .Option("out", "write the tracks as tracks3d_t on MVTRACK_TRACKS to this LCM log")
       .Option("jsonl", "write the tracks as canonical JSON lines to this file ('-': stdout)")
       .Flag("quiet", "no progress line on stderr");
-  if (!args.Parse(argc, argv,
-                  "mvtrack replay --calibration CAL.yaml [--config OPTIONS.yaml] "
-                  "[--mode boxes|poses] [--layout NAME] [--threads N] [--out TRACKS.lcmlog] "
-                  "[--jsonl TRACKS.jsonl] [--quiet] INPUT.lcmlog",
-                  "Tracks a recorded detections log offline, deterministically: the events are read\n"
-                  "in log order, decoded with the safe decoder and fed to the threaded pipeline with\n"
-                  "lossless queues, so the output depends only on the log and the options (never on\n"
-                  "timing or --threads). Events on other channels are ignored and counted; messages\n"
-                  "that do not decode are skipped, counted, and the first few are printed. A\n"
-                  "truncated or damaged log is tracked up to the damage.\n\n"
-                  "Every finalized frame is written as tracks3d_t (event timestamp and publish_utime\n"
-                  "= the frame's capture utime, latency_us = 0) and/or as one canonical JSON line.\n"
-                  "The decoded detections are held in memory while tracking, so the reported speed\n"
-                  "measures tracking only (from the first camera-frame submitted to the end of the\n"
-                  "final flush; reading, decoding and writing excluded).\n\n"
-                  "A log whose detections carry keypoints replayed in box mode, or with another\n"
-                  "--layout than the log's, gets a warning (both run: box mode from pose detections\n"
-                  "and mapping between layouts are features).\n\n"
-                  "Exit status: 0 done (also when messages were skipped), 1 failure (unreadable\n"
-                  "input, calibration or options error, output not writable, or nothing to track:\n"
-                  "no detections message in the log, or not one camera-frame accepted, e.g. camera\n"
-                  "ids the calibration does not have), 2 usage error.")) {
+  if (!args.Parse(
+          argc,
+          argv,
+          "mvtrack replay --calibration CAL.yaml [--config OPTIONS.yaml] "
+          "[--mode boxes|poses] [--layout NAME] [--threads N] [--out TRACKS.lcmlog] "
+          "[--jsonl TRACKS.jsonl] [--quiet] INPUT.lcmlog",
+          "Tracks a recorded detections log offline, deterministically: the events are read\n"
+          "in log order, decoded with the safe decoder and fed to the threaded pipeline with\n"
+          "lossless queues, so the output depends only on the log and the options (never on\n"
+          "timing or --threads). Events on other channels are ignored and counted; messages\n"
+          "that do not decode are skipped, counted, and the first few are printed. A\n"
+          "truncated or damaged log is tracked up to the damage.\n\n"
+          "Every finalized frame is written as tracks3d_t (event timestamp and publish_utime\n"
+          "= the frame's capture utime, latency_us = 0) and/or as one canonical JSON line.\n"
+          "The decoded detections are held in memory while tracking, so the reported speed\n"
+          "measures tracking only (from the first camera-frame submitted to the end of the\n"
+          "final flush; reading, decoding and writing excluded).\n\n"
+          "A log whose detections carry keypoints replayed in box mode, or with another\n"
+          "--layout than the log's, gets a warning (both run: box mode from pose detections\n"
+          "and mapping between layouts are features).\n\n"
+          "Exit status: 0 done (also when messages were skipped), 1 failure (unreadable\n"
+          "input, calibration or options error, output not writable, or nothing to track:\n"
+          "no detections message in the log, or not one camera-frame accepted, e.g. camera\n"
+          "ids the calibration does not have), 2 usage error.")) {
     return 0;
   }
   const std::string input_path = args.Get("INPUT.lcmlog");
@@ -250,7 +256,8 @@ int RunReplay(int argc, char** argv) {
   if (args.Has("config")) options = config::LoadTrackerOptionsFile(args.Get("config"));
   if (args.Has("mode")) {
     const std::optional<tracker::InputMode> mode = config::InputModeFromName(args.Get("mode"));
-    if (!mode) throw UsageError("--mode must be 'boxes' or 'poses', not '" + args.Get("mode") + "'");
+    if (!mode)
+      throw UsageError("--mode must be 'boxes' or 'poses', not '" + args.Get("mode") + "'");
     options.mode = *mode;
   }
   if (args.Has("layout")) {
@@ -331,7 +338,9 @@ int RunReplay(int argc, char** argv) {
   std::vector<tracker::Frame3D> frames;  // guarded by frames_mu (the pipeline's finalizer writes)
   std::atomic<std::int64_t> frames_out{0};
   std::int64_t printed_rejections = 0;
-  auto rejected = [&](CameraId camera, FrameIndex frame, tracker::FrameRejection rejection,
+  auto rejected = [&](CameraId camera,
+                      FrameIndex frame,
+                      tracker::FrameRejection rejection,
                       const std::string& reason) {
     if (printed_rejections < kMaxPrintedPerKind) {
       progress.Finish();
@@ -378,7 +387,10 @@ int RunReplay(int argc, char** argv) {
     pool.num_workers = static_cast<int>(threads);
     pipeline::ManualClock clock(in.event_times_us.empty() ? 0 : in.event_times_us.front());
     std::unique_ptr<pipeline::Pipeline> pipeline = pipeline::Pipeline::Create(
-        rig, options, pipeline_options, std::make_unique<pipeline::ThreadPoolExecutor>(pool),
+        rig,
+        options,
+        pipeline_options,
+        std::make_unique<pipeline::ThreadPoolExecutor>(pool),
         clock,
         [&](tracker::Frame3D frame) {
           std::lock_guard<std::mutex> lock(frames_mu);
@@ -416,15 +428,18 @@ int RunReplay(int argc, char** argv) {
     for (const tracker::Track3D& t : f.tracks) track_ids.insert(t.id);
     track_frames += static_cast<std::int64_t>(f.tracks.size());
     if (jsonl) *jsonl << transport::TracksJsonLine(f, output_layout);
-    if (lcm_out && !lcm_out->Write(transport::kTracksChannel, f.utime,
-                                   transport::EncodeTracks(f, output_layout, f.utime, 0), &why)) {
+    if (lcm_out && !lcm_out->Write(transport::kTracksChannel,
+                                   f.utime,
+                                   transport::EncodeTracks(f, output_layout, f.utime, 0),
+                                   &why)) {
       throw std::runtime_error(why);
     }
   }
   if (lcm_out && !lcm_out->Flush(&why)) throw std::runtime_error(why);
   if (jsonl) {
     jsonl->flush();
-    if (!*jsonl) throw std::runtime_error((jsonl_to_stdout ? "stdout" : jsonl_path) + ": write error");
+    if (!*jsonl)
+      throw std::runtime_error((jsonl_to_stdout ? "stdout" : jsonl_path) + ": write error");
   }
   if (jsonl_file.is_open()) {
     jsonl_file.close();
@@ -434,8 +449,8 @@ int RunReplay(int argc, char** argv) {
 
   // Summary.
   const tracker::TrackerStats& st = status.tracker;
-  report << "replay: " << input_path << ": " << in.events << " event(s), "
-         << in.detection_events << " on detections channels";
+  report << "replay: " << input_path << ": " << in.events << " event(s), " << in.detection_events
+         << " on detections channels";
   if (!in.foreign_channels.empty()) {
     std::int64_t n = 0;
     for (const auto& [channel, count] : in.foreign_channels) n += count;
@@ -459,9 +474,9 @@ int RunReplay(int argc, char** argv) {
   report << "\n  detections: " << st.detections_used << " used, " << st.detections_rejected
          << " rejected, " << st.detections_repaired << " repaired, " << st.detections_filtered
          << " filtered\n";
-  report << "  output: " << frames.size() << " frame(s), " << track_ids.size()
-         << " track id(s), " << track_frames << " track-frame(s), layout "
-         << formats::LayoutName(output_layout) << "; " << st.windows_processed << " window(s)";
+  report << "  output: " << frames.size() << " frame(s), " << track_ids.size() << " track id(s), "
+         << track_frames << " track-frame(s), layout " << formats::LayoutName(output_layout) << "; "
+         << st.windows_processed << " window(s)";
   if (status.windows_failed > 0) {
     report << ", " << status.windows_failed << " FAILED (" << status.last_failure << ")";
   }
@@ -476,7 +491,8 @@ int RunReplay(int argc, char** argv) {
          << "; timed from the first submit to the end of the flush; reading "
          << static_cast<long long>(read_seconds * 1000.0 + 0.5) << " ms and writing "
          << static_cast<long long>(write_seconds * 1000.0 + 0.5) << " ms not included)\n";
-  if (!out_path.empty()) report << "  wrote " << out_path << " (LCM log, " << frames.size() << " event(s))\n";
+  if (!out_path.empty())
+    report << "  wrote " << out_path << " (LCM log, " << frames.size() << " event(s))\n";
   if (!jsonl_path.empty() && !jsonl_to_stdout) {
     report << "  wrote " << jsonl_path << " (JSONL, " << frames.size() << " line(s))\n";
   }

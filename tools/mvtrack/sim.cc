@@ -32,17 +32,20 @@ int RunSim(int argc, char** argv) {
   args.Flag("per-camera-channels",
             "publish camera c on MVTRACK_DETECTIONS_<c> instead of the shared MVTRACK_DETECTIONS")
       .Flag("quiet", "no progress line");
-  if (!args.Parse(argc, argv, "mvtrack sim --out DIR [options]",
-                  "Simulates calibrated cameras watching people walk on a floor (waypoints,\n"
-                  "collision avoidance, optionally entering and leaving) and a detector with\n"
-                  "pixel noise, misses, false positives and occlusion by depth order. Writes\n"
-                  "  DIR/detections.lcmlog  camera_detections_t per camera-frame, in capture order\n"
-                  "  DIR/calibration.yaml   the cameras (mvtrack replay --calibration)\n"
-                  "  DIR/gt.jsonl           ground truth tracks (mvtrack eval --gt): footprints,\n"
-                  "                         and the 17 COCO joints in pose mode\n"
-                  "The same options and seed always give byte-identical files. Defaults come\n"
-                  "from the preset for --cameras/--people (see docs/BENCHMARKS.md); every scene\n"
-                  "option overrides it.")) {
+  if (!args.Parse(
+          argc,
+          argv,
+          "mvtrack sim --out DIR [options]",
+          "Simulates calibrated cameras watching people walk on a floor (waypoints,\n"
+          "collision avoidance, optionally entering and leaving) and a detector with\n"
+          "pixel noise, misses, false positives and occlusion by depth order. Writes\n"
+          "  DIR/detections.lcmlog  camera_detections_t per camera-frame, in capture order\n"
+          "  DIR/calibration.yaml   the cameras (mvtrack replay --calibration)\n"
+          "  DIR/gt.jsonl           ground truth tracks (mvtrack eval --gt): footprints,\n"
+          "                         and the 17 COCO joints in pose mode\n"
+          "The same options and seed always give byte-identical files. Defaults come\n"
+          "from the preset for --cameras/--people (see docs/BENCHMARKS.md); every scene\n"
+          "option overrides it.")) {
     return 0;
   }
   if (!args.Has("out")) throw UsageError("--out DIR is required");
@@ -76,10 +79,10 @@ int RunSim(int argc, char** argv) {
     const sim::FrameTruth truth = crowd.Next();
     const sim::RenderedFrame rendered = sim::RenderFrame(so, cameras, truth);
     for (const core::CameraFrame& cf : rendered.cameras) {
-      const std::string channel = per_camera
-                                      ? transport::DetectionsChannelForCamera(cf.camera_id)
-                                      : std::string(transport::kDetectionsChannel);
-      if (!log->Write(channel, cf.utime,
+      const std::string channel = per_camera ? transport::DetectionsChannelForCamera(cf.camera_id)
+                                             : std::string(transport::kDetectionsChannel);
+      if (!log->Write(channel,
+                      cf.utime,
                       transport::EncodeCameraDetections(cf, so.image_width_px, so.image_height_px),
                       &why)) {
         throw std::runtime_error(why);
@@ -113,10 +116,14 @@ int RunSim(int argc, char** argv) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!quiet) std::fprintf(stderr, "\r");
-  std::printf("mvtrack sim: wrote %s (%d camera-frames, %lld detections), calibration.yaml, "
-              "gt.jsonl (%lld person-frames) in %.1f s\n",
-              log_path.c_str(), so.num_frames * so.num_cameras,
-              static_cast<long long>(detections), static_cast<long long>(person_frames), seconds);
+  std::printf(
+      "mvtrack sim: wrote %s (%d camera-frames, %lld detections), calibration.yaml, "
+      "gt.jsonl (%lld person-frames) in %.1f s\n",
+      log_path.c_str(),
+      so.num_frames * so.num_cameras,
+      static_cast<long long>(detections),
+      static_cast<long long>(person_frames),
+      seconds);
   return 0;
 }
 

@@ -46,7 +46,8 @@ void DeclareSceneOptions(Args* args) {
       .Option("false-positives", "mean false-positive detections per camera-frame", "0.2")
       .Option("keypoint-dropout", "probability that a visible keypoint is reported missing", "0.02")
       .Option("occlusion-threshold",
-              "a person covered to this fraction by nearer people is not detected", "0.7")
+              "a person covered to this fraction by nearer people is not detected",
+              "0.7")
       .Flag("no-occlusion", "no occlusion by depth order (everyone in view is a candidate)")
       .Flag("enter-leave", "people enter and leave through the walls (new ids on re-entry)")
       .Option("mean-stay", "--enter-leave: mean stay in the room, seconds", "8");
@@ -61,8 +62,10 @@ sim::SceneOptions SceneOptionsFromArgs(const Args& args) {
   if (people < 0 || people > 100000) throw UsageError("--people must be in [0, 100000]");
   const std::int64_t seed = args.GetInt("seed");
   if (seed < 0) throw UsageError("--seed must be >= 0");
-  sim::SceneOptions o = sim::SizedScene(static_cast<int>(cameras), static_cast<int>(people),
-                                        mode == "poses", static_cast<std::uint64_t>(seed));
+  sim::SceneOptions o = sim::SizedScene(static_cast<int>(cameras),
+                                        static_cast<int>(people),
+                                        mode == "poses",
+                                        static_cast<std::uint64_t>(seed));
   const std::int64_t frames = args.GetInt("frames");
   if (frames < 0 || frames > 100000000) throw UsageError("--frames must be in [0, 1e8]");
   o.num_frames = static_cast<int>(frames);
@@ -74,8 +77,8 @@ sim::SceneOptions SceneOptionsFromArgs(const Args& args) {
   const std::string layout = args.Get("layout");
   if (layout == "ring" || layout == "grid") {
     // Switching layout: take that layout's defaults from a preset that chose it.
-    const sim::SceneOptions ref = layout == "ring" ? sim::SizedScene(2, 2, true, 1)
-                                                   : sim::SizedScene(32, 100, true, 1);
+    const sim::SceneOptions ref =
+        layout == "ring" ? sim::SizedScene(2, 2, true, 1) : sim::SizedScene(32, 100, true, 1);
     o.camera_layout = ref.camera_layout;
     o.camera_height_m = ref.camera_height_m;
     o.image_width_px = ref.image_width_px;
@@ -87,7 +90,8 @@ sim::SceneOptions SceneOptionsFromArgs(const Args& args) {
   if (args.Has("camera-height")) o.camera_height_m = args.GetDouble("camera-height");
   if (args.Has("image")) {
     const auto [w, h] = ParsePair(args.Get("image"), "image");
-    if (w != static_cast<double>(static_cast<int>(w)) || h != static_cast<double>(static_cast<int>(h))) {
+    if (w != static_cast<double>(static_cast<int>(w)) ||
+        h != static_cast<double>(static_cast<int>(h))) {
       throw UsageError("--image: width and height must be whole pixels");
     }
     o.image_width_px = static_cast<int>(w);
@@ -111,15 +115,28 @@ sim::SceneOptions SceneOptionsFromArgs(const Args& args) {
 
 std::string DescribeScene(const sim::SceneOptions& o) {
   char line[512];
-  std::snprintf(line, sizeof(line),
+  std::snprintf(line,
+                sizeof(line),
                 "%d cameras (%s, %dx%d px, %.0f deg, %.1f m high), %d people%s on %.0f x %.0f m, "
                 "%d frames at %.0f fps, %s; noise %.1f px, miss %.2f, false positives %.2f/frame, "
                 "occlusion %s, seed %llu",
-                o.num_cameras, o.camera_layout == sim::CameraLayout::kRing ? "ring" : "ceiling grid",
-                o.image_width_px, o.image_height_px, o.horizontal_fov_deg, o.camera_height_m,
-                o.num_people, o.enter_and_leave ? " (entering and leaving)" : "", o.room_width_m,
-                o.room_depth_m, o.num_frames, o.fps, o.poses ? "poses" : "boxes", o.pixel_noise_px,
-                o.miss_rate, o.false_positives_per_frame, o.occlusion ? "on" : "off",
+                o.num_cameras,
+                o.camera_layout == sim::CameraLayout::kRing ? "ring" : "ceiling grid",
+                o.image_width_px,
+                o.image_height_px,
+                o.horizontal_fov_deg,
+                o.camera_height_m,
+                o.num_people,
+                o.enter_and_leave ? " (entering and leaving)" : "",
+                o.room_width_m,
+                o.room_depth_m,
+                o.num_frames,
+                o.fps,
+                o.poses ? "poses" : "boxes",
+                o.pixel_noise_px,
+                o.miss_rate,
+                o.false_positives_per_frame,
+                o.occlusion ? "on" : "off",
                 static_cast<unsigned long long>(o.seed));
   return line;
 }

@@ -53,42 +53,69 @@ std::string Join(const std::vector<std::string>& words) {
 
 void Print(const transport::TrackerStatus& s, const service::HealthReport& h) {
   std::printf("mvtrack status: %s\n", service::HealthLine(h).c_str());
-  std::printf("tracker %s, configuration %s, up %s\n", s.version.c_str(), s.config_hash.c_str(),
+  std::printf("tracker %s, configuration %s, up %s\n",
+              s.version.c_str(),
+              s.config_hash.c_str(),
               Seconds(static_cast<double>(s.uptime_us) / 1e6).c_str());
-  std::printf("frame %lld, %.1f frames/s, %d active tracks (%d confirmed), latency p50 %s ms, "
-              "p99 %s ms, max %s ms\n",
-              static_cast<long long>(s.last_frame), service::FramesPerSecond(s), s.active_tracks,
-              s.confirmed_tracks, Ms(s.latency_p50_us).c_str(), Ms(s.latency_p99_us).c_str(),
-              Ms(s.latency_max_us).c_str());
+  std::printf(
+      "frame %lld, %.1f frames/s, %d active tracks (%d confirmed), latency p50 %s ms, "
+      "p99 %s ms, max %s ms\n",
+      static_cast<long long>(s.last_frame),
+      service::FramesPerSecond(s),
+      s.active_tracks,
+      s.confirmed_tracks,
+      Ms(s.latency_p50_us).c_str(),
+      Ms(s.latency_p99_us).c_str(),
+      Ms(s.latency_max_us).c_str());
   std::printf("tracker flags: %s; windows %lld, failed jobs %lld, job queue %d, kernel drops %s\n",
               Join(transport::TrackerFlagNames(s.flags)).c_str(),
-              static_cast<long long>(s.windows_processed), static_cast<long long>(s.jobs_failed),
+              static_cast<long long>(s.windows_processed),
+              static_cast<long long>(s.jobs_failed),
               s.executor_queue_depth,
               s.kernel_drops < 0 ? "not measured" : std::to_string(s.kernel_drops).c_str());
   std::printf("cameras: %d of %zu delivering\n", service::CamerasDelivering(s), s.cameras.size());
-  std::printf("  %6s %8s %9s %10s %9s %8s %8s %8s %9s %8s %7s  %s\n", "camera", "rate Hz",
-              "last msg", "latency ms", "clock ms", "late", "dropped", "lost", "rejected",
-              "decode", "queue", "flags");
+  std::printf("  %6s %8s %9s %10s %9s %8s %8s %8s %9s %8s %7s  %s\n",
+              "camera",
+              "rate Hz",
+              "last msg",
+              "latency ms",
+              "clock ms",
+              "late",
+              "dropped",
+              "lost",
+              "rejected",
+              "decode",
+              "queue",
+              "flags");
   for (const transport::CameraStatus& c : s.cameras) {
-    const std::string age = c.last_receive_utime > 0
-                                ? Seconds((static_cast<double>(s.utime) -
-                                           static_cast<double>(c.last_receive_utime)) / 1e6)
-                                : "never";
+    const std::string age =
+        c.last_receive_utime > 0
+            ? Seconds((static_cast<double>(s.utime) - static_cast<double>(c.last_receive_utime)) /
+                      1e6)
+            : "never";
     // Capture (camera clock) to receive (tracker clock): a transport latency when the clocks
     // agree; beyond an hour they are not comparable (a replayed recording, an unset clock).
     // (Differences in double: the fields come from the network and may be any int64.)
     const double capture_to_receive_us =
         static_cast<double>(c.last_receive_utime) - static_cast<double>(c.last_utime);
-    const std::string latency =
-        c.last_receive_utime <= 0                   ? "-"
-        : std::fabs(capture_to_receive_us) > 3.6e9 ? "n/a"
-                                                    : Ms(static_cast<std::int64_t>(capture_to_receive_us));
+    const std::string latency = c.last_receive_utime <= 0 ? "-"
+                                : std::fabs(capture_to_receive_us) > 3.6e9
+                                    ? "n/a"
+                                    : Ms(static_cast<std::int64_t>(capture_to_receive_us));
     std::printf("  %6d %8.1f %9s %10s %9s %8lld %8lld %8lld %9lld %8lld %3d/%-3d  %s\n",
-                c.camera_id, static_cast<double>(c.rate_hz), age.c_str(), latency.c_str(),
-                Ms(c.clock_offset_us).c_str(), static_cast<long long>(c.late),
-                static_cast<long long>(c.dropped), static_cast<long long>(c.lost),
-                static_cast<long long>(c.rejected), static_cast<long long>(c.decode_errors),
-                c.queue_depth, c.queue_capacity, Join(transport::CameraFlagNames(c.flags)).c_str());
+                c.camera_id,
+                static_cast<double>(c.rate_hz),
+                age.c_str(),
+                latency.c_str(),
+                Ms(c.clock_offset_us).c_str(),
+                static_cast<long long>(c.late),
+                static_cast<long long>(c.dropped),
+                static_cast<long long>(c.lost),
+                static_cast<long long>(c.rejected),
+                static_cast<long long>(c.decode_errors),
+                c.queue_depth,
+                c.queue_capacity,
+                Join(transport::CameraFlagNames(c.flags)).c_str());
   }
 }
 
@@ -99,7 +126,9 @@ int RunStatus(int argc, char** argv) {
   args.Option("url", "LCM URL the daemon publishes on", "udpm://239.255.76.67:7667?ttl=0")
       .Option("channel", "status channel", "MVTRACK_STATUS")
       .Option("timeout", "seconds to wait for a status message", "5");
-  if (!args.Parse(argc, argv, "mvtrack status [--url URL] [--timeout S] [--channel C]",
+  if (!args.Parse(argc,
+                  argv,
+                  "mvtrack status [--url URL] [--timeout S] [--channel C]",
                   "Waits for one status message of the tracker daemon and prints it: health with\n"
                   "its reasons, frame rate, tracks, latency, and per camera the rate, the age of\n"
                   "its last message, its transport latency, clock offset, losses and flags in\n"
@@ -135,7 +164,9 @@ int RunStatus(int argc, char** argv) {
   }
   if (!received.status) {
     std::printf("mvtrack status: UNKNOWN: no status message on %s within %s (%s)%s\n",
-                args.Get("channel").c_str(), Seconds(timeout_s).c_str(), args.Get("url").c_str(),
+                args.Get("channel").c_str(),
+                Seconds(timeout_s).c_str(),
+                args.Get("url").c_str(),
                 received.error.empty() ? "" : ("; undecodable: " + received.error).c_str());
     return 3;
   }

@@ -24,8 +24,8 @@
 
 #include "config/calibration.h"
 #include "core/detection.h"
-#include "mvtrack/cli.h"
 #include "formats/tracks_io.h"
+#include "mvtrack/cli.h"
 #include "transport/channels.h"
 #include "transport/codec.h"
 #include "transport/log_io.h"

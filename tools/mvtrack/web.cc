@@ -23,17 +23,20 @@ std::atomic<bool> g_stop_requested{false};  // set by the SIGINT/SIGTERM handler
 
 int RunWeb(int argc, char** argv) {
   Args args;
-  args.Option("listen", "ADDR:PORT to serve on (localhost by default; PORT 0 = any free port)",
+  args.Option("listen",
+              "ADDR:PORT to serve on (localhost by default; PORT 0 = any free port)",
               "127.0.0.1:8080")
       .Option("url", "LCM URL the daemon publishes on", "udpm://239.255.76.67:7667?ttl=0")
-      .Option("calibration", "the daemon's calibration (mvtrack.calibration/1): draws the cameras "
-                             "and their fields of view on the floor")
+      .Option("calibration",
+              "the daemon's calibration (mvtrack.calibration/1): draws the cameras "
+              "and their fields of view on the floor")
       .Option("tracks-channel", "channel of the tracks3d_t messages", "MVTRACK_TRACKS")
       .Option("status-channel", "channel of the tracker_status_t messages", "MVTRACK_STATUS")
       .Option("max-clients", "concurrent /events clients (browsers, scripts)", "8")
       .Option("client-queue", "events a client may fall behind before it is disconnected", "256")
       .Option("stale-after", "seconds without a status after which /healthz says 503", "5");
-  if (!args.Parse(argc, argv,
+  if (!args.Parse(argc,
+                  argv,
                   "mvtrack web [--listen ADDR:PORT] [--url LCM_URL] [--calibration FILE]",
                   "Serves a live view of the tracker (docs/OPERATING.md): subscribes to the\n"
                   "daemon's tracks and status channels and serves, over HTTP,\n"
@@ -61,7 +64,8 @@ int RunWeb(int argc, char** argv) {
   o.status_channel = args.Get("status-channel");
   const std::int64_t max_clients = args.GetInt("max-clients");
   const std::int64_t queue = args.GetInt("client-queue");
-  if (max_clients < 1 || max_clients > 1000) throw UsageError("--max-clients: must be in [1, 1000]");
+  if (max_clients < 1 || max_clients > 1000)
+    throw UsageError("--max-clients: must be in [1, 1000]");
   if (queue < 1 || queue > 1000000) throw UsageError("--client-queue: must be in [1, 1000000]");
   o.max_clients = static_cast<int>(max_clients);
   o.client_queue_events = static_cast<std::size_t>(queue);
@@ -104,9 +108,8 @@ int RunWeb(int argc, char** argv) {
   if (!ok) std::cerr << "mvtrack web: " << why << "\n";
   const web::WebCounters c = server->Counters();
   std::cerr << "mvtrack web: stopped; " << c.tracks_messages << " tracks and " << c.status_messages
-            << " status messages received, " << c.decode_errors << " undecodable, "
-            << c.events_sent << " events sent, " << c.clients_dropped
-            << " slow clients disconnected" << std::endl;
+            << " status messages received, " << c.decode_errors << " undecodable, " << c.events_sent
+            << " events sent, " << c.clients_dropped << " slow clients disconnected" << std::endl;
   return ok ? 0 : 1;
 }
 

@@ -18,8 +18,6 @@ tracker::TrackerOptions ParseTrackerOptionsNode(const NodeRef& node);
 
 /// Appends every option as YAML lines "key: value" (sub-maps nested by two more spaces), each
 /// line indented by `indent` spaces: the body of a `tracker:` map.
-void AppendTrackerOptionsYaml(const tracker::TrackerOptions& options,
-                              int indent,
-                              std::string* out);
+void AppendTrackerOptionsYaml(const tracker::TrackerOptions& options, int indent, std::string* out);
 
 }  // namespace mvtrack::config::internal

@@ -1,5 +1,7 @@
 #include "config/internal/yaml_node.h"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -7,8 +9,6 @@
 #include <fstream>
 #include <sstream>
 #include <system_error>
-
-#include <yaml-cpp/depthguard.h>
 
 namespace mvtrack::config::internal {
 namespace {
@@ -82,10 +82,10 @@ std::string FormatInt(std::int64_t value) { return std::to_string(value); }
 
 // The bounds of the int and int64 types are not limits a user needs to read about.
 std::string DescribeIntRange(std::int64_t min, std::int64_t max) {
-  const bool has_min = min != std::numeric_limits<std::int64_t>::min() &&
-                       min != std::numeric_limits<int>::min();
-  const bool has_max = max != std::numeric_limits<std::int64_t>::max() &&
-                       max != std::numeric_limits<int>::max();
+  const bool has_min =
+      min != std::numeric_limits<std::int64_t>::min() && min != std::numeric_limits<int>::min();
+  const bool has_max =
+      max != std::numeric_limits<std::int64_t>::max() && max != std::numeric_limits<int>::max();
   if (has_min && has_max) return "must be in [" + FormatInt(min) + ", " + FormatInt(max) + "]";
   if (has_min) return "must be >= " + FormatInt(min);
   if (has_max) return "must be <= " + FormatInt(max);
@@ -156,8 +156,8 @@ MapRef::MapRef(const NodeRef& node,
     }
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
       std::string reason = "unknown key";
-      const auto hint = std::find_if(hints.begin(), hints.end(),
-                                     [&](const KeyHint& h) { return h.key == key; });
+      const auto hint =
+          std::find_if(hints.begin(), hints.end(), [&](const KeyHint& h) { return h.key == key; });
       std::vector<std::string> hint_keys;
       for (const KeyHint& h : hints) hint_keys.push_back(h.key);
       const std::optional<std::string> close_hint = SuggestClosest(key, hint_keys);
@@ -166,8 +166,8 @@ MapRef::MapRef(const NodeRef& node,
       } else if (const std::optional<std::string> close = SuggestClosest(key, allowed)) {
         reason += " (did you mean '" + *close + "'?)";
       } else if (close_hint.has_value()) {
-        const auto closest = std::find_if(hints.begin(), hints.end(),
-                                          [&](const KeyHint& h) { return h.key == *close_hint; });
+        const auto closest = std::find_if(
+            hints.begin(), hints.end(), [&](const KeyHint& h) { return h.key == *close_hint; });
         reason += " (did you mean " + closest->suggestion + "?)";
       } else if (allowed.empty()) {
         reason += " (this map takes no keys)";
@@ -235,8 +235,9 @@ std::string MapRef::RequireExactlyOne(std::initializer_list<std::string_view> ke
     ref_.Fail("missing " + std::string(what) + ": give exactly one of " + QuoteList(names));
   }
   if (present.size() > 1) {
-    KeyRef(present[1]).Fail("give exactly one " + std::string(what) + " form, not both " +
-                            QuoteList({present[0], present[1]}));
+    KeyRef(present[1])
+        .Fail("give exactly one " + std::string(what) + " form, not both " +
+              QuoteList({present[0], present[1]}));
   }
   return present.front();
 }
@@ -363,9 +364,9 @@ std::string GetString(const NodeRef& node, bool allow_empty) {
 
 std::vector<NodeRef> GetSequence(const NodeRef& node, std::optional<std::size_t> expected_size) {
   const YAML::Node& yaml = node.node();
-  const std::string expected =
-      expected_size.has_value() ? "a list of " + std::to_string(*expected_size) + " values"
-                                : std::string("a list");
+  const std::string expected = expected_size.has_value()
+                                   ? "a list of " + std::to_string(*expected_size) + " values"
+                                   : std::string("a list");
   if (!yaml.IsDefined() || !yaml.IsSequence()) {
     node.Fail("expected " + expected + ", got " + Describe(yaml));
   }
@@ -396,17 +397,26 @@ NodeRef ParseDocument(std::string_view text, const std::string& source_name) {
     documents = YAML::LoadAll(std::string(text));
   } catch (const YAML::DeepRecursion& e) {
     // yaml-cpp reports its recursion guard as "bad file"; say what happened instead.
-    throw ConfigError(source_name, ToOneBased(e.mark.line), ToOneBased(e.mark.column), "",
+    throw ConfigError(source_name,
+                      ToOneBased(e.mark.line),
+                      ToOneBased(e.mark.column),
+                      "",
                       "YAML nested too deeply here (parser depth " + std::to_string(e.depth()) +
                           ", yaml-cpp's limit; a configuration nests a few levels)");
   } catch (const YAML::Exception& e) {
-    throw ConfigError(source_name, ToOneBased(e.mark.line), ToOneBased(e.mark.column), "",
+    throw ConfigError(source_name,
+                      ToOneBased(e.mark.line),
+                      ToOneBased(e.mark.column),
+                      "",
                       "YAML syntax error: " + e.msg);
   }
   if (documents.empty()) return NodeRef(YAML::Node(), source_name, "", 0, 0);
   if (documents.size() > 1) {
     const auto [line, column] = PositionOf(documents[1]);
-    throw ConfigError(source_name, line, column, "",
+    throw ConfigError(source_name,
+                      line,
+                      column,
+                      "",
                       "expected one YAML document, found " + std::to_string(documents.size()));
   }
   return NodeRef::Root(documents.front(), source_name);

@@ -12,8 +12,6 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "core/suggest.h"
-
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
@@ -25,6 +23,7 @@
 #include <vector>
 
 #include "config/config_error.h"
+#include "core/suggest.h"
 
 namespace mvtrack::config::internal {
 

@@ -47,8 +47,8 @@ std::optional<Vec3> FootprintFromHips(const std::vector<std::optional<Vec3>>& jo
   };
   Vec3 point = Vec3::Zero();
   if (present(l_hip) && present(r_hip)) {
-    point = 0.5 * (*joints[static_cast<std::size_t>(l_hip)] +
-                   *joints[static_cast<std::size_t>(r_hip)]);
+    point =
+        0.5 * (*joints[static_cast<std::size_t>(l_hip)] + *joints[static_cast<std::size_t>(r_hip)]);
   } else {
     int count = 0;
     for (const auto& j : joints) {

@@ -46,8 +46,9 @@ JsonValue::JsonValue(std::shared_ptr<const JsonDocument> document,
 
 void JsonValue::Fail(const std::string& problem) const {
   const json::LineColumn at = document_->lines->At(value_->column);
-  throw DatasetError(document_->file, std::to_string(at.line) + ":" + std::to_string(at.column) +
-                                          ": " + path_ + ": " + problem);
+  throw DatasetError(
+      document_->file,
+      std::to_string(at.line) + ":" + std::to_string(at.column) + ": " + path_ + ": " + problem);
 }
 
 JsonValue JsonValue::operator[](const std::string& key) const {
@@ -185,12 +186,14 @@ JsonValue LoadJsonFile(const std::filesystem::path& file) {
   std::optional<json::Value> root = json::Parse(document->text, kMaxDepth, &error);
   if (!root.has_value()) {
     const json::LineColumn at = document->lines->At(error.column);
-    throw DatasetError(name, std::to_string(at.line) + ":" + std::to_string(at.column) +
-                                 ": not valid JSON: " + error.reason);
+    throw DatasetError(name,
+                       std::to_string(at.line) + ":" + std::to_string(at.column) +
+                           ": not valid JSON: " + error.reason);
   }
   if (root->kind != json::Value::Kind::kObject && root->kind != json::Value::Kind::kArray) {
-    throw DatasetError(name, "not a JSON document (the top level is neither an object nor an "
-                             "array)");
+    throw DatasetError(name,
+                       "not a JSON document (the top level is neither an object nor an "
+                       "array)");
   }
   document->root = std::move(*root);
   const json::Value* root_value = &document->root;

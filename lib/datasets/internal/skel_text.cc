@@ -1,8 +1,8 @@
 #include "datasets/internal/skel_text.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <set>

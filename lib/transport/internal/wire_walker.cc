@@ -113,12 +113,16 @@ bool WireWalker::Skip(std::string_view field, std::size_t bytes) {
   return true;
 }
 
-bool WireWalker::ReadCount(std::string_view field, std::int64_t raw, std::size_t count_at,
-                           int limit, std::size_t min_element_bytes, std::int32_t* count) {
+bool WireWalker::ReadCount(std::string_view field,
+                           std::int64_t raw,
+                           std::size_t count_at,
+                           int limit,
+                           std::size_t min_element_bytes,
+                           std::int32_t* count) {
   const std::string name(field);
   if (raw < 0) {
-    return Fail(DecodeStatus::kMalformed, name + " " + std::to_string(raw) + " is negative",
-                count_at);
+    return Fail(
+        DecodeStatus::kMalformed, name + " " + std::to_string(raw) + " is negative", count_at);
   }
   if (raw > limit) {
     return Fail(DecodeStatus::kLimitExceeded,
@@ -137,7 +141,9 @@ bool WireWalker::ReadCount(std::string_view field, std::int64_t raw, std::size_t
   return true;
 }
 
-bool WireWalker::ReadCount16(std::string_view field, int limit, std::size_t min_element_bytes,
+bool WireWalker::ReadCount16(std::string_view field,
+                             int limit,
+                             std::size_t min_element_bytes,
                              std::int32_t* count) {
   const std::size_t at = pos_;
   std::int16_t raw = 0;
@@ -145,7 +151,9 @@ bool WireWalker::ReadCount16(std::string_view field, int limit, std::size_t min_
   return ReadCount(field, raw, at, limit, min_element_bytes, count);
 }
 
-bool WireWalker::ReadCount32(std::string_view field, int limit, std::size_t min_element_bytes,
+bool WireWalker::ReadCount32(std::string_view field,
+                             int limit,
+                             std::size_t min_element_bytes,
                              std::int32_t* count) {
   const std::size_t at = pos_;
   std::int32_t raw = 0;
@@ -185,8 +193,8 @@ bool WireWalker::ReadString(std::string_view field, int max_length, std::string_
     const std::uint8_t c = data_[begin + i];
     if (c < 0x20 || c > 0x7E) {
       return Fail(DecodeStatus::kMalformed,
-                  name + " contains byte " + std::to_string(static_cast<int>(c)) +
-                      " at index " + std::to_string(i) + " (strings must be printable ASCII)",
+                  name + " contains byte " + std::to_string(static_cast<int>(c)) + " at index " +
+                      std::to_string(i) + " (strings must be printable ASCII)",
                   begin + i);
     }
   }
@@ -200,8 +208,7 @@ bool WalkFingerprint(WireWalker* walker, std::int64_t expected, std::string_view
   if (!walker->ReadInt64("fingerprint", &hash)) return false;
   if (hash == expected) return true;
   std::string what = "fingerprint " + Hex64(static_cast<std::uint64_t>(hash)) + " is not " +
-                     std::string(type_name) + "'s " +
-                     Hex64(static_cast<std::uint64_t>(expected));
+                     std::string(type_name) + "'s " + Hex64(static_cast<std::uint64_t>(expected));
   if (const char* other = MvtrackTypeOfHash(hash)) {
     what += " (the bytes are a mvtrack ";
     what += other;
@@ -212,8 +219,11 @@ bool WalkFingerprint(WireWalker* walker, std::int64_t expected, std::string_view
   return walker->Fail(DecodeStatus::kBadFingerprint, what, 0);
 }
 
-bool CheckEnvelope(const void* data, std::size_t size, const DecodeLimits& limits,
-                   DecodeStatus* status, std::string* reason) {
+bool CheckEnvelope(const void* data,
+                   std::size_t size,
+                   const DecodeLimits& limits,
+                   DecodeStatus* status,
+                   std::string* reason) {
   std::string why;
   MVTRACK_CHECK_MSG(limits.Validate(&why), why.c_str());
   if (size > limits.max_message_bytes) {

@@ -55,9 +55,13 @@ class WireWalker {
   /// Reads an int16 or int32 element count and checks it: negative -> kMalformed, above
   /// `limit` -> kLimitExceeded, more than the remaining bytes can hold at `min_element_bytes`
   /// each -> kTruncated.
-  bool ReadCount16(std::string_view field, int limit, std::size_t min_element_bytes,
+  bool ReadCount16(std::string_view field,
+                   int limit,
+                   std::size_t min_element_bytes,
                    std::int32_t* count);
-  bool ReadCount32(std::string_view field, int limit, std::size_t min_element_bytes,
+  bool ReadCount32(std::string_view field,
+                   int limit,
+                   std::size_t min_element_bytes,
                    std::int32_t* count);
 
   /// Reads an LCM string (int32 length including the NUL terminator, the bytes, the NUL) and
@@ -73,8 +77,12 @@ class WireWalker {
 
  private:
   bool Need(std::string_view field, std::size_t bytes);
-  bool ReadCount(std::string_view field, std::int64_t raw, std::size_t count_at, int limit,
-                 std::size_t min_element_bytes, std::int32_t* count);
+  bool ReadCount(std::string_view field,
+                 std::int64_t raw,
+                 std::size_t count_at,
+                 int limit,
+                 std::size_t min_element_bytes,
+                 std::int32_t* count);
   std::uint64_t ReadBigEndian(std::size_t bytes);
 
   const std::uint8_t* data_;
@@ -94,16 +102,24 @@ bool WalkFingerprint(WireWalker* walker, std::int64_t expected, std::string_view
 /// Checks the preconditions shared by every Decode*: limits valid (aborts otherwise), size
 /// within max_message_bytes (kTooLarge), non-null data when size > 0 (kMalformed). Returns
 /// false with status and reason set on failure.
-bool CheckEnvelope(const void* data, std::size_t size, const DecodeLimits& limits,
-                   DecodeStatus* status, std::string* reason);
+bool CheckEnvelope(const void* data,
+                   std::size_t size,
+                   const DecodeLimits& limits,
+                   DecodeStatus* status,
+                   std::string* reason);
 
 /// The decode sequence every message type shares: CheckEnvelope, the structure walk `walk`
 /// (bool(WireWalker*, const DecodeLimits&)), then the generated decoder of `Message`, which must
 /// consume exactly `size` bytes, and `convert(const Message&)`, both inside try/catch so no
 /// exception escapes. Returns false with status and reason set on failure.
 template <typename Message, typename Walk, typename Convert>
-bool CheckedDecode(const void* data, std::size_t size, const DecodeLimits& limits, Walk&& walk,
-                   Convert&& convert, DecodeStatus* status, std::string* reason) {
+bool CheckedDecode(const void* data,
+                   std::size_t size,
+                   const DecodeLimits& limits,
+                   Walk&& walk,
+                   Convert&& convert,
+                   DecodeStatus* status,
+                   std::string* reason) {
   if (!CheckEnvelope(data, size, limits, status, reason)) return false;
   WireWalker walker(static_cast<const std::uint8_t*>(data), size);
   if (!walk(&walker, limits)) {
