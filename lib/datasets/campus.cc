@@ -213,7 +213,12 @@ Dataset LoadCampus(const std::filesystem::path& data_root, const CampusOptions& 
   }
 
   // The detector model; the false-positive pool of a camera is all its clean poses.
-  if (options.corruption.enabled) {
+  // The blackout (hard level) falls inside the protocol's frames.
+  CorruptionOptions corruption = options.corruption;
+  std::vector<CameraId> camera_ids;
+  for (const geometry::CameraModel& camera : ds.cameras) camera_ids.push_back(camera.id);
+  PlaceBlackout(&corruption, camera_ids, {{350, 470}, {650, 750}}, 25.0);
+  if (corruption.enabled) {
     for (std::size_t c = 0; c < ds.cameras.size(); ++c) {
       std::vector<core::Detection2D> pool;
       for (const auto& frame : ds.detections) {
@@ -225,7 +230,7 @@ Dataset LoadCampus(const std::filesystem::path& data_root, const CampusOptions& 
                                                       pool,
                                                       ds.cameras[c].width_px,
                                                       ds.cameras[c].height_px,
-                                                      options.corruption);
+                                                      corruption);
         ds.detections[f][c] = std::move(corrupted.frame);
         ds.source_ids[f][c] = std::move(corrupted.source_ids);
       }
@@ -241,7 +246,7 @@ Dataset LoadCampus(const std::filesystem::path& data_root, const CampusOptions& 
       " at 25 fps (frame = round(timestamp / 0.04)), 3 cameras 360x288, calibration.json without "
       "its dist_coeffs (the 2D ground truth is the undistorted projection). No real detections "
       "exist: the 2D ground truth (shelf14) is the input, " +
-      DescribeCorruption(options.corruption) +
+      DescribeCorruption(corruption) +
       ". Ground truth: annotation_3d.json (cm -> m), 3 actors (ids 0-2); standard protocol "
       "frames 350-470 and 650-750 (VoxelPose).";
   return ds;

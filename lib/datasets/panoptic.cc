@@ -197,7 +197,12 @@ Dataset LoadPanoptic(const std::filesystem::path& data_root, const PanopticOptio
     ++f;
   }
 
-  if (options.corruption.enabled) {
+  // The blackout (hard level) falls inside the protocol's frames.
+  CorruptionOptions corruption = options.corruption;
+  std::vector<CameraId> camera_ids;
+  for (const geometry::CameraModel& camera : ds.cameras) camera_ids.push_back(camera.id);
+  PlaceBlackout(&corruption, camera_ids, {{frames.front(), frames.back()}}, ds.fps);
+  if (corruption.enabled) {
     for (std::size_t c = 0; c < ds.cameras.size(); ++c) {
       std::vector<core::Detection2D> pool;
       for (const auto& frame : ds.detections) {
@@ -209,7 +214,7 @@ Dataset LoadPanoptic(const std::filesystem::path& data_root, const PanopticOptio
                                                       pool,
                                                       ds.cameras[c].width_px,
                                                       ds.cameras[c].height_px,
-                                                      options.corruption);
+                                                      corruption);
         ds.detections[i][c] = std::move(corrupted.frame);
         ds.source_ids[i][c] = std::move(corrupted.source_ids);
       }
@@ -230,7 +235,7 @@ Dataset LoadPanoptic(const std::filesystem::path& data_root, const PanopticOptio
       "skeletons (panoptic19, joints with confidence < 0 invalid) projected with distortion, "
       "joints outside the image or behind the camera dropped, no occlusion between people "
       "modelled, then " +
-      DescribeCorruption(options.corruption) +
+      DescribeCorruption(corruption) +
       ". Ground truth: the 3D skeletons, 3 people (ids 0-2). 20 frames: too short for "
       "meaningful MOTA/IDF1.";
   return ds;

@@ -41,4 +41,20 @@ python3 "$HERE/compare_dump.py" campus-zero-rates "$DATA_ROOT" "$OUT/fp.dump"
 if python3 "$HERE/compare_dump.py" campus-clean "$DATA_ROOT" "$OUT/fp.dump" >/dev/null 2>&1; then
   fail "the zero-rate corruption equals the clean variant although keypoints leave the image"
 fi
+# The hard level: seeded, deterministic, its blackout named and inside the scored frames, and
+# --corruption default is the default.
+"$MVTRACK" convert campus --data "$DATA_ROOT" --out "$OUT/h1" --corruption hard --quiet
+"$MVTRACK" convert campus --data "$DATA_ROOT" --out "$OUT/h2" --corruption hard --quiet
+same_outputs "$OUT/h1" "$OUT/h2" detections.lcmlog calibration.yaml ground_truth.jsonl
+cmp -s "$OUT/h1/detections.lcmlog" "$OUT/a/detections.lcmlog" && fail "the hard level equals the default"
+expect_fixed "Student-t noise tails (3 dof), partial false positives next to real people 0.3 per camera-frame, camera" "$OUT/h1/README.txt"
+blackout=$(grep -o "blacked out in frames [0-9]*-[0-9]*" "$OUT/h1/README.txt" | head -1)
+[ -n "$blackout" ] || fail "the hard level's README names no blackout"
+first=${blackout#blacked out in frames }; last=${first#*-}; first=${first%-*}
+[ $((last - first + 1)) -eq 25 ] || fail "blackout $first-$last is not 1 s at 25 fps"
+if ! { [ "$first" -ge 350 ] && [ "$last" -le 470 ]; } && ! { [ "$first" -ge 650 ] && [ "$last" -le 750 ]; }; then
+  fail "blackout $first-$last is not inside the scored frames"
+fi
+"$MVTRACK" convert campus --data "$DATA_ROOT" --out "$OUT/d" --corruption default --quiet
+same_outputs "$OUT/a" "$OUT/d" detections.lcmlog
 echo "campus: ok"

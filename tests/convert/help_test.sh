@@ -26,7 +26,13 @@ expect_grep "--channel must be" "$OUT/u4.txt"
 expect_exit 2 "$OUT/u5.txt" "$MVTRACK" convert wildtrack --out "$OUT/x" --bogus
 expect_grep "unknown option --bogus" "$OUT/u5.txt"
 expect_exit 2 "$OUT/u6.txt" "$MVTRACK" convert campus --out "$OUT/x" --clean --seed 3
-expect_grep "--clean disables the corruption model; --seed" "$OUT/u6.txt"
+expect_grep "--corruption clean disables the corruption model; --seed" "$OUT/u6.txt"
+expect_exit 2 "$OUT/u6b.txt" "$MVTRACK" convert campus --out "$OUT/x" --corruption harder
+expect_grep "--corruption must be clean, default or hard" "$OUT/u6b.txt"
+expect_exit 2 "$OUT/u6c.txt" "$MVTRACK" convert campus --out "$OUT/x" --clean --corruption hard
+expect_grep "--clean contradicts --corruption hard" "$OUT/u6c.txt"
+expect_exit 2 "$OUT/u6d.txt" "$MVTRACK" convert panoptic --out "$OUT/x" --sequence 160906_band1 --noise-tail-dof 40
+expect_grep "--noise-tail-dof must be in 0-30" "$OUT/u6d.txt"
 expect_exit 2 "$OUT/u7.txt" "$MVTRACK" convert campus --out "$OUT/x" --dropout 1.5
 expect_grep "dropout" "$OUT/u7.txt"
 expect_exit 2 "$OUT/u8.txt" "$MVTRACK" convert campus --out "$OUT/x" --seed -1

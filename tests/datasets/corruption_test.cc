@@ -359,5 +359,180 @@ TEST_CASE("DescribeCorruption states the level", "[unit]") {
   CHECK(text.find("seed 1") != std::string::npos);
 }
 
+TEST_CASE("Corruption levels: names, the hard level and validation of the new options", "[unit]") {
+  CHECK(CorruptionLevelFromName("clean") == CorruptionLevel::kClean);
+  CHECK(CorruptionLevelFromName("default") == CorruptionLevel::kDefault);
+  CHECK(CorruptionLevelFromName("hard") == CorruptionLevel::kHard);
+  CHECK_FALSE(CorruptionLevelFromName("Hard").has_value());
+  CorruptionOptions defaults;
+  defaults.seed = 7;
+  defaults.pixel_noise_px = 6.0;
+  const CorruptionOptions hard = CorruptionForLevel(CorruptionLevel::kHard, defaults);
+  CHECK(hard.enabled);
+  CHECK(hard.seed == 7);
+  CHECK(hard.pixel_noise_px == 6.0);  // the dataset's scale, heavier tails
+  CHECK(hard.noise_tail_dof == 3);
+  CHECK(hard.joint_dropout == 0.15);
+  CHECK(hard.miss_rate == 0.15);
+  CHECK(hard.near_false_positives_per_frame == 0.3);
+  CHECK(hard.blackout_seconds == 1.0);
+  CHECK(hard.Validate(nullptr));
+  CHECK_FALSE(CorruptionForLevel(CorruptionLevel::kClean, defaults).enabled);
+  CHECK(CorruptionForLevel(CorruptionLevel::kDefault, defaults).noise_tail_dof == 0);
+  std::string why;
+  CorruptionOptions bad;
+  bad.noise_tail_dof = 31;
+  CHECK_FALSE(bad.Validate(&why));
+  CHECK(why.find("noise_tail_dof") != std::string::npos);
+  bad = CorruptionOptions{};
+  bad.near_false_positives_per_frame = -1.0;
+  CHECK_FALSE(bad.Validate(&why));
+  bad = CorruptionOptions{};
+  bad.blackout_seconds = std::nan("");
+  CHECK_FALSE(bad.Validate(&why));
+}
+
+TEST_CASE("PlaceBlackout puts one camera's blackout inside the test frames, seeded", "[unit]") {
+  const std::vector<std::pair<FrameIndex, FrameIndex>> ranges = {{350, 470}, {650, 750}};
+  std::map<CameraId, int> cameras_hit;
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    CorruptionOptions o;
+    o.seed = seed;
+    o.blackout_seconds = 1.0;
+    PlaceBlackout(&o, {0, 1, 2}, ranges, 25.0);
+    REQUIRE(o.blackout_frames == 25);
+    REQUIRE(o.blackout_camera >= 0);
+    REQUIRE(o.blackout_camera <= 2);
+    ++cameras_hit[o.blackout_camera];
+    const FrameIndex last = o.blackout_first_frame + o.blackout_frames - 1;
+    const bool inside = (o.blackout_first_frame >= 350 && last <= 470) ||
+                        (o.blackout_first_frame >= 650 && last <= 750);
+    CHECK(inside);
+    CorruptionOptions again;
+    again.seed = seed;
+    again.blackout_seconds = 1.0;
+    PlaceBlackout(&again, {0, 1, 2}, ranges, 25.0);
+    CHECK(again.blackout_camera == o.blackout_camera);
+    CHECK(again.blackout_first_frame == o.blackout_first_frame);
+  }
+  CHECK(cameras_hit.size() == 3);  // every camera can be the one
+  // A short excerpt gets a blackout of half its length; none when off or disabled.
+  CorruptionOptions shortie;
+  shortie.blackout_seconds = 1.0;
+  PlaceBlackout(&shortie, {4}, {{100, 119}}, 29.97);
+  CHECK(shortie.blackout_camera == 4);
+  CHECK(shortie.blackout_frames == 10);
+  CHECK(shortie.blackout_first_frame >= 100);
+  CHECK(shortie.blackout_first_frame + 9 <= 119);
+  CorruptionOptions off;
+  PlaceBlackout(&off, {0, 1}, ranges, 25.0);
+  CHECK(off.blackout_camera == CorruptionOptions::kNoBlackout);
+  CorruptionOptions disabled = CorruptionOptions::Clean();
+  disabled.blackout_seconds = 1.0;
+  PlaceBlackout(&disabled, {0, 1}, ranges, 25.0);
+  CHECK(disabled.blackout_camera == CorruptionOptions::kNoBlackout);
+}
+
+TEST_CASE("A blacked-out camera detects nothing in its blackout frames only", "[unit]") {
+  const CleanFrames clean = MakeCleanFrames(40);
+  CorruptionOptions o;
+  o.miss_rate = 0.0;
+  o.false_positives_per_frame = 0.0;
+  o.blackout_camera = 3;
+  o.blackout_first_frame = 1010;
+  o.blackout_frames = 5;
+  for (std::size_t f = 0; f < clean.frames.size(); ++f) {
+    const CorruptedFrame out =
+        CorruptCameraFrame(clean.frames[f], clean.ids[f], clean.pool, kWidth, kHeight, o);
+    const FrameIndex frame = clean.frames[f].frame;
+    INFO("frame " << frame);
+    CHECK(out.frame.frame == frame);
+    CHECK(out.frame.camera_id == 3);
+    if (frame >= 1010 && frame < 1015) {
+      CHECK(out.frame.detections.empty());
+    } else {
+      CHECK_FALSE(out.frame.detections.empty());
+    }
+  }
+}
+
+TEST_CASE("Student-t noise has the tails it promises; the Gaussian default has none", "[unit]") {
+  const CleanFrames clean = MakeCleanFrames(2000, 60.0);
+  auto far_fraction = [&](int dof) {
+    CorruptionOptions o;
+    o.joint_dropout = 0.0;
+    o.miss_rate = 0.0;
+    o.false_positives_per_frame = 0.0;
+    o.noise_tail_dof = dof;
+    int far = 0, total = 0;
+    for (std::size_t f = 0; f < clean.frames.size(); ++f) {
+      const CorruptedFrame out =
+          CorruptCameraFrame(clean.frames[f], clean.ids[f], clean.pool, kWidth, kHeight, o);
+      for (std::size_t i = 0; i < out.frame.detections.size(); ++i) {
+        const auto& src = clean.frames[f].detections[static_cast<std::size_t>(out.source_ids[i])];
+        for (std::size_t j = 0; j < src.keypoints.size(); ++j) {
+          const auto& kp = out.frame.detections[i].keypoints[j];
+          if (!(kp.confidence > 0.0)) continue;  // left the image
+          const Vec2 d = kp.position_px - src.keypoints[j].position_px;
+          far += std::abs(d.x()) > 5.84 * o.pixel_noise_px;  // t(3)'s two-sided 1 % point
+          ++total;
+        }
+      }
+    }
+    return static_cast<double>(far) / total;
+  };
+  const double t3 = far_fraction(3);
+  const double gauss = far_fraction(0);
+  INFO("beyond 5.84 scales: t3 " << t3 << ", Gaussian " << gauss);
+  CHECK(std::abs(t3 - 0.01) < 0.003);  // 84k coordinates: about 4 standard errors
+  CHECK(gauss < 1e-4);
+}
+
+TEST_CASE("Partial false positives sit next to a real person of the same view", "[unit]") {
+  const CleanFrames clean = MakeCleanFrames(2000, 60.0);
+  CorruptionOptions o;
+  o.pixel_noise_px = 0.0;
+  o.joint_dropout = 0.0;
+  o.miss_rate = 0.0;
+  o.false_positives_per_frame = 0.0;
+  o.near_false_positives_per_frame = 0.3;
+  int ghosts = 0;
+  for (std::size_t f = 0; f < clean.frames.size(); ++f) {
+    const CorruptedFrame out =
+        CorruptCameraFrame(clean.frames[f], clean.ids[f], clean.pool, kWidth, kHeight, o);
+    for (std::size_t i = 0; i < out.frame.detections.size(); ++i) {
+      if (out.source_ids[i] != kFalsePositiveSourceId) continue;
+      ++ghosts;
+      const core::Detection2D& g = out.frame.detections[i];
+      // Some real person of this frame, shifted sideways by 0.2-0.6 of its height, with a
+      // subset of its keypoints.
+      bool explained = false;
+      for (const core::Detection2D& p : clean.frames[f].detections) {
+        const double h = p.box.height();
+        std::optional<double> dx;
+        bool same = true;
+        int kept = 0;
+        for (std::size_t j = 0; j < p.keypoints.size() && same; ++j) {
+          if (!(g.keypoints[j].confidence > 0.0)) continue;
+          ++kept;
+          const Vec2 d = g.keypoints[j].position_px - p.keypoints[j].position_px;
+          if (!dx) dx = d.x();
+          same = std::abs(d.y()) < 1e-9 && std::abs(d.x() - *dx) < 1e-9;
+        }
+        if (same && dx && std::abs(*dx) >= 0.2 * h - 1e-9 && std::abs(*dx) <= 0.6 * h + 1e-9 &&
+            kept < static_cast<int>(p.keypoints.size())) {
+          explained = true;
+        }
+      }
+      CHECK(explained);
+    }
+  }
+  const double rate = static_cast<double>(ghosts) / 2000.0;
+  INFO("partial false positives per frame " << rate);
+  // Poisson(0.3) per frame, minus the few pushed out of the image or left with < 2 keypoints.
+  CHECK(rate > 0.24);
+  CHECK(rate < 0.33);
+}
+
 }  // namespace
 }  // namespace mvtrack::datasets

@@ -138,6 +138,7 @@ wildtrack_eval="--points --area -3,9,-9,27"
 convert shelf shelf
 convert campus campus
 convert campus_clean campus --clean
+convert campus_hard campus --corruption hard
 for seq in 160906_band1 160906_band2; do
   for n in 5 10 31; do convert "panoptic_${seq#160906_}_c$n" panoptic --sequence $seq --num-cameras $n; done
 done
@@ -150,6 +151,7 @@ experiment shelf_head_campus shelf poses body25 - --frames 300-600 --distance jo
 peer shelf_peer_4da shelf peer.jsonl $shelf_eval
 experiment campus campus poses shelf14 - $campus_eval
 experiment campus_clean campus_clean poses shelf14 - $campus_eval
+experiment campus_hard campus_hard poses shelf14 - $campus_eval
 peer campus_peer_crossview campus peer.jsonl $campus_eval
 
 # ---- Ablations on Shelf and Campus: association (Table 5 / appendix), triangulation (Table 7),

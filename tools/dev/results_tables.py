@@ -261,6 +261,8 @@ def render(out_dir, runs, info):
     rows.append(pose_row("**mvtrack**, default corruption", "campus", R["campus"]["metrics"]))
     rows.append(pose_row("mvtrack, clean 2D ground truth (`--clean`)", "campus_clean",
                          R["campus_clean"]["metrics"]))
+    rows.append(pose_row("mvtrack, hard corruption (`--corruption hard`, docs/ACCURACY.md)",
+                         "campus_hard", R["campus_hard"]["metrics"]))
     rows.append(pose_row("Cross-View Tracking, its `result_3d.json`, scored by our evaluator",
                          "campus_peer_crossview", R["campus_peer_crossview"]["metrics"]))
     md.append(table(POSE_HEADER, rows))

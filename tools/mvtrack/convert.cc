@@ -162,13 +162,22 @@ void AddCorruptionOptions(Args* args, const datasets::CorruptionOptions& default
     os << v;
     return os.str();
   };
-  args->Flag("clean",
-             "pass the clean 2D poses through unchanged (no corruption; excludes the "
-             "options below)")
+  const datasets::CorruptionOptions hard = datasets::HardCorruption(defaults);
+  args->Option("corruption",
+               "detector-error level: clean (the 2D poses unchanged), default, or hard (noise " +
+                   num(hard.pixel_noise_px) + " px with Student-t tails, dropout " +
+                   num(hard.joint_dropout) + ", miss rate " + num(hard.miss_rate) +
+                   ", false positives " + num(hard.false_positives_per_frame) + " + " +
+                   num(hard.near_false_positives_per_frame) +
+                   " next to people, one camera blacked out for " + num(hard.blackout_seconds) +
+                   " s in the test frames); the options below change the level's values",
+               "default")
+      .Flag("clean", "the same as --corruption clean")
       .Option("seed", "master seed of the corruption model", std::to_string(defaults.seed))
-      .Option("noise-px",
-              "keypoint noise: Gaussian sigma in x and y, pixels",
-              num(defaults.pixel_noise_px))
+      .Option("noise-px", "keypoint noise: sigma in x and y, pixels", num(defaults.pixel_noise_px))
+      .Option("noise-tail-dof",
+              "0: Gaussian keypoint noise; N in 1-30: Student t with N degrees of freedom",
+              std::to_string(defaults.noise_tail_dof))
       .Option(
           "dropout", "probability that a detected keypoint is lost", num(defaults.joint_dropout))
       .Option("miss-rate",
@@ -176,31 +185,65 @@ void AddCorruptionOptions(Args* args, const datasets::CorruptionOptions& default
               num(defaults.miss_rate))
       .Option("false-positives",
               "mean ghost poses per camera and frame (Poisson)",
-              num(defaults.false_positives_per_frame));
+              num(defaults.false_positives_per_frame))
+      .Option("near-false-positives",
+              "mean partial ghost poses next to a real person per camera and frame (Poisson)",
+              num(defaults.near_false_positives_per_frame))
+      .Option("blackout-seconds",
+              "one camera detects nothing for this long inside the test frames (0: never)",
+              num(defaults.blackout_seconds));
 }
 
 datasets::CorruptionOptions ParseCorruption(const Args& args,
                                             const datasets::CorruptionOptions& defaults) {
-  const char* const kNames[] = {"seed", "noise-px", "dropout", "miss-rate", "false-positives"};
+  const char* const kNames[] = {"seed",
+                                "noise-px",
+                                "noise-tail-dof",
+                                "dropout",
+                                "miss-rate",
+                                "false-positives",
+                                "near-false-positives",
+                                "blackout-seconds"};
+  std::string level_name = args.Get("corruption");
   if (args.Has("clean")) {
+    if (args.Has("corruption") && level_name != "clean") {
+      throw UsageError("--clean contradicts --corruption " + level_name);
+    }
+    level_name = "clean";
+  }
+  const std::optional<datasets::CorruptionLevel> level =
+      datasets::CorruptionLevelFromName(level_name);
+  if (!level) {
+    throw UsageError("--corruption must be clean, default or hard, not '" + level_name + "'");
+  }
+  datasets::CorruptionOptions o = datasets::CorruptionForLevel(*level, defaults);
+  if (!o.enabled) {
     for (const char* name : kNames) {
       if (args.Has(name)) {
-        throw UsageError(std::string("--clean disables the corruption model; --") + name +
-                         " cannot be combined with it");
+        throw UsageError(std::string("--corruption clean disables the corruption model; --") +
+                         name + " cannot be combined with it");
       }
     }
-    datasets::CorruptionOptions clean = defaults;
-    clean.enabled = false;
-    return clean;
+    return o;
   }
-  datasets::CorruptionOptions o = defaults;
-  const std::int64_t seed = args.GetInt("seed");
-  if (seed < 0) throw UsageError("--seed must be >= 0");
-  o.seed = static_cast<std::uint64_t>(seed);
-  o.pixel_noise_px = args.GetDouble("noise-px");
-  o.joint_dropout = args.GetDouble("dropout");
-  o.miss_rate = args.GetDouble("miss-rate");
-  o.false_positives_per_frame = args.GetDouble("false-positives");
+  if (args.Has("seed")) {
+    const std::int64_t seed = args.GetInt("seed");
+    if (seed < 0) throw UsageError("--seed must be >= 0");
+    o.seed = static_cast<std::uint64_t>(seed);
+  }
+  if (args.Has("noise-px")) o.pixel_noise_px = args.GetDouble("noise-px");
+  if (args.Has("noise-tail-dof")) {
+    const std::int64_t dof = args.GetInt("noise-tail-dof");
+    if (dof < 0 || dof > 30) throw UsageError("--noise-tail-dof must be in 0-30");
+    o.noise_tail_dof = static_cast<int>(dof);
+  }
+  if (args.Has("dropout")) o.joint_dropout = args.GetDouble("dropout");
+  if (args.Has("miss-rate")) o.miss_rate = args.GetDouble("miss-rate");
+  if (args.Has("false-positives")) o.false_positives_per_frame = args.GetDouble("false-positives");
+  if (args.Has("near-false-positives")) {
+    o.near_false_positives_per_frame = args.GetDouble("near-false-positives");
+  }
+  if (args.Has("blackout-seconds")) o.blackout_seconds = args.GetDouble("blackout-seconds");
   std::string why;
   if (!o.Validate(&why)) throw UsageError(why);
   return o;
@@ -503,13 +546,14 @@ int ConvertCampus(int argc, char** argv, const std::string& command_line) {
   if (!args.Parse(argc,
                   argv,
                   FormatUsage("campus",
-                              "[--data DIR] [--clean | [--seed N] [--noise-px X] [--dropout P] "
-                              "[--miss-rate P] [--false-positives R]] "),
+                              "[--data DIR] [--corruption clean|default|hard] [--seed N] "
+                              "[--noise-px X] [--dropout P] [--miss-rate P] ... "),
                   "Campus (Belagiannis et al., CVPR 2014, as released by Cross-View Tracking): 3\n"
                   "cameras (360x288, 25 fps), frames 0-1999. No real detections exist: the 2D\n"
                   "ground truth (shelf14) goes through the seeded detector-error model of\n"
                   "datasets::CorruptionOptions (misses, keypoint noise, joint dropout, false\n"
-                  "positives; defaults below), or unchanged with --clean. Ground truth: the 3D\n"
+                  "positives; --corruption hard: a bad day), or unchanged with --corruption\n"
+                  "clean. Ground truth: the 3D\n"
                   "poses of 3 actors (shelf14); peer.jsonl: Cross-View Tracking's result_3d.json\n"
                   "(COCO-17 mapped to shelf14).\n\n" +
                       std::string(kFormatTrailer))) {
@@ -579,20 +623,20 @@ int ConvertPanoptic(int argc, char** argv, const std::string& command_line) {
   AddCommonOptions(&args, true);
   const datasets::CorruptionOptions defaults = datasets::PanopticOptions::DefaultCorruption();
   AddCorruptionOptions(&args, defaults);
-  if (!args.Parse(
-          argc,
-          argv,
-          FormatUsage("panoptic",
-                      "--sequence 160906_band1|160906_band2 [--cameras A,B,...|"
-                      "--num-cameras N] [--data DIR] [--clean | [--seed N] [--noise-px X] "
-                      "[--dropout P] [--miss-rate P] [--false-positives R]] "),
-          "CMU Panoptic (Joo et al., ICCV 2015), a 20-frame excerpt of 3 seated\n"
-          "musicians: the 3D skeletons (panoptic19) projected with the official lens\n"
-          "distortion into the chosen HD cameras (1920x1080, 29.97 fps; default: the six\n"
-          "cameras 00_02, 00_06, 00_07, 00_12, 00_13, 00_28), joints outside the image\n"
-          "dropped, then the seeded detector-error model (sigma scaled to the HD images:\n"
-          "6 px by default), or unchanged with --clean. Ground truth: the 3D skeletons.\n\n" +
-              std::string(kFormatTrailer))) {
+  if (!args.Parse(argc,
+                  argv,
+                  FormatUsage("panoptic",
+                              "--sequence 160906_band1|160906_band2 [--cameras A,B,...|"
+                              "--num-cameras N] [--data DIR] [--corruption clean|default|hard] "
+                              "[--seed N] [--noise-px X] ... "),
+                  "CMU Panoptic (Joo et al., ICCV 2015), a 20-frame excerpt of 3 seated\n"
+                  "musicians: the 3D skeletons (panoptic19) projected with the official lens\n"
+                  "distortion into the chosen HD cameras (1920x1080, 29.97 fps; default: the six\n"
+                  "cameras 00_02, 00_06, 00_07, 00_12, 00_13, 00_28), joints outside the image\n"
+                  "dropped, then the seeded detector-error model (sigma scaled to the HD images:\n"
+                  "6 px by default; --corruption hard: a bad day), or unchanged with --corruption\n"
+                  "clean. Ground truth: the 3D skeletons.\n\n" +
+                      std::string(kFormatTrailer))) {
     return 0;
   }
   const CommonSettings c = ParseCommon(args, "panoptic", true, command_line);
