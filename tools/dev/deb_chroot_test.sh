@@ -2,7 +2,8 @@
 # Installs the Debian packages into a fresh Debian 12 and checks what an administrator would:
 # debootstraps bookworm (variant minbase: Essential and Priority: required packages plus apt, so
 # no procps, no systemd, no man-db, no python3) into a temporary directory, then in a chroot
-#   1. apt-get install ./mvtrackd_*.deb: new packages and installed size (target: < 60 MB, no
+#   1. apt-get install ./mvtrackd_*.deb: new packages and installed size (MiB, the sum of their
+#      Installed-Size; apt prints decimal MB) (target: < 60 MB, no
 #      Java, no OpenCV), the postinst's note, the conffiles, mvtrackd --version;
 #   2. the unit's ExecReload= command, run as systemd would (MAINPID set, no PATH) against a
 #      running mvtrackd: it must reload it with nothing but the minimal system (no procps);
@@ -181,10 +182,11 @@ in_root apt-get install -y "/tmp/debs/$deb_daemon" 2>&1 | tee "$work/install-dae
 snapshot "$work/after-daemon.txt"
 read -r daemon_n daemon_mb < <(new_packages "$work/before.txt" "$work/after-daemon.txt")
 join -v2 -t$'\t' "$work/before.txt" "$work/after-daemon.txt" | awk -F'\t' '{ printf "  %-32s %6d kB\n", $1, $2 }'
-echo "mvtrackd: $daemon_n new packages, $daemon_mb MB installed (apt's default, Recommends of the dependencies too; --no-install-recommends: $norec_n packages, $norec_mb MB)"
+apt_says=$(sed -n 's/^After this operation, \(.*\) of additional disk space will be used\./\1/p' "$work/install-daemon.log")
+echo "mvtrackd: $daemon_n new packages, $daemon_mb MiB installed (apt: $apt_says; apt's default, Recommends of the dependencies too; --no-install-recommends: $norec_n packages, $norec_mb MiB)"
 heavy=$(join -v2 -t$'\t' "$work/before.txt" "$work/after-daemon.txt" | cut -f1 |
         grep -E 'java|jre|jdk|opencv|ffmpeg|libav|gdal|mesa' || true)
-check daemon_size "$daemon_n new packages, $daemon_mb MB (< 60 MB); --no-install-recommends: $norec_n, $norec_mb MB" \
+check daemon_size "$daemon_n new packages, $daemon_mb MiB (< 60 MiB; apt says $apt_says); --no-install-recommends: $norec_n, $norec_mb MiB" \
   awk -v mb="$daemon_mb" 'BEGIN { exit !(mb < 60) }'
 check daemon_heavy "no Java, no OpenCV${heavy:+ (found: $(echo $heavy))}" test -z "$heavy"
 check daemon_note "postinst: not enabled, says what to do" \
@@ -254,9 +256,9 @@ in_root apt-get install -y "/tmp/debs/$deb_tools" >"$work/install-tools.log" 2>&
   { tail -30 "$work/install-tools.log" >&2; die "apt-get install ./$deb_tools failed"; }
 snapshot "$work/after-tools.txt"
 read -r tools_n tools_mb < <(new_packages "$work/after-man.txt" "$work/after-tools.txt")
-echo "mvtrack-tools: $tools_n new packages, $tools_mb MB installed (--no-install-recommends: $tools_norec_n, $tools_norec_mb MB)"
+echo "mvtrack-tools: $tools_n new packages, $tools_mb MiB installed (--no-install-recommends: $tools_norec_n, $tools_norec_mb MiB)"
 tools_java=$(join -v2 -t$'\t' "$work/after-man.txt" "$work/after-tools.txt" | cut -f1 | grep -E 'java|jre|jdk' || true)
-check tools_deps "$tools_n new packages, $tools_mb MB (--no-install-recommends: $tools_norec_n, $tools_norec_mb MB), no Java${tools_java:+ (found: $(echo $tools_java))}" \
+check tools_deps "$tools_n new packages, $tools_mb MiB (--no-install-recommends: $tools_norec_n, $tools_norec_mb MiB), no Java${tools_java:+ (found: $(echo $tools_java))}" \
   test -z "$tools_java"
 mkdir -p "$root/tmp/demo"
 cp examples/demo/mvtrackd.yaml examples/demo/calibration.yaml examples/demo/detections.lcmlog \
