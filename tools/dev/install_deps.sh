@@ -24,8 +24,9 @@ packages=(
   catch2 python3 chromium curl python3-websocket
   # Python examples: a virtualenv with PyPI's lcm (tests/python)
   python3-venv
-  # Debian package: cpack -G DEB runs dpkg-shlibdeps (tools/cmake/packaging.cmake)
-  dpkg-dev
+  # Debian packages: cpack -G DEB runs dpkg-shlibdeps, help2man writes the man pages
+  # (tools/cmake/packaging.cmake); tests/package renders them with man
+  dpkg-dev help2man man-db
   # lcm-spy GUI smoke test and screenshots (virtual X server)
   xvfb xauth
 )
