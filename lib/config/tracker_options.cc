@@ -193,6 +193,11 @@ std::vector<Field> MakeFields() {
       [](auto& o) -> auto& { return o.ground_height_m; },
       DoubleRange::Any()));
   f.push_back(DoubleField(
+      "",
+      "bridge_max_gap_s",
+      [](auto& o) -> auto& { return o.bridge_max_gap_s; },
+      DoubleRange::Closed(0.0, 10.0)));
+  f.push_back(DoubleField(
       "", "min_detection_score", [](auto& o) -> auto& { return o.min_detection_score; }, unit));
   f.push_back(DoubleField(
       "",

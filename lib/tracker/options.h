@@ -66,6 +66,12 @@ struct TrackerOptions {
   double box_ends_max_elevation_deg = 40.0;
   /// Height of the floor plane z = ground_height_m in the world frame (z up): footprints lie on it.
   double ground_height_m = 0.0;
+  /// A confirmed track at least 0.5 s old that is missing for at most this long (seconds of
+  /// stream time) and then continues under the same id gets the frames in between, when they
+  /// are not output yet, interpolated point by point between its frames on both sides (cameras
+  /// empty: no view saw it). Where one camera pair cannot place a person (a camera dark, two people
+  /// along the other pair's epipolar line) the track's own motion can. 0 disables. In [0, 10].
+  double bridge_max_gap_s = 0.6;
   /// Detections with a lower score are ignored (counted as filtered, not as errors).
   double min_detection_score = 0.0;
   /// Pose mode: keypoints with a lower confidence are treated as missing.

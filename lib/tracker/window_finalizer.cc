@@ -1,6 +1,7 @@
 #include "tracker/window_finalizer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <utility>
 
@@ -8,6 +9,12 @@
 
 namespace mvtrack::tracker {
 namespace {
+
+// Gaps of tracks younger than this (seconds since their first output frame, at the gap) are not
+// bridged: short-lived tracks are mostly duplicates or ghosts, whose gaps are their absence
+// (docs/ACCURACY.md "Bridging short gaps": 1.0 s loses the Campus hard level's gain, 0 adds
+// false positives on the 16-camera store).
+constexpr double kBridgeMinAgeS = 0.5;
 
 // The linker's view of the scene: the footprint joints (FootprintPoints).
 linking::LinkerContext MakeLinkerContext(const TrackerOptions& options) {
@@ -22,7 +29,8 @@ WindowFinalizer::WindowFinalizer(const TrackerOptions& options)
     : mode_(options.mode),
       ground_height_m_(options.ground_height_m),
       num_points_(NumPoints(options)),
-      linker_(options.linking, MakeLinkerContext(options)) {}
+      linker_(options.linking, MakeLinkerContext(options)),
+      bridge_max_gap_s_(options.bridge_max_gap_s) {}
 
 void WindowFinalizer::AddClosedFrame(const ClosedFrame& frame) {
   pending_[frame.frame] = PendingFrame{frame.frame, frame.utime, {}, false};
@@ -39,6 +47,23 @@ Vec3 WindowFinalizer::FootprintOf(const std::vector<std::optional<Vec3>>& points
   return p;
 }
 
+Track3D WindowFinalizer::MakeTrack(TrackId3D id,
+                                   const std::vector<std::optional<Vec3>>& points,
+                                   FrameIndex frame,
+                                   FrameIndex first_frame,
+                                   linking::TrackState state) const {
+  Track3D track;
+  track.id = id;
+  int valid = 0;
+  for (const auto& p : points) valid += p ? 1 : 0;
+  if (mode_ == InputMode::kPoses) track.joints = points;
+  track.position = FootprintOf(points);
+  track.confidence = static_cast<double>(valid) / static_cast<double>(num_points_);
+  track.age_frames = frame - first_frame;
+  track.state = state;
+  return track;
+}
+
 linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
                                               std::vector<Frame3D>* out) {
   MVTRACK_CHECK(out != nullptr);
@@ -49,6 +74,9 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
   counters_.tracks_born += static_cast<std::int64_t>(link.born.size());
   // The linker's alive tracks, sorted by id (WindowLinker::tracks()): looked up by bisection.
   const std::vector<linking::LinkedTrack>& alive = linker_.tracks();
+  // The longest gap bridged, in frames of this stream (0 when bridging is off).
+  const auto max_bridge_frames =
+      static_cast<FrameIndex>(std::floor(bridge_max_gap_s_ / result.seconds_per_frame + 1e-9));
   for (std::size_t i = 0; i < result.persons.size(); ++i) {
     const core::Tracklet3D& person = result.persons[i];
     const TrackId3D id = link.track_of_tracklet[i];
@@ -64,25 +92,50 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
       if (frame < result.finalize_from || frame >= result.finalize_to) continue;
       auto pending = pending_.find(frame);
       if (pending == pending_.end() || pending->second.final) continue;
-      Track3D track;
-      track.id = id;
       const auto& points = person.points[f];
       int valid = 0;
       for (const auto& p : points) valid += p ? 1 : 0;
       if (valid == 0) continue;
-      if (mode_ == InputMode::kPoses) track.joints = points;
-      track.position = FootprintOf(points);
-      track.confidence = static_cast<double>(valid) / static_cast<double>(num_points_);
+      // A short gap since this track's last output frame (no camera pair could place the
+      // person, e.g. a camera dark and two people along the other pair's epipolar line):
+      // bridged by interpolating each point between the frames on both sides.
+      const auto last = last_output_.find(id);
+      if (last != last_output_.end() && frame - last->second.frame > 1 &&
+          frame - last->second.frame - 1 <= max_bridge_frames &&
+          static_cast<double>(last->second.frame - first->second) * result.seconds_per_frame >=
+              kBridgeMinAgeS) {
+        const LastOutput& before = last->second;
+        for (FrameIndex g = std::max(before.frame + 1, result.finalize_from); g < frame; ++g) {
+          auto gap = pending_.find(g);
+          if (gap == pending_.end() || gap->second.final) continue;
+          const double t =
+              static_cast<double>(g - before.frame) / static_cast<double>(frame - before.frame);
+          std::vector<std::optional<Vec3>> bridged(points.size());
+          for (std::size_t k = 0; k < points.size() && k < before.points.size(); ++k) {
+            if (points[k] && before.points[k]) {
+              bridged[k] = (1.0 - t) * *before.points[k] + t * *points[k];
+            }
+          }
+          bool any = false;
+          for (const auto& p : bridged) any = any || p.has_value();
+          if (!any) continue;
+          Track3D filled = MakeTrack(id, bridged, g, first->second, it->state);
+          gap->second.tracks.push_back(std::move(filled));  // cameras empty: no view saw it
+        }
+      }
+      last_output_[id] = LastOutput{frame, points};
+      Track3D track = MakeTrack(id, points, frame, first->second, it->state);
       track.cameras = person.cameras;
-      track.age_frames = frame - first->second;
-      track.state = it->state;
       // All of a frame's tracks come from the one window that finalizes it: at most one per
       // person of that window.
       if (pending->second.tracks.empty()) pending->second.tracks.reserve(result.persons.size());
       pending->second.tracks.push_back(std::move(track));
     }
   }
-  for (TrackId3D id : link.died) first_frame_of_track_.erase(id);
+  for (TrackId3D id : link.died) {
+    first_frame_of_track_.erase(id);
+    last_output_.erase(id);
+  }
   for (auto& [frame, p] : pending_) {
     if (frame >= result.finalize_from && frame < result.finalize_to) p.final = true;
   }
@@ -95,6 +148,7 @@ void WindowFinalizer::EndStream(std::vector<Frame3D>* out) {
   // Every track ends with the stream (a re-anchor or a flush): ids are never reused.
   for (const linking::EndedTrack& ended : linker_.EndStream()) {
     first_frame_of_track_.erase(ended.id);
+    last_output_.erase(ended.id);
   }
   if (pending_.empty()) return;
   EmitFinal(pending_.rbegin()->first + 1, out);

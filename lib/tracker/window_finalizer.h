@@ -31,6 +31,8 @@ struct FinalizerCounters {
 /// WindowJob) and stream ends (EndStream), and emits finalized frames in increasing frame order.
 /// A frame is output when the window that finalizes it has been linked (docs/DECISIONS.md
 /// "Tracker facade"): it holds the confirmed tracks of that window's persons at that frame.
+/// A confirmed track missing for at most TrackerOptions::bridge_max_gap_s gets the frames of the
+/// gap that are not output yet interpolated (its points on both sides, linearly; no cameras).
 /// Footprint (linking::FrameFootprint over tracker::FootprintPoints): box mode the
 /// triangulated box point (center_ends: the centre) dropped onto z = ground_height_m; pose mode
 /// the hip midpoint (else the centroid of the triangulated joints) dropped onto the floor.
@@ -69,6 +71,11 @@ class WindowFinalizer {
   };
 
   Vec3 FootprintOf(const std::vector<std::optional<Vec3>>& points) const;
+  Track3D MakeTrack(TrackId3D id,
+                    const std::vector<std::optional<Vec3>>& points,
+                    FrameIndex frame,
+                    FrameIndex first_frame,
+                    linking::TrackState state) const;
   void EmitFinal(FrameIndex up_to, std::vector<Frame3D>* out);
 
   InputMode mode_ = InputMode::kBoxes;
@@ -76,7 +83,13 @@ class WindowFinalizer {
   int num_points_ = 1;
   linking::WindowLinker linker_;
   std::map<TrackId3D, FrameIndex> first_frame_of_track_;
-  std::map<FrameIndex, PendingFrame> pending_;  // closed frames not yet emitted
+  struct LastOutput {
+    FrameIndex frame = 0;
+    std::vector<std::optional<Vec3>> points;
+  };
+  std::map<TrackId3D, LastOutput> last_output_;  // each output track's latest output frame
+  double bridge_max_gap_s_ = 0.0;                // TrackerOptions::bridge_max_gap_s
+  std::map<FrameIndex, PendingFrame> pending_;   // closed frames not yet emitted
   FinalizerCounters counters_;
 };
 

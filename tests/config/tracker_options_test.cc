@@ -36,6 +36,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.box_ends_in_association == b.box_ends_in_association);
   REQUIRE(a.box_ends_max_elevation_deg == b.box_ends_max_elevation_deg);
   REQUIRE(a.ground_height_m == b.ground_height_m);
+  REQUIRE(a.bridge_max_gap_s == b.bridge_max_gap_s);
   REQUIRE(a.min_detection_score == b.min_detection_score);
   REQUIRE(a.min_keypoint_confidence == b.min_keypoint_confidence);
   REQUIRE(a.min_pose_keypoints == b.min_pose_keypoints);
@@ -109,6 +110,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.box_ends_in_association = integer(0, 1) == 0;
   o.box_ends_max_elevation_deg = 90.0 * unit(*rng);
   o.ground_height_m = 6.0 * unit(*rng) - 3.0;
+  o.bridge_max_gap_s = 10.0 * unit(*rng);
   o.min_detection_score = unit(*rng);
   o.min_keypoint_confidence = unit(*rng);
   o.min_pose_keypoints = small(1, 30);
@@ -193,7 +195,7 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
   CHECK(sizeof(linking::LinkerOptions) == 96);
   CHECK(sizeof(triangulation::RefinementOptions) == 128);
-  CHECK(sizeof(TrackerOptions) == 408);
+  CHECK(sizeof(TrackerOptions) == 416);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -222,6 +224,7 @@ TEST_CASE("Every key sets its own field", "[unit]") {
       "  box_ends_in_association: false\n"
       "  box_ends_max_elevation_deg: 35.5\n"
       "  ground_height_m: -0.25\n"
+      "  bridge_max_gap_s: 1.5\n"
       "  min_detection_score: 0.35\n"
       "  min_keypoint_confidence: 0.45\n"
       "  min_pose_keypoints: 6\n"
@@ -285,6 +288,7 @@ TEST_CASE("Every key sets its own field", "[unit]") {
   CHECK_FALSE(o.box_ends_in_association);
   CHECK(o.box_ends_max_elevation_deg == 35.5);
   CHECK(o.ground_height_m == -0.25);
+  CHECK(o.bridge_max_gap_s == 1.5);
   CHECK(o.min_detection_score == 0.35);
   CHECK(o.min_keypoint_confidence == 0.45);
   CHECK(o.min_pose_keypoints == 6);
@@ -385,8 +389,8 @@ TEST_CASE("Options round-trip exactly: defaults and random sets", "[unit]") {
 TEST_CASE("ToYaml lists every option and the example documents exactly those", "[unit]") {
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
-  // 13 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
-  CHECK(written.size() == 61);
+  // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
+  CHECK(written.size() == 62);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

@@ -116,5 +116,65 @@ TEST_CASE("noisy detections: misses and false positives still track everyone", "
   CHECK(s.mean_joint_error_m < 0.08);
 }
 
+// A person that two of the three cameras lose for 8 frames (camera 2 alone cannot place it):
+// with bridging, the frames of the gap carry the track, interpolated between its frames on
+// both sides, close to the truth and with no cameras; without, they do not.
+TEST_CASE("a short gap of a confirmed track is bridged by interpolation", "[unit][tracker]") {
+  sim::SceneOptions o = ThreePeopleThreeCameras(true);
+  o.num_people = 1;
+  sim::Scene scene = sim::GenerateScene(o);
+  constexpr FrameIndex kGapFirst = 130, kGapLast = 137;
+  for (std::size_t f = 0; f < scene.detections.size(); ++f) {
+    const FrameIndex frame = scene.truth[f].frame;
+    if (frame < kGapFirst || frame > kGapLast) continue;
+    for (std::size_t c = 0; c < 2; ++c) scene.detections[f][c].detections.clear();
+  }
+  auto run = [&](double bridge_max_gap_s) {
+    tracker::TrackerOptions options;
+    options.mode = tracker::InputMode::kPoses;
+    options.layout = core::KeypointLayoutId::kCoco17;
+    options.linking.strong_birth_cameras = 2;
+    options.bridge_max_gap_s = bridge_max_gap_s;
+    std::string why;
+    auto t = tracker::Tracker::Create(geometry::CameraRig(scene.cameras), options, &why);
+    INFO(why);
+    REQUIRE(t != nullptr);
+    return testing::RunScene(t.get(), scene);
+  };
+  auto in_gap = [&](const std::vector<tracker::Frame3D>& frames, double* max_error) {
+    int present = 0;
+    for (const tracker::Frame3D& f : frames) {
+      if (f.frame < kGapFirst || f.frame > kGapLast || f.tracks.empty()) continue;
+      ++present;
+      const auto& truth =
+          scene.truth[static_cast<std::size_t>(f.frame - scene.truth.front().frame)];
+      REQUIRE(truth.people.size() == 1);
+      const Vec2 error =
+          f.tracks.front().position.head<2>() - truth.people.front().footprint_m.head<2>();
+      *max_error = std::max(*max_error, error.norm());
+      if (f.tracks.front().cameras.empty()) {
+        CHECK(f.tracks.front().joints.size() == 17);
+      }
+    }
+    return present;
+  };
+  double error_on = 0.0, error_off = 0.0;
+  const auto on = run(0.6);
+  const auto off = run(0.0);
+  const int present_on = in_gap(on, &error_on);
+  const int present_off = in_gap(off, &error_off);
+  INFO("gap frames with the track: bridged " << present_on << ", not bridged " << present_off
+                                             << "; max footprint error " << error_on << " m");
+  CHECK(present_on == kGapLast - kGapFirst + 1);
+  CHECK(present_off < present_on);
+  CHECK(error_on < 0.15);
+  // Outside the gap bridging changes nothing.
+  REQUIRE(on.size() == off.size());
+  for (std::size_t i = 0; i < on.size(); ++i) {
+    if (on[i].frame >= kGapFirst && on[i].frame <= kGapLast) continue;
+    CHECK(on[i].tracks.size() == off[i].tracks.size());
+  }
+}
+
 }  // namespace
 }  // namespace mvtrack
