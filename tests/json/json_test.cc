@@ -5,6 +5,7 @@
 #include "json/json.h"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -178,6 +179,78 @@ TEST_CASE("json: positions match the generator's on 2000 seeded documents", "[un
     Collect(*root, &got);
     REQUIRE(got == expected);
   }
+}
+
+// Every value of a parse that succeeded starts where its position says.
+void RequirePositionsConsistent(const std::string& text, const Value& v) {
+  REQUIRE(v.column >= 1);
+  REQUIRE(v.column <= text.size());
+  const char c = text[v.column - 1];
+  switch (v.kind) {
+    case Value::Kind::kNull:
+      REQUIRE(text.compare(v.column - 1, 4, "null") == 0);
+      break;
+    case Value::Kind::kBool:
+      REQUIRE(text.compare(v.column - 1, v.boolean ? 4 : 5, v.boolean ? "true" : "false") == 0);
+      break;
+    case Value::Kind::kNumber:
+      REQUIRE(text.compare(v.column - 1, v.number.size(), v.number) == 0);
+      REQUIRE(std::isfinite(v.real));
+      break;
+    case Value::Kind::kString:
+      REQUIRE(c == '"');
+      break;
+    case Value::Kind::kArray:
+      REQUIRE(c == '[');
+      break;
+    case Value::Kind::kObject:
+      REQUIRE(c == '{');
+      break;
+  }
+  for (const Value& item : v.items) RequirePositionsConsistent(text, item);
+  for (const Member& m : v.members) {
+    REQUIRE(m.key_column >= 1);
+    REQUIRE(text[m.key_column - 1] == '"');
+    RequirePositionsConsistent(text, *m.value);
+  }
+}
+
+TEST_CASE("json: 20000 seeded mutations parse or fail cleanly, positions stay right", "[unit]") {
+  std::mt19937 rng(99);
+  const std::string bytes = "{}[]\",:0123456789.eE+-tfnul \\\n\xC3\xA9\x01x";
+  int parsed = 0;
+  for (int n = 0; n < 20000; ++n) {
+    Generator gen(static_cast<std::uint32_t>(n % 500) + 1);
+    std::vector<long> unused;
+    std::string text = gen.Document(&unused);
+    const int edits = 1 + static_cast<int>(rng() % 3);
+    for (int e = 0; e < edits && !text.empty(); ++e) {
+      const std::size_t at = rng() % text.size();
+      const char b = bytes[rng() % bytes.size()];
+      switch (rng() % 3) {
+        case 0:
+          text[at] = b;
+          break;
+        case 1:
+          text.insert(text.begin() + static_cast<std::ptrdiff_t>(at), b);
+          break;
+        default:
+          text.erase(at, 1);
+      }
+    }
+    Error error;
+    const std::optional<Value> v = Parse(text, 8, &error);
+    INFO(text);
+    if (v.has_value()) {
+      ++parsed;
+      RequirePositionsConsistent(text, *v);
+    } else {
+      REQUIRE_FALSE(error.reason.empty());
+      REQUIRE(error.column >= 1);
+      REQUIRE(error.column <= text.size() + 1);
+    }
+  }
+  CHECK(parsed > 1000);  // the loop also exercises valid documents
 }
 
 TEST_CASE("json: strings are decoded", "[unit]") {
