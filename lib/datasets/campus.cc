@@ -218,24 +218,7 @@ Dataset LoadCampus(const std::filesystem::path& data_root, const CampusOptions& 
   std::vector<CameraId> camera_ids;
   for (const geometry::CameraModel& camera : ds.cameras) camera_ids.push_back(camera.id);
   PlaceBlackout(&corruption, camera_ids, {{350, 470}, {650, 750}}, 25.0);
-  if (corruption.enabled) {
-    for (std::size_t c = 0; c < ds.cameras.size(); ++c) {
-      std::vector<core::Detection2D> pool;
-      for (const auto& frame : ds.detections) {
-        pool.insert(pool.end(), frame[c].detections.begin(), frame[c].detections.end());
-      }
-      for (std::size_t f = 0; f < frames.size(); ++f) {
-        CorruptedFrame corrupted = CorruptCameraFrame(ds.detections[f][c],
-                                                      ds.source_ids[f][c],
-                                                      pool,
-                                                      ds.cameras[c].width_px,
-                                                      ds.cameras[c].height_px,
-                                                      corruption);
-        ds.detections[f][c] = std::move(corrupted.frame);
-        ds.source_ids[f][c] = std::move(corrupted.source_ids);
-      }
-    }
-  }
+  internal::CorruptDetectionGrid(corruption, ds.cameras, &ds.detections, &ds.source_ids);
 
   ds.protocol_frames = {eval::FrameRange{350, 470}, eval::FrameRange{650, 750}};
   ds.protocol_actor_ids = {0, 1, 2};

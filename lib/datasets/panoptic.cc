@@ -202,24 +202,7 @@ Dataset LoadPanoptic(const std::filesystem::path& data_root, const PanopticOptio
   std::vector<CameraId> camera_ids;
   for (const geometry::CameraModel& camera : ds.cameras) camera_ids.push_back(camera.id);
   PlaceBlackout(&corruption, camera_ids, {{frames.front(), frames.back()}}, ds.fps);
-  if (corruption.enabled) {
-    for (std::size_t c = 0; c < ds.cameras.size(); ++c) {
-      std::vector<core::Detection2D> pool;
-      for (const auto& frame : ds.detections) {
-        pool.insert(pool.end(), frame[c].detections.begin(), frame[c].detections.end());
-      }
-      for (std::size_t i = 0; i < frames.size(); ++i) {
-        CorruptedFrame corrupted = CorruptCameraFrame(ds.detections[i][c],
-                                                      ds.source_ids[i][c],
-                                                      pool,
-                                                      ds.cameras[c].width_px,
-                                                      ds.cameras[c].height_px,
-                                                      corruption);
-        ds.detections[i][c] = std::move(corrupted.frame);
-        ds.source_ids[i][c] = std::move(corrupted.source_ids);
-      }
-    }
-  }
+  internal::CorruptDetectionGrid(corruption, ds.cameras, &ds.detections, &ds.source_ids);
 
   std::string camera_list;
   for (const geometry::CameraModel& camera : ds.cameras) {

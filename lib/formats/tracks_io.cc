@@ -59,15 +59,9 @@ void AddFrame(tracker::Frame3D frame,
                          (file->format == TrackFileFormat::kJsonl ? "line " : "event ") +
                          std::to_string(it->second) + ")");
   }
-  std::stable_sort(
-      frame.tracks.begin(),
-      frame.tracks.end(),
-      [](const tracker::Track3D& a, const tracker::Track3D& b) { return a.id < b.id; });
-  for (std::size_t i = 1; i < frame.tracks.size(); ++i) {
-    if (frame.tracks[i].id == frame.tracks[i - 1].id) {
-      throw TrackFileError(where + ": frame " + std::to_string(frame.frame) + ": track id " +
-                           std::to_string(frame.tracks[i].id) + " appears twice");
-    }
+  if (const std::optional<TrackId3D> twice = tracker::SortTracksById(&frame)) {
+    throw TrackFileError(where + ": frame " + std::to_string(frame.frame) + ": track id " +
+                         std::to_string(*twice) + " appears twice");
   }
   file->layout = layout;
   TrackFileFrame f;

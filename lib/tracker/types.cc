@@ -1,6 +1,18 @@
 #include "tracker/types.h"
 
+#include <algorithm>
+
 namespace mvtrack::tracker {
+
+std::optional<TrackId3D> SortTracksById(Frame3D* frame) {
+  std::stable_sort(frame->tracks.begin(),
+                   frame->tracks.end(),
+                   [](const Track3D& a, const Track3D& b) { return a.id < b.id; });
+  for (std::size_t i = 1; i < frame->tracks.size(); ++i) {
+    if (frame->tracks[i].id == frame->tracks[i - 1].id) return frame->tracks[i].id;
+  }
+  return std::nullopt;
+}
 
 const char* ToString(FrameRejection rejection) {
   switch (rejection) {

@@ -36,6 +36,10 @@ struct Frame3D {
   std::vector<Track3D> tracks;  ///< sorted by id
 };
 
+/// Sorts `frame`'s tracks by id (stable) and returns an id that appears more than once (the
+/// smallest), or nullopt when the ids are unique: the check of every reader of track files.
+std::optional<TrackId3D> SortTracksById(Frame3D* frame);
+
 /// Why a camera-frame was rejected as a whole.
 enum class FrameRejection {
   kNone,               ///< not rejected

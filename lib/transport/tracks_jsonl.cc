@@ -232,14 +232,8 @@ std::optional<tracker::Frame3D> ParseTracksJsonLine(std::string_view line,
                   std::to_string(layout_joints));
     }
   }
-  std::stable_sort(
-      frame.tracks.begin(),
-      frame.tracks.end(),
-      [](const tracker::Track3D& a, const tracker::Track3D& b) { return a.id < b.id; });
-  for (std::size_t i = 1; i < frame.tracks.size(); ++i) {
-    if (frame.tracks[i].id == frame.tracks[i - 1].id) {
-      return fail("duplicate track id " + std::to_string(frame.tracks[i].id));
-    }
+  if (const std::optional<TrackId3D> twice = tracker::SortTracksById(&frame)) {
+    return fail("duplicate track id " + std::to_string(*twice));
   }
   if (layout != nullptr) *layout = *parsed_layout;
   return frame;

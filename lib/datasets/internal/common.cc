@@ -137,4 +137,27 @@ eval::EvalSequence MapSequence(const eval::EvalSequence& sequence,
   return out;
 }
 
+void CorruptDetectionGrid(const CorruptionOptions& corruption,
+                          const std::vector<geometry::CameraModel>& cameras,
+                          std::vector<std::vector<core::CameraFrame>>* detections,
+                          std::vector<std::vector<std::vector<std::int64_t>>>* source_ids) {
+  if (!corruption.enabled) return;
+  for (std::size_t c = 0; c < cameras.size(); ++c) {
+    std::vector<core::Detection2D> pool;
+    for (const auto& frame : *detections) {
+      pool.insert(pool.end(), frame[c].detections.begin(), frame[c].detections.end());
+    }
+    for (std::size_t f = 0; f < detections->size(); ++f) {
+      CorruptedFrame corrupted = CorruptCameraFrame((*detections)[f][c],
+                                                    (*source_ids)[f][c],
+                                                    pool,
+                                                    cameras[c].width_px,
+                                                    cameras[c].height_px,
+                                                    corruption);
+      (*detections)[f][c] = std::move(corrupted.frame);
+      (*source_ids)[f][c] = std::move(corrupted.source_ids);
+    }
+  }
+}
+
 }  // namespace mvtrack::datasets::internal

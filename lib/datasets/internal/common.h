@@ -11,6 +11,7 @@
 #include "core/detection.h"
 #include "core/keypoint_layout.h"
 #include "core/types.h"
+#include "datasets/corruption.h"
 #include "eval/sequence.h"
 #include "geometry/camera_model.h"
 
@@ -55,6 +56,14 @@ void InitDetectionGrid(const std::vector<FrameIndex>& frames,
                        double fps,
                        std::vector<std::vector<core::CameraFrame>>* detections,
                        std::vector<std::vector<std::vector<std::int64_t>>>* source_ids);
+
+/// Applies the detector model `corruption` (blackout already placed) to every camera-frame of
+/// `detections` / `source_ids` (as InitDetectionGrid lays them out); the false-positive pool of
+/// a camera is all its clean poses. Nothing when corruption is disabled.
+void CorruptDetectionGrid(const CorruptionOptions& corruption,
+                          const std::vector<geometry::CameraModel>& cameras,
+                          std::vector<std::vector<core::CameraFrame>>* detections,
+                          std::vector<std::vector<std::vector<std::int64_t>>>* source_ids);
 
 /// Maps a sequence with `mapping` (joint by joint, a target joint present only when all its
 /// sources are); footprints are recomputed in the target layout; objects left without joints
