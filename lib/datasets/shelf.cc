@@ -290,11 +290,12 @@ Dataset LoadShelf(const std::filesystem::path& data_root, const ShelfOptions& op
   return ds;
 }
 
-PeerOutput LoadShelfPeer4DA(const std::filesystem::path& data_root) {
-  const std::filesystem::path file = data_root / "shelf" / "4d_association" / "skel.txt";
+PeerOutput LoadShelfPeer4DA(const std::filesystem::path& data_root, Shelf4DARun which) {
+  const std::string dir = which == Shelf4DARun::kLinux ? "4d_association_linux" : "4d_association";
+  const std::filesystem::path file = data_root / "shelf" / dir / "skel.txt";
   const internal::SkelTextFile skel = internal::ReadSkelText(file, kSkel19Joints);
   PeerOutput peer;
-  peer.name = "4d_association";
+  peer.name = dir;
   peer.native_layout = core::KeypointLayoutId::kNone;
   peer.native_joint_names = Skel19JointNames();
   std::map<std::int64_t, std::int64_t> dense_ids;
@@ -324,7 +325,8 @@ PeerOutput LoadShelfPeer4DA(const std::filesystem::path& data_root) {
     peer.shelf14.push_back(std::move(shelf));
   }
   peer.protocol_notes =
-      "4D Association's own tracking output on Shelf (4d_association/skel.txt, SKEL19, metres), "
+      "4D Association's own tracking output on Shelf (" + dir +
+      "/skel.txt, SKEL19, metres), "
       "frames 300-600 (line i = frame 300+i), track ids 0-4 remapped to 1-5 in order of first "
       "appearance. A joint is present when its confidence row is > 0; skeletons without any "
       "present joint are left out (and shelf14 objects without a present joint). shelf14 by 4D "

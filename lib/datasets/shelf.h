@@ -52,7 +52,15 @@ Dataset LoadShelf(const std::filesystem::path& data_root, const ShelfOptions& op
 ///   face        = normalize((neck - mid_hip) x (r_shoulder - l_shoulder)),
 /// a derived joint being present only when all its inputs are. Frames are Shelf frames
 /// 300 + i as for LoadShelf.
+/// `which` picks the run: 4D Association's default `windows` branch (4d_association/skel.txt)
+/// or its older `linux` branch run here on the same detections (4d_association_linux/skel.txt,
+/// SOURCE.md); both are in the same format.
 /// @throws DatasetError on a missing or malformed file.
-PeerOutput LoadShelfPeer4DA(const std::filesystem::path& data_root);
+enum class Shelf4DARun {
+  kWindows,  ///< 4d_association/skel.txt ("4d_association")
+  kLinux,    ///< 4d_association_linux/skel.txt ("4d_association_linux")
+};
+PeerOutput LoadShelfPeer4DA(const std::filesystem::path& data_root,
+                            Shelf4DARun which = Shelf4DARun::kWindows);
 
 }  // namespace mvtrack::datasets

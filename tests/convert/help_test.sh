@@ -27,6 +27,8 @@ expect_exit 2 "$OUT/u5.txt" "$MVTRACK" convert wildtrack --out "$OUT/x" --bogus
 expect_grep "unknown option --bogus" "$OUT/u5.txt"
 expect_exit 2 "$OUT/u6.txt" "$MVTRACK" convert campus --out "$OUT/x" --clean --seed 3
 expect_grep "--corruption clean disables the corruption model; --seed" "$OUT/u6.txt"
+expect_exit 2 "$OUT/u6a.txt" "$MVTRACK" convert shelf --out "$OUT/x" --peer 4d_assoc
+expect_grep "--peer must be 4d_association or 4d_association_linux" "$OUT/u6a.txt"
 expect_exit 2 "$OUT/u6b.txt" "$MVTRACK" convert campus --out "$OUT/x" --corruption harder
 expect_grep "--corruption must be clean, default or hard" "$OUT/u6b.txt"
 expect_exit 2 "$OUT/u6c.txt" "$MVTRACK" convert campus --out "$OUT/x" --clean --corruption hard

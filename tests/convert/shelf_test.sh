@@ -34,4 +34,10 @@ same_outputs "$OUT/a" "$OUT/b" detections.lcmlog calibration.yaml ground_truth.j
 "$CHECK" "$OUT/p" --cameras 0,1,2,3,4 --frames 301 --every-camera-frame --channel per-camera \
   --layout body25 --gt-lines 301 --peer-lines 301 >/dev/null
 cmp -s "$OUT/a/detections.lcmlog" "$OUT/p/detections.lcmlog" && fail "per-camera log equals the shared one"
+# The older linux-branch run of 4D Association as the peer: same detections and ground truth,
+# another peer file, named in the README.
+"$MVTRACK" convert shelf --data "$DATA_ROOT" --out "$OUT/l" --peer 4d_association_linux --quiet
+same_outputs "$OUT/a" "$OUT/l" detections.lcmlog calibration.yaml ground_truth.jsonl
+cmp -s "$OUT/a/peer.jsonl" "$OUT/l/peer.jsonl" && fail "the linux-branch peer equals the windows one"
+expect_fixed "4d_association_linux/skel.txt" "$OUT/l/README.txt"
 echo "shelf: ok, $(stat -c %s "$OUT/a/detections.lcmlog") bytes of log"

@@ -136,6 +136,7 @@ wildtrack_eval="--points --area -3,9,-9,27"
 
 # ---- Datasets.
 convert shelf shelf
+convert shelf_4da_linux shelf --peer 4d_association_linux
 convert campus campus
 convert campus_clean campus --clean
 convert campus_hard campus --corruption hard
@@ -149,6 +150,7 @@ experiment shelf shelf poses body25 - $shelf_eval
 experiment shelf_head_campus shelf poses body25 - --frames 300-600 --distance joints --pcp \
   --actors 0,1,2 --head-rule campus
 peer shelf_peer_4da shelf peer.jsonl $shelf_eval
+peer shelf_peer_4da_linux shelf_4da_linux peer.jsonl $shelf_eval
 experiment campus campus poses shelf14 - $campus_eval
 experiment campus_clean campus_clean poses shelf14 - $campus_eval
 experiment campus_hard campus_hard poses shelf14 - $campus_eval

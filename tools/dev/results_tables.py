@@ -251,8 +251,11 @@ def render(out_dir, runs, info):
     rows.append(pose_row("mvtrack, head top by VoxelPose's `coco2campus3D` instead "
                          "(`--head-rule campus`)", "shelf_head_campus",
                          R["shelf_head_campus"]["metrics"]))
-    rows.append(pose_row("4D Association, its committed `skel.txt`, scored by our evaluator",
-                         "shelf_peer_4da", R["shelf_peer_4da"]["metrics"]))
+    rows.append(pose_row("4D Association (`windows` branch), its committed `skel.txt`, scored by "
+                         "our evaluator", "shelf_peer_4da", R["shelf_peer_4da"]["metrics"]))
+    rows.append(pose_row("4D Association (older `linux` branch, run here on these detections: "
+                         "`4d_association_linux/skel.txt`), scored by our evaluator",
+                         "shelf_peer_4da_linux", R["shelf_peer_4da_linux"]["metrics"]))
     md.append(table(POSE_HEADER, rows))
 
     md.append("\n### Campus (2D ground truth through the corruption model), next to the paper's "

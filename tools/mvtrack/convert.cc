@@ -505,10 +505,15 @@ std::string FormatUsage(const std::string& format, const std::string& extra) {
 int ConvertShelf(int argc, char** argv, const std::string& command_line) {
   Args args;
   AddCommonOptions(&args, true);
+  args.Option("peer",
+              "the peer output written as peer.jsonl: 4d_association (its windows branch, "
+              "skel.txt) or 4d_association_linux (its older linux branch run on the same "
+              "detections)",
+              "4d_association");
   if (!args.Parse(
           argc,
           argv,
-          FormatUsage("shelf", "[--data DIR] "),
+          FormatUsage("shelf", "[--data DIR] [--peer 4d_association|4d_association_linux] "),
           "Shelf (Belagiannis et al., CVPR 2014, as released by 4D Association): the real\n"
           "OpenPose BODY25 detections of shelf/derived (5 cameras, 1032x776, frames\n"
           "300-600 = 301 frames, 25 fps assumed), the 3D ground truth of 4 actors (shelf14)\n"
@@ -518,12 +523,20 @@ int ConvertShelf(int argc, char** argv, const std::string& command_line) {
     return 0;
   }
   const CommonSettings c = ParseCommon(args, "shelf", true, command_line);
+  const std::string peer_name = args.Get("peer");
+  if (peer_name != "4d_association" && peer_name != "4d_association_linux") {
+    throw UsageError("--peer must be 4d_association or 4d_association_linux, not '" + peer_name +
+                     "'");
+  }
   DatasetJob job;
   job.source_dir = RequireDatasetDir(c, "shelf");
   Progress(c, "loading Shelf from " + job.source_dir.string());
   const Clock::time_point start = Clock::now();
   job.ds = datasets::LoadShelf(c.data_root);
-  job.peer = datasets::LoadShelfPeer4DA(c.data_root);
+  job.peer = datasets::LoadShelfPeer4DA(c.data_root,
+                                        peer_name == "4d_association_linux"
+                                            ? datasets::Shelf4DARun::kLinux
+                                            : datasets::Shelf4DARun::kWindows);
   job.load_seconds = SecondsSince(start);
   job.what = {
       "Shelf: real OpenPose BODY25 detections (shelf/derived/persons2d_body25_cam*.json, people",
@@ -531,7 +544,8 @@ int ConvertShelf(int argc, char** argv, const std::string& command_line) {
       "body25, box = keypoint bounds + 10 % of their height per side, score = mean keypoint",
       "confidence; no corruption (real detector output).",
       "Ground truth: 4d_association/gt.txt (pelvis dropped -> shelf14), actors 0-3.",
-      "Peer: 4D Association's skel.txt (SKEL19 -> shelf14 by its own MappingToShelf)."};
+      "Peer: 4D Association's " + peer_name +
+          "/skel.txt (SKEL19 -> shelf14 by its own MappingToShelf)."};
   job.replay_mode = "poses";
   job.replay_layout = "body25";
   WriteDatasetJob(c, job);
