@@ -23,11 +23,6 @@
 namespace mvtrack::config {
 namespace {
 
-using internal::GetDouble;
-using internal::GetSequence;
-using internal::MapRef;
-using internal::NodeRef;
-
 constexpr int kMaxImageSidePx = 1 << 20;
 // Largest difference allowed between a FileStorage Rot_<c> and Rodrigues(R_<c>).
 constexpr double kRotationAgreement = 1e-6;
