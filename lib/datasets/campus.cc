@@ -105,6 +105,7 @@ std::vector<geometry::CameraModel> LoadCampusCalibration(const std::filesystem::
     }
   }
   std::vector<geometry::CameraModel> cameras;
+  cameras.reserve(by_id.size());
   for (auto& [id, camera] : by_id) cameras.push_back(std::move(camera));
   if (cameras.empty()) throw DatasetError(file.string(), "no cameras");
   return cameras;

@@ -109,6 +109,7 @@ std::vector<geometry::CameraModel> LoadShelfCalibration(const std::filesystem::p
   }
   if (by_id.empty()) throw DatasetError(file.string(), "no cameras");
   std::vector<geometry::CameraModel> cameras;
+  cameras.reserve(by_id.size());
   for (auto& [id, camera] : by_id) cameras.push_back(std::move(camera));
   return cameras;
 }
