@@ -79,7 +79,7 @@ geometry::CameraModel ParseCamera(const NodeRef& node,
                     "rvec",
                     "t"});
   geometry::CameraModel camera;
-  *id_node = map.Get("id");
+  id_node->emplace(map.Get("id"));
   camera.id = GetInt(**id_node, 0, std::numeric_limits<CameraId>::max());
   if (const std::optional<NodeRef> name_node = map.Find("name")) *name = GetString(*name_node);
 

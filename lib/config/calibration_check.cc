@@ -162,6 +162,7 @@ CalibrationReport CheckCalibration(const std::vector<geometry::CameraModel>& cam
 
   const std::size_t n = cameras.size();
   std::vector<Vec3> centres;
+  centres.reserve(n);
   for (const geometry::CameraModel& c : cameras) centres.push_back(c.CenterInWorld());
 
   // Visibility per camera and cell.

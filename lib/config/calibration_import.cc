@@ -23,11 +23,6 @@
 namespace mvtrack::config {
 namespace {
 
-using internal::GetDouble;
-using internal::GetSequence;
-using internal::MapRef;
-using internal::NodeRef;
-
 constexpr int kMaxImageSidePx = 1 << 20;
 // Largest difference allowed between a FileStorage Rot_<c> and Rodrigues(R_<c>).
 constexpr double kRotationAgreement = 1e-6;
@@ -220,8 +215,8 @@ class Storage {
 
 Mat3 ToMat3(const std::vector<double>& v) {
   Mat3 m;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) m(r, c) = v[static_cast<std::size_t>(3 * r + c)];
+  for (Eigen::Index r = 0; r < 3; ++r) {
+    for (Eigen::Index c = 0; c < 3; ++c) m(r, c) = v[static_cast<std::size_t>(3 * r + c)];
   }
   return m;
 }

@@ -556,7 +556,9 @@ std::optional<std::size_t> FindWord(std::string_view text, std::string_view word
     const auto found = section_maps.find(section);
     map = found != section_maps.end() ? &found->second : nullptr;
   }
-  NodeRef where = map != nullptr ? map->ref() : tracker_map.ref();
+  // The key named first in `why`, else the section (emplace, not assignment: NodeRef is not
+  // assignable, see yaml_node.h).
+  std::optional<NodeRef> named_key;
   if (map != nullptr) {
     std::size_t best = std::string_view::npos;
     for (const std::string& key : KeysOf(section)) {
@@ -564,10 +566,12 @@ std::optional<std::size_t> FindWord(std::string_view text, std::string_view word
       const std::optional<NodeRef> value = map->Find(key);
       if (pos.has_value() && *pos < best && value.has_value()) {
         best = *pos;
-        where = *value;
+        named_key.emplace(*value);
       }
     }
   }
+  const NodeRef& where =
+      named_key.has_value() ? *named_key : (map != nullptr ? map->ref() : tracker_map.ref());
   where.Fail("invalid options: " + why);
 }
 

@@ -83,8 +83,10 @@ std::vector<geometry::CameraModel> LoadCampusCalibration(const std::filesystem::
     // Tw = world_from_camera with the camera centre in cm.
     Mat3 world_from_cam;
     Vec3 centre_m;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) world_from_cam(r, c) = tw[static_cast<std::size_t>(4 * r + c)];
+    for (Eigen::Index r = 0; r < 3; ++r) {
+      for (Eigen::Index c = 0; c < 3; ++c) {
+        world_from_cam(r, c) = tw[static_cast<std::size_t>(4 * r + c)];
+      }
       centre_m(r) = kCmToM * tw[static_cast<std::size_t>(4 * r + 3)];
     }
     const Mat3 rotation = world_from_cam.transpose();
@@ -103,6 +105,7 @@ std::vector<geometry::CameraModel> LoadCampusCalibration(const std::filesystem::
     }
   }
   std::vector<geometry::CameraModel> cameras;
+  cameras.reserve(by_id.size());
   for (auto& [id, camera] : by_id) cameras.push_back(std::move(camera));
   if (cameras.empty()) throw DatasetError(file.string(), "no cameras");
   return cameras;

@@ -161,6 +161,7 @@ Dataset LoadPanoptic(const std::filesystem::path& data_root, const PanopticOptio
   }
   if (files.empty()) throw DatasetError(skel_dir.string(), "no body3DScene_*.json files");
   std::vector<FrameIndex> frames;
+  frames.reserve(files.size());
   for (const auto& [frame, path] : files) frames.push_back(frame);
   internal::InitDetectionGrid(frames, ds.cameras, ds.fps, &ds.detections, &ds.source_ids);
 

@@ -94,8 +94,8 @@ std::vector<geometry::CameraModel> LoadShelfCalibration(const std::filesystem::p
     }
     Mat3 rotation;
     Vec3 translation;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) rotation(r, c) = rt[static_cast<std::size_t>(4 * r + c)];
+    for (Eigen::Index r = 0; r < 3; ++r) {
+      for (Eigen::Index c = 0; c < 3; ++c) rotation(r, c) = rt[static_cast<std::size_t>(4 * r + c)];
       translation(r) = rt[static_cast<std::size_t>(4 * r + 3)];
     }
     by_id[id] = internal::MakeCamera(file.string(),
@@ -109,6 +109,7 @@ std::vector<geometry::CameraModel> LoadShelfCalibration(const std::filesystem::p
   }
   if (by_id.empty()) throw DatasetError(file.string(), "no cameras");
   std::vector<geometry::CameraModel> cameras;
+  cameras.reserve(by_id.size());
   for (auto& [id, camera] : by_id) cameras.push_back(std::move(camera));
   return cameras;
 }

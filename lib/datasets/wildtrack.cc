@@ -125,6 +125,7 @@ Dataset LoadWildtrack(const std::filesystem::path& data_root) {
   const std::map<FrameIndex, std::vector<MvdetrBox>> boxes =
       LoadMvdetrBoxes(dir / "rest" / "MVDeTr_test.json", ds.cameras.size());
   std::vector<FrameIndex> frames;
+  frames.reserve(boxes.size());
   for (const auto& [frame, list] : boxes) frames.push_back(frame);
   internal::InitDetectionGrid(frames, ds.cameras, ds.fps, &ds.detections, &ds.source_ids);
   std::size_t f = 0;
@@ -355,6 +356,7 @@ std::vector<WildtrackGroundFrame> WildtrackGroundPoints(const std::filesystem::p
                        "more than 64 cameras");
   }
   std::vector<Mat3> ground_from_image;
+  ground_from_image.reserve(homographies.size());
   for (const Mat3& h : homographies) ground_from_image.push_back(h.inverse());
   const std::filesystem::path box_file = data_root / "wildtrack" / "rest" / "MVDeTr_test.json";
   const std::map<FrameIndex, std::vector<MvdetrBox>> boxes =

@@ -30,7 +30,8 @@ class CameraRig {
   const Mat34& projection(int index) const { return projections_[static_cast<std::size_t>(index)]; }
   /// F mapping undistorted points of camera index `from` to epipolar lines in camera `to`.
   const Mat3& fundamental(int from, int to) const {
-    return fundamentals_[static_cast<std::size_t>(from * size() + to)];
+    return fundamentals_[static_cast<std::size_t>(from) * static_cast<std::size_t>(size()) +
+                         static_cast<std::size_t>(to)];
   }
 
  private:

@@ -16,7 +16,7 @@ std::optional<Vec3> SolveNormalMatrix(const Eigen::Matrix4d& ata) {
   const Eigen::Vector4d x = solver.eigenvectors().col(0);
   // Rank check: the two smallest eigenvalues must be separated, otherwise the rays are
   // (nearly) parallel and the point is undetermined.
-  const Eigen::Vector4d ev = solver.eigenvalues();
+  const Eigen::Vector4d& ev = solver.eigenvalues();
   if (!(ev(1) > 1e-14 * std::max(1.0, ev(3)))) return std::nullopt;
   if (!(std::abs(x(3)) > 1e-12)) return std::nullopt;
   const Vec3 point = x.head<3>() / x(3);

@@ -513,7 +513,9 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
 
   // Overlap links report their Eq. 8 distance.
   for (std::size_t c = 0; c < num_tracklets; ++c) {
-    if (track_of_col[c] >= 0) result.link_distance_m[c] = overlap(track_of_col[c], c);
+    if (track_of_col[c] >= 0) {
+      result.link_distance_m[c] = overlap(track_of_col[c], static_cast<Eigen::Index>(c));
+    }
   }
 
   // The gap stages compare a track's prediction with a tracklet's initial state.

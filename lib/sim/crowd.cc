@@ -191,6 +191,11 @@ struct CrowdSimulator::State {
         std::clamp(static_cast<int>(std::floor((p.y() - grid_y0) / cell_m)), 0, grid_ny - 1);
     return {cx, cy};
   }
+  // The list of cell (x, y), indexed in std::size_t like the allocation of `cells`.
+  std::vector<int>& Cell(int x, int y) {
+    return cells[static_cast<std::size_t>(y) * static_cast<std::size_t>(grid_nx) +
+                 static_cast<std::size_t>(x)];
+  }
 
   void BuildGrid() {
     for (auto& c : cells) c.clear();
@@ -200,7 +205,7 @@ struct CrowdSimulator::State {
     }
     for (std::size_t i = 0; i < active.size(); ++i) {
       const auto [cx, cy] = CellOf(active[i]->position);
-      cells[static_cast<std::size_t>(cy * grid_nx + cx)].push_back(static_cast<int>(i));
+      Cell(cx, cy).push_back(static_cast<int>(i));
     }
   }
 
@@ -211,7 +216,7 @@ struct CrowdSimulator::State {
     const auto [cx, cy] = CellOf(p);
     for (int y = std::max(0, cy - 1); y <= std::min(grid_ny - 1, cy + 1); ++y) {
       for (int x = std::max(0, cx - 1); x <= std::min(grid_nx - 1, cx + 1); ++x) {
-        const auto& c = cells[static_cast<std::size_t>(y * grid_nx + x)];
+        const auto& c = Cell(x, y);
         neighbours.insert(neighbours.end(), c.begin(), c.end());
       }
     }

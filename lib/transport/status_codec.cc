@@ -16,7 +16,6 @@ namespace mvtrack::transport {
 namespace {
 
 using internal::kFloatBytes;
-using internal::kInt16Bytes;
 using internal::kInt32Bytes;
 using internal::kInt64Bytes;
 using internal::WireWalker;

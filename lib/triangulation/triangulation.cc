@@ -248,7 +248,7 @@ std::optional<Vec3> PersonTriangulator::SolveDlt() {
     sel_weights_.push_back(p.confidence);
   }
   if (sel_points_.size() < 2) return std::nullopt;
-  const auto x = geometry::TriangulateDlt(sel_projections_, sel_points_, sel_weights_);
+  auto x = geometry::TriangulateDlt(sel_projections_, sel_points_, sel_weights_);
   if (!x || !InFrontOfAll(sel_projections_, *x)) return std::nullopt;
   return x;
 }
@@ -312,7 +312,7 @@ std::optional<Vec3> PersonTriangulator::SolveRansac(TriangulationStats* stats) {
     fit_points_.push_back(sel_points_[v]);
     fit_weights_.push_back(sel_weights_[v]);
   }
-  const auto refit = geometry::TriangulateDlt(fit_projections_, fit_points_, fit_weights_);
+  auto refit = geometry::TriangulateDlt(fit_projections_, fit_points_, fit_weights_);
   if (refit && InFrontOfAll(fit_projections_, *refit)) return refit;
   return best_point;
 }

@@ -85,6 +85,7 @@ std::vector<Vec2> FieldOfViewOnFloor(const geometry::CameraModel& camera,
   const double h = camera.height_px;
   std::vector<Vec2> border;
   const int n = samples_per_edge;
+  border.reserve(4 * static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) border.emplace_back(w * i / n, 0.0);
   for (int i = 0; i < n; ++i) border.emplace_back(w, h * i / n);
   for (int i = 0; i < n; ++i) border.emplace_back(w - w * i / n, h);

@@ -821,7 +821,7 @@ void DrawPanel(
                                                     cv::Scalar(75, 86, 140)};
   int legend_y = top + 18;
   for (std::size_t li = 0; li < lines.size(); ++li) {
-    const cv::Scalar color = kColors[li % kColors.size()];
+    const cv::Scalar& color = kColors[li % kColors.size()];
     const auto& pts = lines[li].second;
     for (std::size_t k = 0; k < pts.size(); ++k) {
       const cv::Point p(px(pts[k].first), py(pts[k].second));
@@ -1179,6 +1179,7 @@ int RunBench(int argc, char** argv) {
                               {"mpjpe_m", l.accuracy.mpjpe_m}});
   }
   std::vector<json::OrderedDocument> identity_json;
+  identity_json.reserve(identities.size());
   for (const IdentityResult& r : identities) {
     identity_json.push_back(json::OrderedDocument{{"cameras", r.cameras},
                                                   {"people", r.people},

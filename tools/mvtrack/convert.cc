@@ -142,7 +142,7 @@ std::string FormatSeconds(double s) {
 
 // `<root>/<folder>` when it is a directory, else an error naming the path and MVTRACK_DATA.
 std::filesystem::path RequireDatasetDir(const CommonSettings& c, const std::string& folder) {
-  const std::filesystem::path dir = c.data_root / folder;
+  std::filesystem::path dir = c.data_root / folder;
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec)) {
     throw std::runtime_error("dataset directory " + dir.string() + " not found (data root " +

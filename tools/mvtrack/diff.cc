@@ -178,6 +178,7 @@ int RunDiff(int argc, char** argv) {
   for (const formats::TrackFileFrame& f : a.frames) in_a[f.frame.frame] = &f;
   for (const formats::TrackFileFrame& f : b.frames) in_b[f.frame.frame] = &f;
   std::vector<FrameIndex> all;
+  all.reserve(in_a.size() + in_b.size());
   for (const auto& [frame, f] : in_a) all.push_back(frame);
   for (const auto& [frame, f] : in_b) {
     if (!in_a.count(frame)) all.push_back(frame);

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -489,8 +490,8 @@ int RunReplay(int argc, char** argv) {
          << (threads == 0 ? std::string("inline, no threads")
                           : "pipeline, " + std::to_string(threads) + " worker thread(s)")
          << "; timed from the first submit to the end of the flush; reading "
-         << static_cast<long long>(read_seconds * 1000.0 + 0.5) << " ms and writing "
-         << static_cast<long long>(write_seconds * 1000.0 + 0.5) << " ms not included)\n";
+         << std::llround(read_seconds * 1000.0) << " ms and writing "
+         << std::llround(write_seconds * 1000.0) << " ms not included)\n";
   if (!out_path.empty())
     report << "  wrote " << out_path << " (LCM log, " << frames.size() << " event(s))\n";
   if (!jsonl_path.empty() && !jsonl_to_stdout) {

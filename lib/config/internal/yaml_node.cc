@@ -103,16 +103,12 @@ std::string FormatBound(double value) {
 
 // --- NodeRef -------------------------------------------------------------------------------------
 
-NodeRef::NodeRef(YAML::Node node, std::string file, std::string path, int line, int column)
-    : node_(std::move(node)),
-      file_(std::move(file)),
-      path_(std::move(path)),
-      line_(line),
-      column_(column) {}
+NodeRef::NodeRef(const YAML::Node& node, std::string file, std::string path, int line, int column)
+    : node_(node), file_(std::move(file)), path_(std::move(path)), line_(line), column_(column) {}
 
-NodeRef NodeRef::Root(YAML::Node node, std::string file, std::string path) {
+NodeRef NodeRef::Root(const YAML::Node& node, std::string file, std::string path) {
   const auto [line, column] = PositionOf(node);
-  return NodeRef(std::move(node), std::move(file), std::move(path), line, column);
+  return NodeRef(node, std::move(file), std::move(path), line, column);
 }
 
 bool NodeRef::IsNull() const { return !node_.IsDefined() || node_.IsNull(); }
@@ -148,7 +144,7 @@ MapRef::MapRef(const NodeRef& node,
       NodeRef(key_node, node.file(), node.path(), key_line, key_column)
           .Fail("map keys must be scalars, got " + Describe(key_node));
     }
-    const std::string key = key_node.Scalar();
+    const std::string& key = key_node.Scalar();
     NodeRef key_ref(key_node, node.file(), node.ChildPath(key), key_line, key_column);
     if (const Entry* first = FindEntry(key)) {
       key_ref.Fail("duplicate key (first given at line " + std::to_string(first->key_ref.line()) +
@@ -159,6 +155,7 @@ MapRef::MapRef(const NodeRef& node,
       const auto hint =
           std::find_if(hints.begin(), hints.end(), [&](const KeyHint& h) { return h.key == key; });
       std::vector<std::string> hint_keys;
+      hint_keys.reserve(hints.size());
       for (const KeyHint& h : hints) hint_keys.push_back(h.key);
       const std::optional<std::string> close_hint = SuggestClosest(key, hint_keys);
       if (hint != hints.end()) {

@@ -28,14 +28,21 @@
 namespace mvtrack::config::internal {
 
 /// A YAML node together with its source file, its key path and its position, so that any
-/// problem with it can be reported precisely. Cheap to copy (YAML::Node is a handle).
+/// problem with it can be reported precisely. Cheap to copy (YAML::Node is a handle). Not
+/// assignable: YAML::Node's operator= writes through to the node it refers to (yaml-cpp's
+/// reference semantics, so assigning would edit the document) and can throw.
 class NodeRef {
  public:
   /// `line`/`column` are 1-based, 0 when unknown.
-  NodeRef(YAML::Node node, std::string file, std::string path, int line, int column);
+  NodeRef(const YAML::Node& node, std::string file, std::string path, int line, int column);
+  NodeRef(const NodeRef&) = default;
+  NodeRef(NodeRef&&) = default;
+  NodeRef& operator=(const NodeRef&) = delete;
+  NodeRef& operator=(NodeRef&&) = delete;
+  ~NodeRef() = default;
 
   /// The document root of `file` (position taken from the node's mark, key path `path`).
-  static NodeRef Root(YAML::Node node, std::string file, std::string path = {});
+  static NodeRef Root(const YAML::Node& node, std::string file, std::string path = {});
 
   const YAML::Node& node() const { return node_; }
   const std::string& file() const { return file_; }
