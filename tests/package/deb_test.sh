@@ -219,17 +219,17 @@ done
 C=$WORK/mvtrackd/control
 stub=$WORK/stub
 mkdir -p "$stub/bin"
-cat >"$stub/bin/deb-systemd-helper" <<'EOF'
+for tool in deb-systemd-helper deb-systemd-invoke; do
+  cat >"$stub/bin/$tool" <<EOF
 #!/bin/sh
-echo "deb-systemd-helper $*" >>"$STUB_LOG"
-case "$1" in
-  debian-installed) [ -n "$STUB_INSTALLED" ] ;;
-  --quiet) [ -n "$STUB_ENABLED" ] ;;
+echo "$tool \$*" >>"\$STUB_LOG"
+case "\$1" in
+  debian-installed) [ -n "\$STUB_INSTALLED" ] ;;
+  --quiet) [ -n "\$STUB_ENABLED" ] ;;
   *) exit 0 ;;
 esac
 EOF
-cp "$stub/bin/deb-systemd-helper" "$stub/bin/deb-systemd-invoke"
-sed -i 's/deb-systemd-helper \$\*/deb-systemd-invoke $*/' "$stub/bin/deb-systemd-invoke"
+done
 chmod +x "$stub/bin/"*
 # run_script NAME INSTALLED ENABLED ARGS...: the script's deb-systemd-* calls that change
 # something, one per line (the queries debian-installed and was-enabled answer INSTALLED and

@@ -26,12 +26,6 @@ namespace {
 // Nesting the dataset files need (a few levels) with a wide margin.
 constexpr int kMaxDepth = 64;
 
-// The value of a number, or nullopt.
-std::optional<double> ToDouble(const json::Value& v) {
-  if (v.kind != json::Value::Kind::kNumber) return std::nullopt;
-  return v.real;
-}
-
 bool IsInteger(const json::Value& v) {
   return v.kind == json::Value::Kind::kNumber &&
          v.number.find_first_of(".eE") == std::string_view::npos;
@@ -86,9 +80,7 @@ std::vector<std::pair<std::string, JsonValue>> JsonValue::Items() const {
 
 double JsonValue::AsDouble() const {
   if (value_->kind != json::Value::Kind::kNumber) Fail("expected a number");
-  const std::optional<double> value = ToDouble(*value_);
-  if (!value) Fail("number \"" + std::string(value_->number) + "\" is not a finite double");
-  return *value;
+  return value_->real;  // json::Parse refuses numbers that are not finite doubles
 }
 
 std::int64_t JsonValue::AsInt() const {
@@ -139,8 +131,8 @@ std::vector<double> JsonValue::AsDoubles(int n) const {
   values.reserve(size);
   for (std::size_t i = 0; i < size; ++i) {
     // Fast path without building a path string; the slow path reports the exact element.
-    if (const std::optional<double> v = ToDouble(value_->items[i])) {
-      values.push_back(*v);
+    if (value_->items[i].kind == json::Value::Kind::kNumber) {
+      values.push_back(value_->items[i].real);
     } else {
       values.push_back(At(i).AsDouble());
     }
