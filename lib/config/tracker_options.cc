@@ -326,6 +326,11 @@ std::vector<Field> MakeFields() {
       DoubleRange::AtLeast(0.0)));
   f.push_back(DoubleField(
       "linking",
+      "duplicate_distance_m",
+      [](auto& o) -> auto& { return o.linking.duplicate_distance_m; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "linking",
       "max_lost_s",
       [](auto& o) -> auto& { return o.linking.max_lost_s; },
       DoubleRange::AtLeast(0.0)));

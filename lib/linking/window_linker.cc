@@ -153,6 +153,10 @@ bool LinkerOptions::Validate(std::string* why) const {
       unshared_link_distance_m > max_link_distance_m) {
     return fail("unshared_link_distance_m must be finite and in [0, max_link_distance_m]");
   }
+  if (!std::isfinite(duplicate_distance_m) || duplicate_distance_m < 0.0 ||
+      duplicate_distance_m > max_link_distance_m) {
+    return fail("duplicate_distance_m must be finite and in [0, max_link_distance_m]");
+  }
   if (min_hits < 1) return fail("min_hits must be >= 1");
   if (strong_birth_cameras < 2) return fail("strong_birth_cameras must be >= 2");
   if (!std::isfinite(isolated_birth_distance_m) || isolated_birth_distance_m < 0.0) {
@@ -305,6 +309,11 @@ void WindowLinker::Absorb(LinkedTrack* track,
     }
     track->last_seen_frame = frame;
   }
+  MergeMembers(track, tracklet);
+  track->last_tracklet = tracklet;
+}
+
+void WindowLinker::MergeMembers(LinkedTrack* track, const core::Tracklet3D& tracklet) const {
   // Members: merge (both sorted), then forget those not seen for longer than a lost track lives.
   std::vector<TrackMember> merged;
   merged.reserve(track->members.size() + tracklet.members.size());
@@ -338,7 +347,6 @@ void WindowLinker::Absorb(LinkedTrack* track,
                    [&](const TrackMember& m) { return Seconds(m.last_frame, newest) > horizon_s; }),
                merged.end());
   track->members = std::move(merged);
-  track->last_tracklet = tracklet;
 }
 
 std::vector<EndedTrack> WindowLinker::EndStream() {
@@ -602,6 +610,27 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
   }
   for (std::size_t c = 0; c < num_tracklets; ++c) {
     if (track_of_col[c] >= 0) continue;
+    if (options_.duplicate_distance_m > 0.0) {
+      // The person of a linked tracklet seen a second time: the nearest such tracklet.
+      int of = -1;
+      double nearest = options_.duplicate_distance_m;
+      for (std::size_t o = 0; o < num_tracklets; ++o) {
+        if (track_of_col[o] < 0) continue;
+        const std::optional<double> d = MeanOverlapDistanceOfChecked(tracklets[o], tracklets[c]);
+        if (d && *d <= nearest) {
+          nearest = *d;
+          of = track_of_col[o];
+        }
+      }
+      if (of >= 0) {
+        LinkedTrack& person = tracks_[static_cast<std::size_t>(of)];
+        MergeMembers(&person, tracklets[c]);
+        result.track_of_tracklet[c] = person.id;
+        result.link_kind[c] = LinkKind::kDuplicate;
+        result.link_distance_m[c] = nearest;
+        continue;
+      }
+    }
     LinkedTrack track;
     track.id = next_id_++;
     track.first_window = window_id;

@@ -34,6 +34,13 @@ struct LinkerOptions {
   /// candidate unless nothing else explains it. 0 disables such links. Finite, in
   /// [0, max_link_distance_m].
   double unshared_link_distance_m = 0.25;
+  /// A tracklet left unmatched whose Eq. 8 distance to a tracklet of the same window linked
+  /// to an existing track is at most this (metres, over the frames both have) is that
+  /// person seen twice (a camera had two 2D tracks on them at once, so association had to put
+  /// them in two clusters): no id is born, its 2D tracks join that track's members, so the
+  /// window that continues them links to the person's id. 0 disables. Finite, in
+  /// [0, max_link_distance_m].
+  double duplicate_distance_m = 0.4;
   /// Matched windows (the birth window counts as the first) before a track is confirmed (and
   /// output); once confirmed it stays confirmed. A birth from strong evidence (see
   /// strong_birth_cameras) is confirmed at once. Must be >= 1.
@@ -141,6 +148,7 @@ enum class LinkKind {
   kOverlap,       ///< linked on the Eq. 8 distance over overlapping frames
   kGap,           ///< linked across a gap: a shared 2D track and the motion gate
   kReidentified,  ///< linked across a gap by motion alone, unambiguously
+  kDuplicate,     ///< unmatched, but a second tracklet of a linked track's person (not output)
 };
 
 /// A track that ended in a Link or EndStream call.
@@ -162,7 +170,8 @@ struct LinkResult {
   /// Parallel to `died`: why.
   std::vector<EndReason> died_reason;
   /// Parallel to the input: for kOverlap the Eq. 8 distance to the linked track (metres), for
-  /// kGap and kReidentified the squared Mahalanobis distance of the motion test, NaN for births.
+  /// kGap and kReidentified the squared Mahalanobis distance of the motion test, for kDuplicate
+  /// the Eq. 8 distance to the person's other tracklet, NaN for births.
   std::vector<double> link_distance_m;
   /// Parallel to the input: how each tracklet was linked.
   std::vector<LinkKind> link_kind;
@@ -207,12 +216,14 @@ std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
 ///  4. Re-identification: no overlap, no shared 2D track, a lost track, the gap <=
 ///     max_reid_gap_s, the motion distance <= reid_gate_chi2 and smaller by reid_margin_chi2
 ///     than every other candidate of the track and of the tracklet.
-/// Then matched tracks take their tracklet, unmatched tracklets are born (fresh ids, in input
-/// order), unmatched tracks are lost. A lost track ends (before a window is linked) when its
-/// last footprint is older than max_lost_s; when none of its 2D tracks is alive any more (the
-/// person left every camera's view or every camera lost them: 2D track ids are never reused,
-/// so only re-identification could link it) and re-identification is off or its gap exceeds
-/// max_reid_gap_s.
+/// Then matched tracks take their tracklet; an unmatched tracklet within duplicate_distance_m
+/// (Eq. 8) of a matched one is a duplicate of that person (its 2D tracks join the track's
+/// members, track_of_tracklet is that track's id, nothing is born), the other unmatched
+/// tracklets are born (fresh ids, in input order); unmatched tracks are lost. A lost track ends
+/// (before a window is linked) when its last footprint is older than max_lost_s; when none of its
+/// 2D tracks is alive any more (the person left every camera's view or every camera lost them: 2D
+/// track ids are never reused, so only re-identification could link it) and re-identification is
+/// off or its gap exceeds max_reid_gap_s.
 ///
 /// Single-owner, single-threaded; deterministic (ties go to the lowest track id, then the lowest
 /// tracklet index).
@@ -257,6 +268,7 @@ class WindowLinker {
   TrackState StateOf(const LinkedTrack& track) const;
   double Seconds(FrameIndex from, FrameIndex to) const;
   void Absorb(LinkedTrack* track, const core::Tracklet3D& tracklet, std::int64_t window_id);
+  void MergeMembers(LinkedTrack* track, const core::Tracklet3D& tracklet) const;
 
   LinkerOptions options_;
   LinkerContext context_;

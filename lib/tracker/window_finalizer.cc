@@ -77,7 +77,17 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
   // The longest gap bridged, in frames of this stream (0 when bridging is off).
   const auto max_bridge_frames =
       static_cast<FrameIndex>(std::floor(bridge_max_gap_s_ / result.seconds_per_frame + 1e-9));
-  for (std::size_t i = 0; i < result.persons.size(); ++i) {
+  // The persons of the window, a person's duplicates (LinkKind::kDuplicate) after everybody
+  // else: they only fill frames their person's linked tracklet does not have.
+  std::vector<std::size_t> order;
+  order.reserve(result.persons.size());
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t i = 0; i < result.persons.size(); ++i) {
+      if ((link.link_kind[i] == linking::LinkKind::kDuplicate) == (pass == 1)) order.push_back(i);
+    }
+  }
+  for (const std::size_t i : order) {
+    const bool duplicate = link.link_kind[i] == linking::LinkKind::kDuplicate;
     const core::Tracklet3D& person = result.persons[i];
     const TrackId3D id = link.track_of_tracklet[i];
     auto first = first_frame_of_track_.try_emplace(id, person.frames.front()).first;
@@ -92,6 +102,11 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
       if (frame < result.finalize_from || frame >= result.finalize_to) continue;
       auto pending = pending_.find(frame);
       if (pending == pending_.end() || pending->second.final) continue;
+      if (duplicate && std::any_of(pending->second.tracks.begin(),
+                                   pending->second.tracks.end(),
+                                   [&](const Track3D& t) { return t.id == id; })) {
+        continue;
+      }
       const auto& points = person.points[f];
       int valid = 0;
       for (const auto& p : points) valid += p ? 1 : 0;
@@ -123,7 +138,9 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
           gap->second.tracks.push_back(std::move(filled));  // cameras empty: no view saw it
         }
       }
-      last_output_[id] = LastOutput{frame, points};
+      if (last == last_output_.end() || frame > last->second.frame) {
+        last_output_[id] = LastOutput{frame, points};
+      }
       Track3D track = MakeTrack(id, points, frame, first->second, it->state);
       track.cameras = person.cameras;
       // All of a frame's tracks come from the one window that finalizes it: at most one per

@@ -60,6 +60,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.triangulation.max_views == b.triangulation.max_views);
   REQUIRE(a.linking.max_link_distance_m == b.linking.max_link_distance_m);
   REQUIRE(a.linking.unshared_link_distance_m == b.linking.unshared_link_distance_m);
+  REQUIRE(a.linking.duplicate_distance_m == b.linking.duplicate_distance_m);
   REQUIRE(a.linking.min_hits == b.linking.min_hits);
   REQUIRE(a.linking.strong_birth_cameras == b.linking.strong_birth_cameras);
   REQUIRE(a.linking.isolated_birth_distance_m == b.linking.isolated_birth_distance_m);
@@ -134,6 +135,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.triangulation.max_views = integer(0, 3) == 0 ? 0 : small(2, 16);
   o.linking.max_link_distance_m = 0.01 + 3.0 * unit(*rng);
   o.linking.unshared_link_distance_m = o.linking.max_link_distance_m * unit(*rng);
+  o.linking.duplicate_distance_m = o.linking.max_link_distance_m * unit(*rng);
   o.linking.min_hits = small(1, 5);
   o.linking.strong_birth_cameras = small(2, 10);
   o.linking.isolated_birth_distance_m = 4.0 * unit(*rng);
@@ -193,9 +195,9 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   CHECK(sizeof(tracking2d::SortOptions) == 16);
   CHECK(sizeof(association::AssociationOptions) == 32);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
-  CHECK(sizeof(linking::LinkerOptions) == 96);
+  CHECK(sizeof(linking::LinkerOptions) == 104);
   CHECK(sizeof(triangulation::RefinementOptions) == 128);
-  CHECK(sizeof(TrackerOptions) == 416);
+  CHECK(sizeof(TrackerOptions) == 424);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -249,6 +251,7 @@ TEST_CASE("Every key sets its own field", "[unit]") {
       "  linking:\n"
       "    max_link_distance_m: 0.65\n"
       "    unshared_link_distance_m: 0.125\n"
+      "    duplicate_distance_m: 0.375\n"
       "    min_hits: 3\n"
       "    strong_birth_cameras: 4\n"
       "    isolated_birth_distance_m: 1.25\n"
@@ -312,6 +315,7 @@ TEST_CASE("Every key sets its own field", "[unit]") {
   CHECK(o.triangulation.max_views == 0);
   CHECK(o.linking.max_link_distance_m == 0.65);
   CHECK(o.linking.unshared_link_distance_m == 0.125);
+  CHECK(o.linking.duplicate_distance_m == 0.375);
   CHECK(o.linking.min_hits == 3);
   CHECK(o.linking.strong_birth_cameras == 4);
   CHECK(o.linking.isolated_birth_distance_m == 1.25);
@@ -390,7 +394,7 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
-  CHECK(written.size() == 62);
+  CHECK(written.size() == 63);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);
@@ -742,12 +746,13 @@ TEST_CASE("Config ranges agree with Validate at every boundary", "[unit]") {
        "tracker.triangulation.max_views",
        false,
        [](O& o) { o.triangulation.max_views = -1; }},
-      {"linking: {max_link_distance_m: 1e-9, unshared_link_distance_m: 0}",
+      {"linking: {max_link_distance_m: 1e-9, unshared_link_distance_m: 0, duplicate_distance_m: 0}",
        "",
        true,
        [](O& o) {
          o.linking.max_link_distance_m = 1e-9;
          o.linking.unshared_link_distance_m = 0.0;
+         o.linking.duplicate_distance_m = 0.0;
        }},
       {"linking: {max_link_distance_m: 0}",
        "tracker.linking.max_link_distance_m",
@@ -771,6 +776,18 @@ TEST_CASE("Config ranges agree with Validate at every boundary", "[unit]") {
        "tracker.linking.unshared_link_distance_m",
        false,
        [](O& o) { o.linking.unshared_link_distance_m = 0.6; }},
+      {"linking: {duplicate_distance_m: 0.5}",
+       "",
+       true,
+       [](O& o) { o.linking.duplicate_distance_m = 0.5; }},
+      {"linking: {duplicate_distance_m: 0.6}",
+       "tracker.linking.duplicate_distance_m",
+       false,
+       [](O& o) { o.linking.duplicate_distance_m = 0.6; }},
+      {"linking: {duplicate_distance_m: -0.1}",
+       "tracker.linking.duplicate_distance_m",
+       false,
+       [](O& o) { o.linking.duplicate_distance_m = -0.1; }},
       {"linking: {strong_birth_cameras: 1}",
        "tracker.linking.strong_birth_cameras",
        false,

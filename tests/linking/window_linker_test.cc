@@ -262,6 +262,8 @@ TEST_CASE("LinkerOptions::Validate rejects out-of-range settings", "[unit]") {
   rejects([](LinkerOptions* o) { o->max_link_distance_m = 0.0; }, "max_link_distance_m");
   rejects([](LinkerOptions* o) { o->max_link_distance_m = INFINITY; }, "max_link_distance_m");
   rejects([](LinkerOptions* o) { o->unshared_link_distance_m = 0.6; }, "unshared_link_distance_m");
+  rejects([](LinkerOptions* o) { o->duplicate_distance_m = 0.6; }, "duplicate_distance_m");
+  rejects([](LinkerOptions* o) { o->duplicate_distance_m = -1.0; }, "duplicate_distance_m");
   rejects([](LinkerOptions* o) { o->min_hits = 0; }, "min_hits");
   rejects([](LinkerOptions* o) { o->strong_birth_cameras = 1; }, "strong_birth_cameras");
   rejects([](LinkerOptions* o) { o->isolated_birth_distance_m = -1.0; },
@@ -329,8 +331,56 @@ TEST_CASE("Shared 2D tracks outweigh Eq. 8: a track keeps the tracklet that cont
   const LinkResult r = LinkWindow(&linker, 1, {fragment, continues});
   CHECK(r.track_of_tracklet[1] == 1);
   CHECK(r.link_kind[1] == LinkKind::kOverlap);
-  CHECK(r.track_of_tracklet[0] == 2);
-  CHECK(r.link_kind[0] == LinkKind::kBirth);
+  // The fragment, 0.2 m from the tracklet track 1 took, is that person seen twice.
+  CHECK(r.track_of_tracklet[0] == 1);
+  CHECK(r.link_kind[0] == LinkKind::kDuplicate);
+  CHECK(r.link_distance_m[0] == Approx(0.2));
+  CHECK(r.born.empty());
+  // Without duplicate detection it would have been born.
+  LinkerOptions no_duplicates;
+  no_duplicates.duplicate_distance_m = 0.0;
+  WindowLinker plain(no_duplicates);
+  LinkWindow(&plain, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+  const LinkResult p = LinkWindow(&plain, 1, {fragment, continues});
+  CHECK(p.track_of_tracklet[1] == 1);
+  CHECK(p.track_of_tracklet[0] == 2);
+  CHECK(p.link_kind[0] == LinkKind::kBirth);
+}
+
+TEST_CASE("A person seen twice keeps one id: the duplicate's 2D tracks join the track", "[unit]") {
+  WindowLinker linker;
+  LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+  // Window 1: the track continues in {1, 2}; cameras 0 and 1 also have a second pair of 2D
+  // tracks {5, 6} on the same person, 0.3 m off (a cannot-link pair, so a second cluster).
+  const LinkResult r1 = LinkWindow(&linker,
+                                   1,
+                                   {ConstantTracklet(20, 49, Vec3(0.0, 0.0, 1.0), {1, 2}),
+                                    ConstantTracklet(35, 49, Vec3(0.3, 0.0, 1.0), {5, 6})});
+  CHECK(r1.link_kind[1] == LinkKind::kDuplicate);
+  CHECK(r1.track_of_tracklet[1] == 1);
+  const LinkedTrack* track = FindTrack(linker, 1);
+  REQUIRE(track != nullptr);
+  CHECK(track->members.size() == 4);
+  // Window 2: only the duplicate's 2D tracks continue: the person keeps id 1.
+  const LinkResult r2 =
+      LinkWindow(&linker, 2, {ConstantTracklet(40, 69, Vec3(0.3, 0.0, 1.0), {5, 6})});
+  CHECK(r2.track_of_tracklet[0] == 1);
+  CHECK(r2.link_kind[0] == LinkKind::kOverlap);
+  // A second person 0.45 m away (beyond the 0.4 m default) is born.
+  const LinkResult r3 = LinkWindow(&linker,
+                                   3,
+                                   {ConstantTracklet(60, 89, Vec3(0.3, 0.0, 1.0), {5, 6}),
+                                    ConstantTracklet(60, 89, Vec3(0.75, 0.0, 1.0), {8, 9})});
+  CHECK(r3.track_of_tracklet[0] == 1);
+  CHECK(r3.link_kind[1] == LinkKind::kBirth);
+  CHECK(r3.track_of_tracklet[1] == 2);
+  // Two unmatched tracklets are never duplicates of each other: both are born.
+  WindowLinker fresh;
+  const LinkResult b = LinkWindow(&fresh,
+                                  0,
+                                  {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2}),
+                                   ConstantTracklet(0, 29, Vec3(0.1, 0.0, 1.0), {3, 4})});
+  CHECK(b.born.size() == 2);
 }
 
 TEST_CASE("Overlap without a shared 2D track: a new candidate unless nobody else explains it",
