@@ -1,7 +1,8 @@
 # Sourced by the tests/python scripts: ensure_venv VENV_DIR PYTHON WHEEL makes VENV_DIR a
 # virtualenv with PyPI's lcm (pinned) and the mvtrack-lcmtypes wheel of this build, created once
-# and cached in the build tree (later runs only reinstall the wheel, offline). When PyPI cannot
-# be reached: fail under CI=true, otherwise print SKIPPED and exit 77 (CTest's skip code).
+# and cached in the build tree (later runs reinstall the wheel only when it changed, offline).
+# When PyPI cannot be reached: fail under CI=true, otherwise print SKIPPED and exit 77 (CTest's
+# skip code).
 
 # The PyPI lcm release the examples are tested with (../shared/TOOLCHAIN.md).
 MVTRACK_PYPI_LCM="lcm==1.5.3"
@@ -29,7 +30,12 @@ ensure_venv() {
       exit 77
     fi
   fi
-  "$venv/bin/pip" install --disable-pip-version-check --no-index --no-deps --force-reinstall \
-    --quiet "$wheel" >>"$venv.log" 2>&1 || { cat "$venv.log" >&2; fail "pip install $wheel failed"; }
+  # The wheel only when it changed: reinstalling it while a parallel test imports the package
+  # makes that test see a half-installed package.
+  if ! cmp -s "$wheel" "$venv/installed.whl"; then
+    "$venv/bin/pip" install --disable-pip-version-check --no-index --no-deps --force-reinstall \
+      --quiet "$wheel" >>"$venv.log" 2>&1 || { cat "$venv.log" >&2; fail "pip install $wheel failed"; }
+    cp "$wheel" "$venv/installed.whl"
+  fi
   flock -u 9
 }
