@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <numeric>
 #include <utility>
 
 #include "core/check.h"
@@ -79,13 +80,11 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
       static_cast<FrameIndex>(std::floor(bridge_max_gap_s_ / result.seconds_per_frame + 1e-9));
   // The persons of the window, a person's duplicates (LinkKind::kDuplicate) after everybody
   // else: they only fill frames their person's linked tracklet does not have.
-  std::vector<std::size_t> order;
-  order.reserve(result.persons.size());
-  for (int pass = 0; pass < 2; ++pass) {
-    for (std::size_t i = 0; i < result.persons.size(); ++i) {
-      if ((link.link_kind[i] == linking::LinkKind::kDuplicate) == (pass == 1)) order.push_back(i);
-    }
-  }
+  std::vector<std::size_t> order(result.persons.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_partition(order.begin(), order.end(), [&](std::size_t i) {
+    return link.link_kind[i] != linking::LinkKind::kDuplicate;
+  });
   for (const std::size_t i : order) {
     const bool duplicate = link.link_kind[i] == linking::LinkKind::kDuplicate;
     const core::Tracklet3D& person = result.persons[i];

@@ -219,17 +219,16 @@ done
 C=$WORK/mvtrackd/control
 stub=$WORK/stub
 mkdir -p "$stub/bin"
-for tool in deb-systemd-helper deb-systemd-invoke; do
-  cat >"$stub/bin/$tool" <<EOF
+cat >"$stub/bin/deb-systemd-helper" <<'EOF'
 #!/bin/sh
-echo "$tool \$*" >>"\$STUB_LOG"
-case "\$1" in
-  debian-installed) [ -n "\$STUB_INSTALLED" ] ;;
-  --quiet) [ -n "\$STUB_ENABLED" ] ;;
+echo "$(basename "$0") $*" >>"$STUB_LOG"
+case "$1" in
+  debian-installed) [ -n "$STUB_INSTALLED" ] ;;
+  --quiet) [ -n "$STUB_ENABLED" ] ;;
   *) exit 0 ;;
 esac
 EOF
-done
+cp "$stub/bin/deb-systemd-helper" "$stub/bin/deb-systemd-invoke"  # logs under its own name
 chmod +x "$stub/bin/"*
 # run_script NAME INSTALLED ENABLED ARGS...: the script's deb-systemd-* calls that change
 # something, one per line (the queries debian-installed and was-enabled answer INSTALLED and
