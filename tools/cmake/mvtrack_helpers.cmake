@@ -25,7 +25,11 @@ if(MVTRACK_SANITIZE)
   target_compile_options(mvtrack_sanitizers INTERFACE
     -fsanitize=${_mvtrack_san} -fno-omit-frame-pointer -fno-sanitize-recover=all
     $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)
-  target_link_options(mvtrack_sanitizers INTERFACE -fsanitize=${_mvtrack_san})
+  # Debian's gcc links with --as-needed only without -fsanitize (its specs:
+  # %{!fsanitize=*:--as-needed}); set it here so sanitizer binaries need the same shared libraries
+  # as the shipped ones (package/deb checks mvtrackd's Depends: no OpenCV). The sanitizer runtimes
+  # stay: gcc links them inside --push-state --no-as-needed.
+  target_link_options(mvtrack_sanitizers INTERFACE -fsanitize=${_mvtrack_san} LINKER:--as-needed)
 endif()
 
 # mvtrack_add_library(NAME <module> SRCS ... DEPS ... [PRIVATE_DEPS ...])
