@@ -450,6 +450,18 @@ std::vector<Field> MakeFields() {
       DoubleRange::GreaterThan(0.0)));
   f.push_back(IntField(
       "refinement",
+      "smooth_half_window",
+      [](auto& o) -> auto& { return o.refinement.smooth_half_window; },
+      0,
+      kIntMax));
+  f.push_back(IntField(
+      "refinement",
+      "smooth_max_views",
+      [](auto& o) -> auto& { return o.refinement.smooth_max_views; },
+      0,
+      kIntMax));
+  f.push_back(IntField(
+      "refinement",
       "max_fill_gap",
       [](auto& o) -> auto& { return o.refinement.max_fill_gap; },
       0,

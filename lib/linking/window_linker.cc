@@ -51,38 +51,60 @@ std::optional<double> FrameDistance(const PointsAtFrame& a, const PointsAtFrame&
   return sum / static_cast<double>(count);
 }
 
-// MeanOverlapDistance of two tracklets already checked by CheckWellFormed (Link checks every
-// tracklet once when it arrives, so its pairwise loop skips the re-checks).
-std::optional<double> MeanOverlapDistanceOfChecked(const core::Tracklet3D& a,
-                                                   const core::Tracklet3D& b) {
-  // Eq. 8: D_ij = 1/|Psi_i ∩ Psi_j| * sum over the common frames; the frames are sorted, so a
-  // merge walk finds Psi_i ∩ Psi_j. Frames without a common valid point carry no measurement
-  // and are left out of both the sum and the count.
-  double sum = 0.0;
-  int frames = 0;
-  std::size_t i = 0;
-  std::size_t j = 0;
+// Calls f(d) with FrameDistance d of every common frame of `a` and `b` where it is defined
+// (tracklets checked by CheckWellFormed); frames are sorted, so a merge walk finds the common
+// ones. Returns false when the frame ranges are disjoint (no call).
+template <typename F>
+bool ForEachCommonFrameDistance(const core::Tracklet3D& a, const core::Tracklet3D& b, F&& f) {
   // Disjoint frame ranges have no overlap at all (the common case for lost tracks).
   if (a.frames.empty() || b.frames.empty() || a.frames.back() < b.frames.front() ||
       b.frames.back() < a.frames.front()) {
-    return std::nullopt;
+    return false;
   }
+  std::size_t i = 0;
+  std::size_t j = 0;
   while (i < a.frames.size() && j < b.frames.size()) {
     if (a.frames[i] < b.frames[j]) {
       ++i;
     } else if (b.frames[j] < a.frames[i]) {
       ++j;
     } else {
-      if (const auto d = FrameDistance(a.points[i], b.points[j])) {
-        sum += *d;
-        ++frames;
-      }
+      if (const auto d = FrameDistance(a.points[i], b.points[j])) f(*d);
       ++i;
       ++j;
     }
   }
+  return true;
+}
+
+// MeanOverlapDistance of two tracklets already checked by CheckWellFormed (Link checks every
+// tracklet once when it arrives, so its pairwise loop skips the re-checks).
+std::optional<double> MeanOverlapDistanceOfChecked(const core::Tracklet3D& a,
+                                                   const core::Tracklet3D& b) {
+  // Eq. 8: D_ij = 1/|Psi_i ∩ Psi_j| * sum over the common frames. Frames without a common
+  // valid point carry no measurement and are left out of both the sum and the count.
+  double sum = 0.0;
+  int frames = 0;
+  ForEachCommonFrameDistance(a, b, [&](double d) {
+    sum += d;
+    ++frames;
+  });
   if (frames == 0) return std::nullopt;
   return sum / static_cast<double>(frames);
+}
+
+// The median over the common frames of FrameDistance (of an even count: the mean of the two
+// middle values), for checked tracklets: like Eq. 8's mean, but a few frames where one of two
+// coinciding tracklets is triangulated far off (a wrong view in its cluster) do not move it.
+// nullopt without a common frame.
+std::optional<double> MedianOverlapDistanceOfChecked(const core::Tracklet3D& a,
+                                                     const core::Tracklet3D& b) {
+  std::vector<double> d;
+  ForEachCommonFrameDistance(a, b, [&](double x) { d.push_back(x); });
+  if (d.empty()) return std::nullopt;
+  std::sort(d.begin(), d.end());
+  const std::size_t mid = d.size() / 2;
+  return d.size() % 2 == 1 ? d[mid] : 0.5 * (d[mid - 1] + d[mid]);
 }
 
 // Adds `windows` missed windows to `track`, saturating at INT_MAX.
@@ -616,7 +638,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
       double nearest = options_.duplicate_distance_m;
       for (std::size_t o = 0; o < num_tracklets; ++o) {
         if (track_of_col[o] < 0) continue;
-        const std::optional<double> d = MeanOverlapDistanceOfChecked(tracklets[o], tracklets[c]);
+        const std::optional<double> d = MedianOverlapDistanceOfChecked(tracklets[o], tracklets[c]);
         if (d && *d <= nearest) {
           nearest = *d;
           of = track_of_col[o];

@@ -34,8 +34,10 @@ struct LinkerOptions {
   /// candidate unless nothing else explains it. 0 disables such links. Finite, in
   /// [0, max_link_distance_m].
   double unshared_link_distance_m = 0.25;
-  /// A tracklet left unmatched whose Eq. 8 distance to a tracklet of the same window linked
-  /// to an existing track is at most this (metres, over the frames both have) is that
+  /// A tracklet left unmatched whose distance to a tracklet of the same window linked to an
+  /// existing track is at most this (metres: the median over the frames both have of Eq. 8's
+  /// per-frame distance, so that the few frames where one of them is triangulated from a
+  /// wrong view do not hide the coincidence) is that
   /// person seen twice (a camera had two 2D tracks on them at once, so association had to put
   /// them in two clusters): no id is born, its 2D tracks join that track's members, so the
   /// window that continues them links to the person's id. 0 disables. Finite, in

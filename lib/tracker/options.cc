@@ -87,6 +87,9 @@ TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_fra
   o.sort = ScaledSort(options.sort, f);
   if (options.triangulation.phi > 0) o.triangulation.phi = Scaled(options.triangulation.phi, 1, f);
   o.refinement.box_min_duplicate_frames = Scaled(options.refinement.box_min_duplicate_frames, 1, f);
+  if (options.refinement.smooth_half_window > 0) {
+    o.refinement.smooth_half_window = Scaled(options.refinement.smooth_half_window, 1, f);
+  }
   return o;
 }
 

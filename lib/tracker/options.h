@@ -45,13 +45,13 @@ struct TrackerOptions {
   int window_size = 30;  ///< ν, frames at reference_fps or faster (AtFrameRate)
   int window_step = 20;  ///< δ, frames (1 <= δ <= ν), likewise
   /// The frame rate the frame-count options are set for: window_size, window_step,
-  /// min_tracklet_length, sort.max_age, sort.min_hits, triangulation.phi and
-  /// refinement.box_min_duplicate_frames count frames of a stream at this rate or faster, and
-  /// sort.iou_threshold holds at this rate. A slower stream (its rate measured from the capture
-  /// times) scales them by its rate / reference_fps (counts rounded up; AtFrameRate), so each
-  /// keeps its duration (ν = 30 frames = 1.2 s, 3 frames at 2 fps) and SORT accepts the longer
-  /// steps between frames. 25: the paper's defaults were set on 25 fps data (Shelf, Campus),
-  /// and 30 fps streams keep them unchanged. 0: counts are frames at any rate.
+  /// min_tracklet_length, sort.max_age, sort.min_hits, triangulation.phi,
+  /// refinement.box_min_duplicate_frames and refinement.smooth_half_window count frames of a stream
+  /// at this rate or faster, and sort.iou_threshold holds at this rate. A slower stream (its rate
+  /// measured from the capture times) scales them by its rate / reference_fps (counts rounded up;
+  /// AtFrameRate), so each keeps its duration (ν = 30 frames = 1.2 s, 3 frames at 2 fps) and SORT
+  /// accepts the longer steps between frames. 25: the paper's defaults were set on 25 fps data
+  /// (Shelf, Campus), and 30 fps streams keep them unchanged. 0: counts are frames at any rate.
   double reference_fps = 25.0;
   /// Box mode: which point of the box is associated and triangulated.
   BoxPoint box_point = BoxPoint::kCenterEnds;

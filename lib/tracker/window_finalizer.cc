@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <numeric>
+#include <optional>
 #include <utility>
 
 #include "core/check.h"
@@ -11,9 +12,9 @@
 namespace mvtrack::tracker {
 namespace {
 
-// Gaps of tracks younger than this (seconds since their first output frame, at the gap) are not
-// bridged: short-lived tracks are mostly duplicates or ghosts, whose gaps are their absence
-// (docs/ACCURACY.md "Bridging short gaps": 1.0 s loses the Campus hard level's gain, 0 adds
+// Gaps of tracks younger than this (seconds from their first frame to the frame that ends the
+// gap) are not bridged: short-lived tracks are mostly duplicates or ghosts, whose gaps are their
+// absence (docs/ACCURACY.md "Bridging short gaps": 1.0 s loses the Campus hard level's gain, 0 adds
 // false positives on the 16-camera store).
 constexpr double kBridgeMinAgeS = 0.5;
 
@@ -85,6 +86,17 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
   std::stable_partition(order.begin(), order.end(), [&](std::size_t i) {
     return link.link_kind[i] != linking::LinkKind::kDuplicate;
   });
+  // Each output track's frames of this window (from its tracklet and its duplicates), for
+  // bridging once all are placed.
+  struct Placed {
+    FrameIndex frame = 0;
+    const std::vector<std::optional<Vec3>>* points = nullptr;
+  };
+  struct TrackFrames {
+    linking::TrackState state = linking::TrackState::kTentative;
+    std::vector<Placed> frames;
+  };
+  std::map<TrackId3D, TrackFrames> placed;
   for (const std::size_t i : order) {
     const bool duplicate = link.link_kind[i] == linking::LinkKind::kDuplicate;
     const core::Tracklet3D& person = result.persons[i];
@@ -96,6 +108,8 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
           return t.id < wanted;
         });
     if (it == alive.end() || it->id != id || it->state == linking::TrackState::kTentative) continue;
+    TrackFrames& mine = placed[id];
+    mine.state = it->state;
     for (std::size_t f = 0; f < person.frames.size(); ++f) {
       const FrameIndex frame = person.frames[f];
       if (frame < result.finalize_from || frame >= result.finalize_to) continue;
@@ -110,43 +124,58 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
       int valid = 0;
       for (const auto& p : points) valid += p ? 1 : 0;
       if (valid == 0) continue;
-      // A short gap since this track's last output frame (no camera pair could place the
-      // person, e.g. a camera dark and two people along the other pair's epipolar line):
-      // bridged by interpolating each point between the frames on both sides.
-      const auto last = last_output_.find(id);
-      if (last != last_output_.end() && frame - last->second.frame > 1 &&
-          frame - last->second.frame - 1 <= max_bridge_frames &&
-          static_cast<double>(last->second.frame - first->second) * result.seconds_per_frame >=
-              kBridgeMinAgeS) {
-        const LastOutput& before = last->second;
-        for (FrameIndex g = std::max(before.frame + 1, result.finalize_from); g < frame; ++g) {
-          auto gap = pending_.find(g);
-          if (gap == pending_.end() || gap->second.final) continue;
-          const double t =
-              static_cast<double>(g - before.frame) / static_cast<double>(frame - before.frame);
-          std::vector<std::optional<Vec3>> bridged(points.size());
-          for (std::size_t k = 0; k < points.size() && k < before.points.size(); ++k) {
-            if (points[k] && before.points[k]) {
-              bridged[k] = (1.0 - t) * *before.points[k] + t * *points[k];
-            }
-          }
-          bool any = false;
-          for (const auto& p : bridged) any = any || p.has_value();
-          if (!any) continue;
-          Track3D filled = MakeTrack(id, bridged, g, first->second, it->state);
-          gap->second.tracks.push_back(std::move(filled));  // cameras empty: no view saw it
-        }
-      }
-      if (last == last_output_.end() || frame > last->second.frame) {
-        last_output_[id] = LastOutput{frame, points};
-      }
       Track3D track = MakeTrack(id, points, frame, first->second, it->state);
       track.cameras = person.cameras;
       // All of a frame's tracks come from the one window that finalizes it: at most one per
       // person of that window.
       if (pending->second.tracks.empty()) pending->second.tracks.reserve(result.persons.size());
       pending->second.tracks.push_back(std::move(track));
+      mine.frames.push_back(Placed{frame, &points});
     }
+  }
+  // Short gaps of a track (no camera pair could place the person, e.g. a camera dark and two
+  // people along the other pair's epipolar line), between its last output frame before this
+  // window and its frames here, or between its frames here: bridged by interpolating each point
+  // between the frames on both sides, once the track is old enough at the gap's far side.
+  for (auto& [id, mine] : placed) {
+    if (mine.frames.empty()) continue;
+    std::sort(mine.frames.begin(), mine.frames.end(), [](const Placed& a, const Placed& b) {
+      return a.frame < b.frame;
+    });
+    const FrameIndex first = first_frame_of_track_.at(id);
+    const auto last = last_output_.find(id);
+    std::optional<Placed> before;
+    if (last != last_output_.end() && last->second.frame < mine.frames.front().frame) {
+      before = Placed{last->second.frame, &last->second.points};
+    }
+    for (const Placed& after : mine.frames) {
+      if (before && after.frame - before->frame > 1 &&
+          after.frame - before->frame - 1 <= max_bridge_frames &&
+          static_cast<double>(after.frame - first) * result.seconds_per_frame >= kBridgeMinAgeS) {
+        const auto& p0 = *before->points;
+        const auto& p1 = *after.points;
+        for (FrameIndex g = std::max(before->frame + 1, result.finalize_from); g < after.frame;
+             ++g) {
+          auto gap = pending_.find(g);
+          if (gap == pending_.end() || gap->second.final) continue;
+          const double t = static_cast<double>(g - before->frame) /
+                           static_cast<double>(after.frame - before->frame);
+          std::vector<std::optional<Vec3>> bridged(p1.size());
+          bool any = false;
+          for (std::size_t k = 0; k < p1.size() && k < p0.size(); ++k) {
+            if (p1[k] && p0[k]) {
+              bridged[k] = (1.0 - t) * *p0[k] + t * *p1[k];
+              any = true;
+            }
+          }
+          if (!any) continue;
+          // cameras empty: no view saw it
+          gap->second.tracks.push_back(MakeTrack(id, bridged, g, first, mine.state));
+        }
+      }
+      before = after;
+    }
+    last_output_[id] = LastOutput{mine.frames.back().frame, *mine.frames.back().points};
   }
   for (TrackId3D id : link.died) {
     first_frame_of_track_.erase(id);

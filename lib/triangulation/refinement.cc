@@ -108,6 +108,8 @@ bool RefinementOptions::Validate(std::string* why) const {
   if (!(std::isfinite(outlier_distance_m) && outlier_distance_m > 0.0)) {
     return fail("outlier_distance_m must be finite and > 0");
   }
+  if (smooth_half_window < 0) return fail("smooth_half_window must be >= 0 frames");
+  if (smooth_max_views < 0) return fail("smooth_max_views must be >= 0");
   if (max_fill_gap < 0) return fail("max_fill_gap must be >= 0 frames");
   if (fill_neighbors < 1) return fail("fill_neighbors must be >= 1");
   if (min_points_to_fill < 1) return fail("min_points_to_fill must be >= 1");
@@ -566,6 +568,102 @@ CompletionStats CompleteMissingPoints(core::Tracklet3D* tracklet,
     }
   }
   return stats;
+}
+
+std::vector<std::vector<int>> ObservingViews(const std::vector<core::Tracklet2D>& tracklets,
+                                             const std::vector<int>& cluster,
+                                             const core::Tracklet3D& person,
+                                             double min_confidence) {
+  const std::size_t num_points = person.points.empty() ? 0 : person.points.front().size();
+  std::vector<std::vector<int>> views(person.frames.size(), std::vector<int>(num_points, 0));
+  // Tracklets of one camera (fragments of one person) count as one view.
+  std::vector<std::pair<CameraId, int>> members;
+  for (const int i : cluster) {
+    MVTRACK_CHECK(i >= 0 && static_cast<std::size_t>(i) < tracklets.size());
+    members.emplace_back(tracklets[static_cast<std::size_t>(i)].camera_id, i);
+  }
+  std::sort(members.begin(), members.end());
+  std::vector<char> seen(num_points);
+  for (std::size_t f = 0; f < person.frames.size(); ++f) {
+    for (std::size_t m = 0; m < members.size();) {
+      std::fill(seen.begin(), seen.end(), 0);
+      const CameraId camera = members[m].first;
+      for (; m < members.size() && members[m].first == camera; ++m) {
+        const core::Tracklet2D& t = tracklets[static_cast<std::size_t>(members[m].second)];
+        const int at = t.IndexOf(person.frames[f]);
+        if (at < 0) continue;
+        const std::vector<double>& c = t.observations[static_cast<std::size_t>(at)].confidence;
+        for (std::size_t k = 0; k < num_points && k < c.size(); ++k) {
+          if (c[k] > 0.0 && c[k] >= min_confidence) seen[k] = 1;
+        }
+      }
+      for (std::size_t k = 0; k < num_points; ++k) views[f][k] += seen[k];
+    }
+  }
+  return views;
+}
+
+std::int64_t SmoothTemporally(core::Tracklet3D* tracklet,
+                              const RefinementOptions& options,
+                              const std::vector<std::vector<int>>* views) {
+  MVTRACK_CHECK(tracklet != nullptr);
+  std::string why;
+  MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
+  MVTRACK_CHECK_MSG(tracklet->frames.size() == tracklet->points.size(),
+                    "tracklet frames and points differ in length");
+  const std::size_t num_frames = tracklet->frames.size();
+  const FrameIndex h = options.smooth_half_window;
+  if (h == 0 || num_frames < 3) return 0;
+  const std::size_t num_points = tracklet->points.front().size();
+  for (const Row& row : tracklet->points) {
+    MVTRACK_CHECK_MSG(row.size() == num_points, "every frame needs the same number of points");
+  }
+  if (views != nullptr) {
+    MVTRACK_CHECK_MSG(views->size() == num_frames, "one view count row per frame");
+    for (const std::vector<int>& row : *views) {
+      MVTRACK_CHECK_MSG(row.size() == num_points, "one view count per point");
+    }
+  }
+  const auto& frames = tracklet->frames;
+  const std::vector<Row> original = tracklet->points;
+  const double reach = static_cast<double>(h + 1);
+  std::int64_t changed = 0;
+  for (std::size_t f = 0; f < num_frames; ++f) {
+    std::size_t lo = f;
+    while (lo > 0 && frames[f] - frames[lo - 1] <= h) --lo;
+    for (std::size_t k = 0; k < num_points; ++k) {
+      if (!original[f][k]) continue;
+      if (views != nullptr && (*views)[f][k] > options.smooth_max_views) continue;
+      // Weighted least squares of p(x) = a + b x, x = frame offset; the fit's value at x = 0 is
+      // a = (S2 T0 - S1 T1) / (S0 S2 - S1^2).
+      double s0 = 0.0;
+      double s1 = 0.0;
+      double s2 = 0.0;
+      Vec3 t0 = Vec3::Zero();
+      Vec3 t1 = Vec3::Zero();
+      int samples = 0;
+      for (std::size_t r = lo; r < num_frames && frames[r] - frames[f] <= h; ++r) {
+        const std::optional<Vec3>& p = original[r][k];
+        if (!p) continue;
+        const auto x = static_cast<double>(frames[r] - frames[f]);
+        const double u = std::abs(x) / reach;
+        const double w = std::pow(1.0 - u * u * u, 3);
+        s0 += w;
+        s1 += w * x;
+        s2 += w * x * x;
+        t0 += w * *p;
+        t1 += (w * x) * *p;
+        ++samples;
+      }
+      if (samples < 3) continue;
+      const double det = s0 * s2 - s1 * s1;
+      if (!(det > 1e-12 * s0 * s0)) continue;
+      const Vec3 value = (s2 * t0 - s1 * t1) / det;
+      if (value != *original[f][k]) ++changed;
+      tracklet->points[f][k] = value;
+    }
+  }
+  return changed;
 }
 
 }  // namespace mvtrack::triangulation

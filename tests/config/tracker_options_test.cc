@@ -87,6 +87,8 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.refinement.min_person_point_fraction == b.refinement.min_person_point_fraction);
   REQUIRE(a.refinement.outlier_half_window == b.refinement.outlier_half_window);
   REQUIRE(a.refinement.outlier_distance_m == b.refinement.outlier_distance_m);
+  REQUIRE(a.refinement.smooth_half_window == b.refinement.smooth_half_window);
+  REQUIRE(a.refinement.smooth_max_views == b.refinement.smooth_max_views);
   REQUIRE(a.refinement.max_fill_gap == b.refinement.max_fill_gap);
   REQUIRE(a.refinement.fill_neighbors == b.refinement.fill_neighbors);
   REQUIRE(a.refinement.min_points_to_fill == b.refinement.min_points_to_fill);
@@ -162,6 +164,8 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.refinement.min_person_point_fraction = unit(*rng);
   o.refinement.outlier_half_window = small(0, 10);
   o.refinement.outlier_distance_m = 0.01 + unit(*rng);
+  o.refinement.smooth_half_window = small(0, 10);
+  o.refinement.smooth_max_views = small(0, 8);
   o.refinement.max_fill_gap = small(0, 30);
   o.refinement.fill_neighbors = small(1, 8);
   o.refinement.min_points_to_fill = small(1, 10);
@@ -196,8 +200,8 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   CHECK(sizeof(association::AssociationOptions) == 32);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
   CHECK(sizeof(linking::LinkerOptions) == 104);
-  CHECK(sizeof(triangulation::RefinementOptions) == 128);
-  CHECK(sizeof(TrackerOptions) == 424);
+  CHECK(sizeof(triangulation::RefinementOptions) == 136);
+  CHECK(sizeof(TrackerOptions) == 432);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -279,6 +283,8 @@ TEST_CASE("Every key sets its own field", "[unit]") {
       "    min_person_point_fraction: 0.375\n"
       "    outlier_half_window: 5\n"
       "    outlier_distance_m: 0.3\n"
+      "    smooth_half_window: 4\n"
+      "    smooth_max_views: 3\n"
       "    max_fill_gap: 11\n"
       "    fill_neighbors: 3\n"
       "    min_points_to_fill: 6\n";
@@ -342,6 +348,8 @@ TEST_CASE("Every key sets its own field", "[unit]") {
   CHECK(o.refinement.min_person_point_fraction == 0.375);
   CHECK(o.refinement.outlier_half_window == 5);
   CHECK(o.refinement.outlier_distance_m == 0.3);
+  CHECK(o.refinement.smooth_half_window == 4);
+  CHECK(o.refinement.smooth_max_views == 3);
   CHECK(o.refinement.max_fill_gap == 11);
   CHECK(o.refinement.fill_neighbors == 3);
   CHECK(o.refinement.min_points_to_fill == 6);
@@ -394,7 +402,7 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
-  CHECK(written.size() == 63);
+  CHECK(written.size() == 65);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

@@ -383,6 +383,31 @@ TEST_CASE("A person seen twice keeps one id: the duplicate's 2D tracks join the 
   CHECK(b.born.size() == 2);
 }
 
+TEST_CASE("A duplicate is judged on the median over common frames, not the mean", "[unit]") {
+  // Window 1: the track continues in {1, 2}; a second tracklet {5, 6} on the same person,
+  // 0.1 m off in 12 of its 15 frames and 2.5 m off in 3 (triangulated from a wrong view):
+  // mean 0.58 m (beyond the 0.4 m gate), median 0.1 m -> the person seen twice.
+  WindowLinker linker;
+  LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+  core::Tracklet3D twice = ConstantTracklet(35, 49, Vec3(0.1, 0.0, 1.0), {5, 6});
+  for (std::size_t f = 12; f < 15; ++f) twice.points[f][0] = Vec3(2.6, 0.0, 1.0);
+  const core::Tracklet3D track = ConstantTracklet(20, 49, Vec3(0.0, 0.0, 1.0), {1, 2});
+  REQUIRE(MeanOverlapDistance(track, twice).value() > 0.4);
+  const LinkResult r = LinkWindow(&linker, 1, {track, twice});
+  CHECK(r.link_kind[1] == LinkKind::kDuplicate);
+  CHECK(r.track_of_tracklet[1] == 1);
+  CHECK(r.link_distance_m[1] == Approx(0.1));
+  // A second person 0.45 m away who comes within 0.05 m in 3 of 15 frames (a crossing) has
+  // median 0.45 m: born.
+  WindowLinker other;
+  LinkWindow(&other, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+  core::Tracklet3D passer = ConstantTracklet(35, 49, Vec3(0.45, 0.0, 1.0), {5, 6});
+  for (std::size_t f = 6; f < 9; ++f) passer.points[f][0] = Vec3(0.05, 0.0, 1.0);
+  const LinkResult b = LinkWindow(&other, 1, {track, passer});
+  CHECK(b.link_kind[1] == LinkKind::kBirth);
+  CHECK(b.track_of_tracklet[1] == 2);
+}
+
 TEST_CASE("Overlap without a shared 2D track: a new candidate unless nobody else explains it",
           "[unit]") {
   // Window 0: track 1 at the origin with 2D tracks {1, 2}.

@@ -20,6 +20,7 @@ TEST_CASE("AtFrameRate: unchanged at the reference rate and faster", "[unit]") {
     CHECK(o.sort.iou_threshold == 0.5);
     CHECK(o.triangulation.phi == 7);
     CHECK(o.refinement.box_min_duplicate_frames == 3);
+    CHECK(o.refinement.smooth_half_window == 5);
   }
   TrackerOptions off = base;
   off.reference_fps = 0.0;
@@ -40,6 +41,7 @@ TEST_CASE("AtFrameRate: a slower stream keeps the durations, counts rounded up",
   CHECK(o.sort.min_hits == 1);
   CHECK(o.min_tracklet_length == 1);
   CHECK(o.refinement.box_min_duplicate_frames == 1);
+  CHECK(o.refinement.smooth_half_window == 1);  // ceil(0.4)
   CHECK(o.sort.iou_threshold == Approx(0.04));
   std::string why;
   CHECK(o.Validate(&why));
@@ -48,6 +50,7 @@ TEST_CASE("AtFrameRate: a slower stream keeps the durations, counts rounded up",
   CHECK(h.window_size == 15);
   CHECK(h.window_step == 10);
   CHECK(h.triangulation.phi == 4);
+  CHECK(h.refinement.smooth_half_window == 3);  // ceil(2.5)
   CHECK(SortOptionsAtFrameRate(base, 0.08).max_age == 3);
   CHECK(SortOptionsAtFrameRate(base, 0.08).iou_threshold == Approx(0.25));
   // Minimums: nu >= 2, delta <= nu, phi 0 and max_age 0 stay 0.

@@ -373,5 +373,83 @@ TEST_CASE("a PersonLoop spreading persons over workspaces gives the same window 
   }
 }
 
+// A box-mode person of one window, at `x` (metres) in the frames given, supported by the 2D
+// tracks `tracks` (one per camera, cameras 0, 1, ...).
+core::Tracklet3D PersonAt(double x,
+                          const std::vector<FrameIndex>& frames,
+                          const std::vector<TrackId2D>& tracks) {
+  core::Tracklet3D p;
+  for (const FrameIndex f : frames) {
+    p.frames.push_back(f);
+    p.points.push_back({Vec3(x, 0.0, 1.0)});
+  }
+  for (std::size_t c = 0; c < tracks.size(); ++c) {
+    const auto camera = static_cast<CameraId>(c);
+    p.cameras.push_back(camera);
+    p.source_tracklets.push_back(static_cast<int>(c));
+    p.members.push_back(core::TrackletMember{
+        camera, tracks[c], frames.front(), frames.back(), static_cast<int>(frames.size())});
+  }
+  return p;
+}
+
+std::vector<FrameIndex> FrameRange(FrameIndex first, FrameIndex last) {
+  std::vector<FrameIndex> f;
+  for (FrameIndex t = first; t <= last; ++t) f.push_back(t);
+  return f;
+}
+
+// The case of Campus hard seed 4 (docs/ACCURACY.md "Bridging short gaps"): in a window, the
+// person's linked tracklet has only a few frames (one in the finalized range, far after the
+// previous window's last output), and a duplicate tracklet of the same person carries the
+// rest. The gap between the previous window and the duplicate's first frame is bridged: the
+// track's frames of the window, from both, are one sequence.
+TEST_CASE("WindowFinalizer bridges a gap that the person's duplicate tracklet ends",
+          "[unit][tracker]") {
+  tracker::TrackerOptions options;  // box mode, bridge_max_gap_s 0.6 (18 frames at 30 fps)
+  tracker::WindowFinalizer finalizer(options);
+  for (FrameIndex f = 0; f < 50; ++f) finalizer.AddClosedFrame({f, 1000 * f});
+  std::vector<tracker::Frame3D> frames;
+  tracker::WindowResult w0;
+  w0.window_id = 0;
+  w0.begin = 0;
+  w0.end = 30;
+  w0.finalize_from = 0;
+  w0.finalize_to = 25;
+  w0.persons = {PersonAt(0.0, FrameRange(0, 29), {1, 2})};
+  finalizer.Finalize(w0, &frames);
+  REQUIRE(frames.size() == 25);
+  REQUIRE(frames.back().tracks.size() == 1);
+  const TrackId3D id = frames.back().tracks.front().id;
+  tracker::WindowResult w1;
+  w1.window_id = 1;
+  w1.begin = 20;
+  w1.end = 50;
+  w1.finalize_from = 25;
+  w1.finalize_to = 45;
+  std::vector<FrameIndex> sparse = FrameRange(20, 24);
+  for (FrameIndex f = 44; f < 50; ++f) sparse.push_back(f);
+  w1.persons = {PersonAt(0.0, sparse, {1, 2}), PersonAt(0.1, FrameRange(30, 49), {5, 6})};
+  const linking::LinkResult link = finalizer.Finalize(w1, &frames);
+  REQUIRE(link.link_kind[1] == linking::LinkKind::kDuplicate);
+  finalizer.EndStream(&frames);
+  for (const tracker::Frame3D& f : frames) {
+    if (f.frame < 25 || f.frame >= 45) continue;
+    INFO("frame " << f.frame);
+    REQUIRE(f.tracks.size() == 1);
+    CHECK(f.tracks.front().id == id);
+    // 25-29 bridged between frame 24 (x = 0) and the duplicate's frame 30 (x = 0.1), with no
+    // cameras; 30-43 the duplicate; 44 the person's own tracklet.
+    const double x = f.tracks.front().position.x();
+    if (f.frame < 30) {
+      CHECK(x == Approx(0.1 * static_cast<double>(f.frame - 24) / 6.0));
+      CHECK(f.tracks.front().cameras.empty());
+    } else {
+      CHECK(x == Approx(f.frame < 44 ? 0.1 : 0.0));
+      CHECK(f.tracks.front().cameras.size() == 2);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mvtrack

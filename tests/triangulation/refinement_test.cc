@@ -275,6 +275,91 @@ TEST_CASE("RejectTemporalOutliers removes spikes and keeps fast straight motion"
   CHECK_FALSE(u.points[3][0].has_value());
 }
 
+TEST_CASE("SmoothTemporally keeps straight motion, averages noise, respects its limits",
+          "[unit][triangulation]") {
+  // Point 0 moves 0.15 m per frame along x with alternating +-3 cm noise in y; point 1 moves
+  // on an exact straight line; point 2 is missing at frame 4.
+  const auto truth = [](FrameIndex f) { return Vec3(0.15 * static_cast<double>(f), 0, 1); };
+  core::Tracklet3D t = MakeTracklet3D(Range(0, 20), [&](FrameIndex f) {
+    const double noise = (f % 2 == 0 ? 0.03 : -0.03);
+    return std::vector<Vec3>{
+        truth(f) + Vec3(0, noise, 0), Vec3(0.02 * static_cast<double>(f), 1, 1), Vec3(0, 2, 1)};
+  });
+  t.points[4][2].reset();
+  RefinementOptions o;
+  o.smooth_half_window = 5;
+  const core::Tracklet3D before = t;
+  CHECK(triangulation::SmoothTemporally(&t, o) > 0);
+  double error_before = 0.0;
+  double error_after = 0.0;
+  for (std::size_t f = 0; f < t.frames.size(); ++f) {
+    error_before += (*before.points[f][0] - truth(t.frames[f])).norm();
+    error_after += (*t.points[f][0] - truth(t.frames[f])).norm();
+    // A line is kept exactly, also at the ends, where the fit sees one side only.
+    CHECK((*t.points[f][1] - *before.points[f][1]).norm() < 1e-9);
+    if (f != 4) CHECK((*t.points[f][2] - *before.points[f][2]).norm() < 1e-9);
+  }
+  CHECK(error_after < 0.5 * error_before);
+  CHECK_FALSE(t.points[4][2].has_value());  // missing stays missing
+  // Only points seen by at most smooth_max_views cameras change.
+  core::Tracklet3D u = before;
+  std::vector<std::vector<int>> views(u.frames.size(), std::vector<int>(3, 3));
+  views[7][0] = 2;
+  o.smooth_max_views = 2;
+  CHECK(triangulation::SmoothTemporally(&u, o, &views) == 1);
+  for (std::size_t f = 0; f < u.frames.size(); ++f) {
+    CHECK((*u.points[f][0] == *before.points[f][0]) == (f != 7));
+  }
+  // Disabled, or too few samples within the half window: nothing changes.
+  core::Tracklet3D w = before;
+  o.smooth_half_window = 0;
+  CHECK(triangulation::SmoothTemporally(&w, o) == 0);
+  core::Tracklet3D sparse = MakeTracklet3D({0, 10, 20}, [](FrameIndex f) {
+    return std::vector<Vec3>{Vec3(0, static_cast<double>(f % 3), 0)};
+  });
+  o.smooth_half_window = 5;
+  CHECK(triangulation::SmoothTemporally(&sparse, o) == 0);
+  o.smooth_half_window = -1;
+  std::string why;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK(why.find("smooth_half_window") != std::string::npos);
+  o.smooth_half_window = 5;
+  o.smooth_max_views = -1;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK(why.find("smooth_max_views") != std::string::npos);
+}
+
+TEST_CASE("ObservingViews counts the cameras that saw each point", "[unit][triangulation]") {
+  // Camera 0 has two tracklets (fragments: frames 0-1 and 2-3), camera 1 one (frames 1-2).
+  const auto tracklet =
+      [](CameraId camera, std::vector<FrameIndex> frames, std::vector<double> confidence) {
+        core::Tracklet2D t;
+        t.camera_id = camera;
+        for (const FrameIndex f : frames) {
+          t.frames.push_back(f);
+          core::Observation2D obs;
+          obs.points_px = {Vec2(1, 1), Vec2(2, 2)};
+          obs.confidence = confidence;
+          t.observations.push_back(obs);
+        }
+        return t;
+      };
+  const std::vector<core::Tracklet2D> tracklets = {tracklet(0, {0, 1}, {1.0, 0.05}),
+                                                   tracklet(0, {2, 3}, {1.0, 1.0}),
+                                                   tracklet(1, {1, 2}, {0.9, 0.0}),
+                                                   tracklet(2, {0, 1, 2, 3}, {1.0, 1.0})};
+  const core::Tracklet3D person = MakeTracklet3D(Range(0, 3), [](FrameIndex) {
+    return std::vector<Vec3>{Vec3::Zero(), Vec3::Zero()};
+  });
+  // Tracklet 3 (camera 2) is not in the cluster.
+  const auto views = triangulation::ObservingViews(tracklets, {0, 1, 2}, person, 0.1);
+  REQUIRE(views.size() == 4);
+  CHECK(views[0] == std::vector<int>{1, 0});  // camera 0; point 1 below min_confidence
+  CHECK(views[1] == std::vector<int>{2, 0});  // cameras 0 and 1; camera 1's point 1 missing
+  CHECK(views[2] == std::vector<int>{2, 1});
+  CHECK(views[3] == std::vector<int>{1, 1});
+}
+
 TEST_CASE("CompleteMissingPoints carries a point rigidly with its neighbours",
           "[unit][triangulation]") {
   core::Tracklet3D t = MakeTracklet3D(Range(10, 25), HeadAt);

@@ -140,6 +140,7 @@ convert shelf_4da_linux shelf --peer 4d_association_linux
 convert campus campus
 convert campus_clean campus --clean
 convert campus_hard campus --corruption hard
+for seed in 2 3 4 5 6 7 8 9 10; do convert "campus_hard_s$seed" campus --corruption hard --seed $seed; done
 for seq in 160906_band1 160906_band2; do
   for n in 5 10 31; do convert "panoptic_${seq#160906_}_c$n" panoptic --sequence $seq --num-cameras $n; done
 done
@@ -166,6 +167,29 @@ for ds in shelf campus; do
            window_nu70_delta50_lambda0.3 window_nu50_delta30_lambda0.1 \
            window_nu50_delta30_lambda0.6; do
     experiment "${ds}_$v" $ds poses $layout $ab/$v.yaml $ev
+  done
+done
+
+# ---- Campus hard corruption, seeds 2-10 (campus_hard is seed 1).
+for seed in 2 3 4 5 6 7 8 9 10; do
+  experiment "campus_hard_s$seed" "campus_hard_s$seed" poses shelf14 - $campus_eval
+done
+
+# ---- Ablations of the multi-frame stages (issue 17) on Shelf, Campus (default, hard seeds
+# 1-10) and Panoptic (5 and 10 cameras).
+for v in refinement_no_smoothing refinement_smooth_every_joint linking_no_gap_bridging \
+         linking_no_duplicate_detection; do
+  experiment "shelf_$v" shelf poses body25 $ab/$v.yaml $shelf_eval
+  experiment "campus_$v" campus poses shelf14 $ab/$v.yaml $campus_eval
+  experiment "campus_hard_$v" campus_hard poses shelf14 $ab/$v.yaml $campus_eval
+  for seed in 2 3 4 5 6 7 8 9 10; do
+    experiment "campus_hard_s${seed}_$v" "campus_hard_s$seed" poses shelf14 $ab/$v.yaml $campus_eval
+  done
+  for seq in band1 band2; do
+    for n in 5 10; do
+      experiment "panoptic_${seq}_c${n}_$v" "panoptic_${seq}_c$n" poses panoptic19 $ab/$v.yaml \
+        $panoptic_eval
+    done
   done
 done
 

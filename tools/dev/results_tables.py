@@ -76,6 +76,13 @@ ASSOCIATION = [("pdnc", "PDNC (default)"),
 TRIANGULATION = [("triangulation_dlt", "DLT (\"w/ Triangulation\")"),
                  ("triangulation_ransac", "DLT + RANSAC"),
                  ("cmmt", "CMMT (default)")]
+REFINEMENT = [("default", "**defaults**"),
+              ("refinement_no_smoothing", "no temporal smoothing (`smooth_half_window: 0`)"),
+              ("refinement_smooth_every_joint",
+               "smoothing every joint, not only two-view ones (`smooth_max_views: 1000`)"),
+              ("linking_no_gap_bridging", "no gap bridging (`bridge_max_gap_s: 0`)"),
+              ("linking_no_duplicate_detection",
+               "no duplicate detection (`linking.duplicate_distance_m: 0`)")]
 WINDOWS = [(50, 30, 0.3), (30, 20, 0.3), (70, 50, 0.3), (50, 30, 0.1), (50, 30, 0.6)]
 
 
@@ -325,6 +332,29 @@ def render(out_dir, runs, info):
                      pct(cm.get("pcp_average")), pct(cm.get("mota")), pct(cm.get("idf1")),
                      pct(cm.get("hota")), cm.get("id_transfers"), cm.get("ids"),
                      f"`shelf_{v}`, `campus_{v}`"])
+    md.append(table(hdr, rows))
+
+    md.append("\n### Ablation: the multi-frame stages (issue 17)\n\n")
+    md.append("Each stage switched off (or widened) alone, the rest at the defaults. Campus hard: "
+              "the `hard` corruption level (docs/DECISIONS.md) at seeds 1-10 (`campus_hard` is "
+              "seed 1, `campus_hard_sN` seed N), the mean of the ten average PCPs; Panoptic: "
+              "average PCP over all bones, 160906_band1 / 160906_band2.\n\n")
+    hdr = ["variant", "Shelf Avg PCP", "Shelf Actor 2 (id 1)", "Shelf MPJPE mm", "Campus Avg PCP",
+           "Campus hard mean PCP (seeds 1-10)", "Campus hard worst seed", "Panoptic 5 cams",
+           "Panoptic 10 cams", "runs"]
+    rows = []
+    for key, label in REFINEMENT:
+        suffix = "" if key == "default" else f"_{key}"
+        hard = [R[("campus_hard" if seed == 1 else f"campus_hard_s{seed}") + suffix]["metrics"]
+                .get("pcp_average", 0.0) for seed in range(1, 11)]
+        sm = R["shelf" + suffix]["metrics"]
+        pan = {n: " / ".join(pct(R[f"panoptic_{seq}_c{n}{suffix}"]["metrics"].get("pcp_average"))
+                             for seq in ("band1", "band2")) for n in (5, 10)}
+        rows.append([label, pct(sm.get("pcp_average")), pct(actor_pcp(sm, 1)),
+                     mm(sm.get("mpjpe_m")), pct(R["campus" + suffix]["metrics"].get("pcp_average")),
+                     pct(sum(hard) / len(hard), 2), pct(min(hard)), pan[5], pan[10],
+                     f"`shelf{suffix}`, `campus{suffix}`, `campus_hard{suffix}`, "
+                     f"`campus_hard_sN{suffix}`, `panoptic_*{suffix}`"])
     md.append(table(hdr, rows))
 
     md.append("\n### CMU Panoptic with 5, 10 and 31 cameras\n\n")
