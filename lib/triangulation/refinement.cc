@@ -625,14 +625,37 @@ std::int64_t SmoothTemporally(core::Tracklet3D* tracklet,
     }
   }
   const auto& frames = tracklet->frames;
-  const std::vector<Row> original = tracklet->points;
+  // Tricube weights by frame offset |x| <= h.
+  std::vector<double> weight(static_cast<std::size_t>(h) + 1);
   const double reach = static_cast<double>(h + 1);
+  for (std::size_t x = 0; x < weight.size(); ++x) {
+    const double u = static_cast<double>(x) / reach;
+    weight[x] = std::pow(1.0 - u * u * u, 3);
+  }
+  // Point by point: the points of one index do not enter another's fits, so each column is
+  // read once into `present` / `values` and written back after its fits.
+  std::vector<std::size_t> present;  // frame positions where point k is triangulated
+  std::vector<Vec3> values;
+  std::vector<std::pair<std::size_t, Vec3>> smoothed;
   std::int64_t changed = 0;
-  for (std::size_t f = 0; f < num_frames; ++f) {
-    std::size_t lo = f;
-    while (lo > 0 && frames[f] - frames[lo - 1] <= h) --lo;
-    for (std::size_t k = 0; k < num_points; ++k) {
-      if (!original[f][k]) continue;
+  for (std::size_t k = 0; k < num_points; ++k) {
+    present.clear();
+    values.clear();
+    smoothed.clear();
+    bool any_smoothable = false;
+    for (std::size_t f = 0; f < num_frames; ++f) {
+      const std::optional<Vec3>& p = tracklet->points[f][k];
+      if (!p) continue;
+      present.push_back(f);
+      values.push_back(*p);
+      any_smoothable = any_smoothable || views == nullptr ||
+                       (*views)[f][k] <= options.smooth_max_views;
+    }
+    if (!any_smoothable || present.size() < 3) continue;
+    std::size_t lo = 0;
+    for (std::size_t i = 0; i < present.size(); ++i) {
+      const std::size_t f = present[i];
+      while (frames[f] - frames[present[lo]] > h) ++lo;
       if (views != nullptr && (*views)[f][k] > options.smooth_max_views) continue;
       // Weighted least squares of p(x) = a + b x, x = frame offset; the fit's value at x = 0 is
       // a = (S2 T0 - S1 T1) / (S0 S2 - S1^2).
@@ -642,24 +665,24 @@ std::int64_t SmoothTemporally(core::Tracklet3D* tracklet,
       Vec3 t0 = Vec3::Zero();
       Vec3 t1 = Vec3::Zero();
       int samples = 0;
-      for (std::size_t r = lo; r < num_frames && frames[r] - frames[f] <= h; ++r) {
-        const std::optional<Vec3>& p = original[r][k];
-        if (!p) continue;
-        const auto x = static_cast<double>(frames[r] - frames[f]);
-        const double u = std::abs(x) / reach;
-        const double w = std::pow(1.0 - u * u * u, 3);
+      for (std::size_t j = lo; j < present.size() && frames[present[j]] - frames[f] <= h; ++j) {
+        const FrameIndex offset = frames[present[j]] - frames[f];
+        const auto x = static_cast<double>(offset);
+        const double w = weight[static_cast<std::size_t>(offset < 0 ? -offset : offset)];
         s0 += w;
         s1 += w * x;
         s2 += w * x * x;
-        t0 += w * *p;
-        t1 += (w * x) * *p;
+        t0 += w * values[j];
+        t1 += (w * x) * values[j];
         ++samples;
       }
       if (samples < 3) continue;
       const double det = s0 * s2 - s1 * s1;
       if (!(det > 1e-12 * s0 * s0)) continue;
-      const Vec3 value = (s2 * t0 - s1 * t1) / det;
-      if (value != *original[f][k]) ++changed;
+      smoothed.emplace_back(f, (s2 * t0 - s1 * t1) / det);
+    }
+    for (const auto& [f, value] : smoothed) {
+      if (value != *tracklet->points[f][k]) ++changed;
       tracklet->points[f][k] = value;
     }
   }
