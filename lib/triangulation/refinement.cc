@@ -23,6 +23,24 @@ constexpr double kMinRigidSpreadM = 0.02;
 
 using Row = std::vector<std::optional<Vec3>>;
 
+// The checks every temporal stage makes of its input (checked: a tracklet, valid options, one
+// row of points per frame, every row as long); returns the number of points per frame (0
+// without frames).
+std::size_t CheckedPointsPerFrame(const core::Tracklet3D* tracklet,
+                                  const RefinementOptions& options) {
+  MVTRACK_CHECK(tracklet != nullptr);
+  std::string why;
+  MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
+  MVTRACK_CHECK_MSG(tracklet->frames.size() == tracklet->points.size(),
+                    "tracklet frames and points differ in length");
+  if (tracklet->points.empty()) return 0;
+  const std::size_t num_points = tracklet->points.front().size();
+  for (const Row& row : tracklet->points) {
+    MVTRACK_CHECK_MSG(row.size() == num_points, "every frame needs the same number of points");
+  }
+  return num_points;
+}
+
 // Estimate of point k at row `to` carried from row `from` by the motion of k's nearest
 // neighbours (points present in both rows), or nullopt without neighbours.
 std::optional<Vec3> Carry(
@@ -451,18 +469,10 @@ int MaxPointsPerFrame(const core::Tracklet3D& tracklet) {
 }
 
 std::int64_t RejectTemporalOutliers(core::Tracklet3D* tracklet, const RefinementOptions& options) {
-  MVTRACK_CHECK(tracklet != nullptr);
-  std::string why;
-  MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
-  MVTRACK_CHECK_MSG(tracklet->frames.size() == tracklet->points.size(),
-                    "tracklet frames and points differ in length");
+  const std::size_t num_points = CheckedPointsPerFrame(tracklet, options);
   const std::size_t num_frames = tracklet->frames.size();
   const FrameIndex h = options.outlier_half_window;
   if (h == 0 || num_frames < 3) return 0;
-  const std::size_t num_points = tracklet->points.front().size();
-  for (const Row& row : tracklet->points) {
-    MVTRACK_CHECK_MSG(row.size() == num_points, "every frame needs the same number of points");
-  }
   const auto& frames = tracklet->frames;
   std::vector<std::pair<std::size_t, std::size_t>> removals;  // (frame, point)
   std::array<std::vector<double>, 3> values;
@@ -505,18 +515,10 @@ std::int64_t RejectTemporalOutliers(core::Tracklet3D* tracklet, const Refinement
 
 CompletionStats CompleteMissingPoints(core::Tracklet3D* tracklet,
                                       const RefinementOptions& options) {
-  MVTRACK_CHECK(tracklet != nullptr);
-  std::string why;
-  MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
-  MVTRACK_CHECK_MSG(tracklet->frames.size() == tracklet->points.size(),
-                    "tracklet frames and points differ in length");
+  const std::size_t num_points = CheckedPointsPerFrame(tracklet, options);
   CompletionStats stats;
   const std::size_t num_frames = tracklet->frames.size();
   if (num_frames < 2 || options.max_fill_gap == 0) return stats;
-  const std::size_t num_points = tracklet->points.front().size();
-  for (const Row& row : tracklet->points) {
-    MVTRACK_CHECK_MSG(row.size() == num_points, "every frame needs the same number of points");
-  }
   if (num_points < 2) return stats;
   const std::vector<Row> original = tracklet->points;
   const auto& frames = tracklet->frames;
@@ -606,18 +608,10 @@ std::vector<std::vector<int>> ObservingViews(const std::vector<core::Tracklet2D>
 std::int64_t SmoothTemporally(core::Tracklet3D* tracklet,
                               const RefinementOptions& options,
                               const std::vector<std::vector<int>>* views) {
-  MVTRACK_CHECK(tracklet != nullptr);
-  std::string why;
-  MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
-  MVTRACK_CHECK_MSG(tracklet->frames.size() == tracklet->points.size(),
-                    "tracklet frames and points differ in length");
+  const std::size_t num_points = CheckedPointsPerFrame(tracklet, options);
   const std::size_t num_frames = tracklet->frames.size();
   const FrameIndex h = options.smooth_half_window;
   if (h == 0 || num_frames < 3) return 0;
-  const std::size_t num_points = tracklet->points.front().size();
-  for (const Row& row : tracklet->points) {
-    MVTRACK_CHECK_MSG(row.size() == num_points, "every frame needs the same number of points");
-  }
   if (views != nullptr) {
     MVTRACK_CHECK_MSG(views->size() == num_frames, "one view count row per frame");
     for (const std::vector<int>& row : *views) {
@@ -648,8 +642,8 @@ std::int64_t SmoothTemporally(core::Tracklet3D* tracklet,
       if (!p) continue;
       present.push_back(f);
       values.push_back(*p);
-      any_smoothable = any_smoothable || views == nullptr ||
-                       (*views)[f][k] <= options.smooth_max_views;
+      any_smoothable =
+          any_smoothable || views == nullptr || (*views)[f][k] <= options.smooth_max_views;
     }
     if (!any_smoothable || present.size() < 3) continue;
     std::size_t lo = 0;

@@ -393,6 +393,17 @@ core::Tracklet3D PersonAt(double x,
   return p;
 }
 
+// A window result with its window [begin, begin + 30) and finalized frames [from, to).
+tracker::WindowResult WindowOf(std::int64_t id, FrameIndex begin, FrameIndex from, FrameIndex to) {
+  tracker::WindowResult w;
+  w.window_id = id;
+  w.begin = begin;
+  w.end = begin + 30;
+  w.finalize_from = from;
+  w.finalize_to = to;
+  return w;
+}
+
 std::vector<FrameIndex> FrameRange(FrameIndex first, FrameIndex last) {
   std::vector<FrameIndex> f;
   for (FrameIndex t = first; t <= last; ++t) f.push_back(t);
@@ -410,23 +421,13 @@ TEST_CASE("WindowFinalizer bridges a gap that the person's duplicate tracklet en
   tracker::WindowFinalizer finalizer(options);
   for (FrameIndex f = 0; f < 50; ++f) finalizer.AddClosedFrame({f, 1000 * f});
   std::vector<tracker::Frame3D> frames;
-  tracker::WindowResult w0;
-  w0.window_id = 0;
-  w0.begin = 0;
-  w0.end = 30;
-  w0.finalize_from = 0;
-  w0.finalize_to = 25;
+  tracker::WindowResult w0 = WindowOf(0, 0, 0, 25);
   w0.persons = {PersonAt(0.0, FrameRange(0, 29), {1, 2})};
   finalizer.Finalize(w0, &frames);
   REQUIRE(frames.size() == 25);
   REQUIRE(frames.back().tracks.size() == 1);
   const TrackId3D id = frames.back().tracks.front().id;
-  tracker::WindowResult w1;
-  w1.window_id = 1;
-  w1.begin = 20;
-  w1.end = 50;
-  w1.finalize_from = 25;
-  w1.finalize_to = 45;
+  tracker::WindowResult w1 = WindowOf(1, 20, 25, 45);
   std::vector<FrameIndex> sparse = FrameRange(20, 24);
   for (FrameIndex f = 44; f < 50; ++f) sparse.push_back(f);
   w1.persons = {PersonAt(0.0, sparse, {1, 2}), PersonAt(0.1, FrameRange(30, 49), {5, 6})};
