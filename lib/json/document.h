@@ -20,7 +20,8 @@ using OrderedDocument = nlohmann::ordered_json;
 /// How Dump writes text outside ASCII.
 enum class Ascii {
   kKeep,    ///< UTF-8 as is
-  kEscape,  ///< every non-ASCII code point as \uXXXX (a surrogate pair above U+FFFF): pure ASCII
+  kEscape,  ///< every non-ASCII code point as \uXXXX (above U+FFFF a surrogate pair), so the text
+            ///< is pure ASCII
 };
 
 /// `doc` as text: on one line when `indent` < 0, else pretty-printed with `indent` spaces;

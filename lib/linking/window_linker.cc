@@ -9,6 +9,7 @@
 
 #include "core/check.h"
 #include "core/linear_assignment.h"
+#include "core/median.h"
 
 namespace mvtrack::linking {
 namespace {
@@ -102,9 +103,7 @@ std::optional<double> MedianOverlapDistanceOfChecked(const core::Tracklet3D& a,
   std::vector<double> d;
   ForEachCommonFrameDistance(a, b, [&](double x) { d.push_back(x); });
   if (d.empty()) return std::nullopt;
-  std::sort(d.begin(), d.end());
-  const std::size_t mid = d.size() / 2;
-  return d.size() % 2 == 1 ? d[mid] : 0.5 * (d[mid - 1] + d[mid]);
+  return core::MedianInPlace(&d);
 }
 
 // Adds `windows` missed windows to `track`, saturating at INT_MAX.

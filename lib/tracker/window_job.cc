@@ -443,9 +443,12 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
     for (core::Tracklet3D& person : r.persons) {
       triangulation::RejectTemporalOutliers(&person, options.refinement);
       triangulation::CompleteMissingPoints(&person, options.refinement);
-      const std::vector<std::vector<int>> views = triangulation::ObservingViews(
-          job.tracklets, person.source_tracklets, person, options.triangulation.min_confidence);
-      triangulation::SmoothTemporally(&person, options.refinement, &views);
+      // Smoothing off: no view counts either.
+      if (options.refinement.smooth_half_window > 0) {
+        const std::vector<std::vector<int>> views = triangulation::ObservingViews(
+            job.tracklets, person.source_tracklets, person, options.triangulation.min_confidence);
+        triangulation::SmoothTemporally(&person, options.refinement, &views);
+      }
     }
   }
   for (core::Tracklet3D& person : r.persons) SetMembers(job, &person);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/check.h"
+#include "core/median.h"
 #include "geometry/triangulation.h"
 
 namespace mvtrack::triangulation {
@@ -196,13 +197,7 @@ double FootprintDistance(const core::Tracklet3D& a,
   }
   if (frames != nullptr) *frames = static_cast<std::int64_t>(d.size());
   if (d.empty()) return std::numeric_limits<double>::infinity();
-  const std::size_t mid = d.size() / 2;
-  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(mid), d.end());
-  double m = d[mid];
-  if (d.size() % 2 == 0) {
-    m = 0.5 * (m + *std::max_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(mid)));
-  }
-  return m;
+  return core::MedianInPlace(&d);
 }
 
 std::int64_t RemovePointsOutsideHeights(core::Tracklet3D* tracklet, double min_z, double max_z) {
@@ -494,15 +489,7 @@ std::int64_t RejectTemporalOutliers(core::Tracklet3D* tracklet, const Refinement
       if (values[0].size() < 3) continue;
       Vec3 median;
       for (int a = 0; a < 3; ++a) {
-        std::vector<double>& v = values[static_cast<std::size_t>(a)];
-        const std::size_t mid = v.size() / 2;
-        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
-        double m = v[mid];
-        if (v.size() % 2 == 0) {
-          m = 0.5 *
-              (m + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
-        }
-        median(a) = m;
+        median(a) = core::MedianInPlace(&values[static_cast<std::size_t>(a)]);
       }
       if ((*tracklet->points[f][k] - median).norm() > options.outlier_distance_m) {
         removals.emplace_back(f, k);

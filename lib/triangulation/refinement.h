@@ -112,7 +112,8 @@ struct RefinementOptions {
   /// (ObservingViews): two views give one triangulation, whose pixel noise goes straight into
   /// 3D; with three or more the candidate clustering has outvoted a bad view and the point is
   /// precise enough that a line would only cut the corners of fast motion. Points seen by more
-  /// cameras still take part in their neighbours' fits. 0 smooths no point; >= 0.
+  /// cameras still take part in their neighbours' fits. 0 smooths only points no camera observed
+  /// (filled by completion); >= 0.
   int smooth_max_views = 2;
   /// Completion: a missing point is filled only from triangulated occurrences of the same
   /// point at most this many frames away (before and/or after). 0 disables completion.
