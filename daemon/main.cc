@@ -303,6 +303,12 @@ void LogSummary(const mvtrack::service::ServiceCounters& c, double seconds) {
                st.detections_rejected,
                st.detections_repaired,
                st.detections_filtered);
+  spdlog::info(
+      "summary: appearance embeddings used={} dropped={} tracks_revived={} gallery_bytes={}",
+      st.embeddings_used,
+      st.embeddings_dropped,
+      st.tracks_revived,
+      st.gallery_bytes);
   std::vector<std::int64_t> e2e = c.receive_to_publish_us;
   const std::size_t samples = e2e.size();
   const std::int64_t e2e_max = e2e.empty() ? 0 : *std::max_element(e2e.begin(), e2e.end());

@@ -41,7 +41,7 @@ constexpr std::array<std::pair<tracker::BoxPoint, std::string_view>, 3> kBoxPoin
 
 // The sub-maps of `tracker:`, in output order.
 const std::vector<std::string> kSections = {
-    "sort", "association", "triangulation", "linking", "refinement"};
+    "sort", "association", "triangulation", "linking", "refinement", "appearance"};
 
 // One option: its sub-map ("" = directly under `tracker:`), its key, how to read it from YAML
 // (with the range checks of the owning struct's Validate, so errors point at the key) and how
@@ -471,6 +471,35 @@ std::vector<Field> MakeFields() {
       "fill_neighbors",
       [](auto& o) -> auto& { return o.refinement.fill_neighbors; },
       1,
+      kIntMax));
+  f.push_back(BoolField(
+      "appearance", "enabled", [](auto& o) -> auto& { return o.appearance.enabled; }));
+  f.push_back(IntField(
+      "appearance",
+      "gallery_size",
+      [](auto& o) -> auto& { return o.appearance.gallery_size; },
+      1,
+      kIntMax));
+  f.push_back(DoubleField(
+      "appearance",
+      "reid_max_distance",
+      [](auto& o) -> auto& { return o.appearance.reid_max_distance; },
+      DoubleRange::Closed(0.0, 2.0)));
+  f.push_back(DoubleField(
+      "appearance",
+      "reid_margin",
+      [](auto& o) -> auto& { return o.appearance.reid_margin; },
+      DoubleRange::Closed(0.0, 2.0)));
+  f.push_back(DoubleField(
+      "appearance",
+      "max_reid_s",
+      [](auto& o) -> auto& { return o.appearance.max_reid_s; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(IntField(
+      "appearance",
+      "max_departed",
+      [](auto& o) -> auto& { return o.appearance.max_departed; },
+      0,
       kIntMax));
   f.push_back(IntField(
       "refinement",

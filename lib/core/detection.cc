@@ -18,11 +18,12 @@ namespace {
 //                     out of the image by more than the margin; visible part of the box thinner
 //                     than min_box_size_px; score non-finite or outside [0, 1]; more keypoints
 //                     than max_keypoints; keypoint count != layout joint count (non-empty
-//                     keypoints only); embedding longer than max_embedding_size; non-finite
-//                     embedding value.
+//                     keypoints only).
 //  kAcceptedRepaired  at least one keypoint was invalidated (confidence set to 0): non-finite
 //                     position (also moved to the box centre), non-finite or out-of-range
-//                     confidence, or position outside the image plus margin.
+//                     confidence, or position outside the image plus margin; or the embedding
+//                     was dropped (longer than max_embedding_size, a non-finite value): the
+//                     box and keypoints are still good.
 //  kAccepted          nothing to do; `reason` is empty.
 
 DetectionCheck Rejected(std::string reason) {
@@ -146,15 +147,22 @@ DetectionCheck ValidateDetection(Detection2D* detection, const DetectionLimits& 
     }
   }
 
-  // --- Embedding. ---------------------------------------------------------------------------
+  // --- Embedding (dropped, the detection is kept). -------------------------------------------
+  std::string embedding_problem;
   if (!d.embedding.empty() &&
       (limits.max_embedding_size < 0 ||
        d.embedding.size() > static_cast<std::size_t>(limits.max_embedding_size))) {
-    return Rejected("embedding of size " + std::to_string(d.embedding.size()) +
-                    " exceeds max_embedding_size");
+    embedding_problem =
+        "embedding of size " + std::to_string(d.embedding.size()) + " exceeds max_embedding_size";
+  } else if (std::any_of(d.embedding.begin(), d.embedding.end(), [](float v) {
+               return !std::isfinite(v);
+             })) {
+    embedding_problem = "embedding has a non-finite value";
   }
-  for (float v : d.embedding) {
-    if (!std::isfinite(v)) return Rejected("embedding has a non-finite value");
+  if (!embedding_problem.empty()) {
+    d.embedding.clear();
+    d.embedding.shrink_to_fit();
+    d.embedding_model.clear();
   }
 
   // --- Keypoint repairs (the detection is kept). ----------------------------------------------
@@ -180,12 +188,17 @@ DetectionCheck ValidateDetection(Detection2D* detection, const DetectionLimits& 
     }
   }
   if (non_finite_position + bad_confidence + outside_image == 0) {
+    if (!embedding_problem.empty()) {
+      return DetectionCheck{DetectionVerdict::kAcceptedRepaired,
+                            "embedding dropped: " + embedding_problem};
+    }
     return DetectionCheck{DetectionVerdict::kAccepted, std::string()};
   }
   std::string reason = "invalidated keypoints:";
   AppendCount(&reason, non_finite_position, "with non-finite position");
   AppendCount(&reason, bad_confidence, "with confidence non-finite or outside [0, 1]");
   AppendCount(&reason, outside_image, "outside the image margin");
+  if (!embedding_problem.empty()) reason += "; embedding dropped: " + embedding_problem;
   return DetectionCheck{DetectionVerdict::kAcceptedRepaired, std::move(reason)};
 }
 

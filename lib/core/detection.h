@@ -42,6 +42,8 @@ struct Detection2D {
   KeypointLayoutId layout = KeypointLayoutId::kNone;
   /// Optional appearance (re-identification) embedding; empty when absent.
   std::vector<float> embedding;
+  /// Name of the model that computed `embedding` (detection_t.embedding_model; may be empty).
+  std::string embedding_model;
 };
 
 /// All detections of one camera for one synchronized frame.
@@ -84,10 +86,11 @@ struct DetectionCheck {
 };
 
 /// Validates `detection` in place: non-finite or degenerate boxes, non-finite or out-of-range
-/// scores, boxes (almost) entirely outside the image, a keypoint count that does not match the
-/// layout, or oversized embeddings reject the detection. Keypoints that are non-finite, have an
-/// out-of-range confidence, or lie outside the image (plus margin) get confidence 0 and the
-/// detection is kept. Stateless.
+/// scores, boxes (almost) entirely outside the image, or a keypoint count that does not match
+/// the layout reject the detection. Keypoints that are non-finite, have an out-of-range
+/// confidence, or lie outside the image (plus margin) get confidence 0, and an embedding that
+/// is oversized or holds a non-finite value is dropped (cleared); the detection is kept
+/// (kAcceptedRepaired, the reason says what was done). Stateless.
 DetectionCheck ValidateDetection(Detection2D* detection, const DetectionLimits& limits);
 
 }  // namespace mvtrack::core

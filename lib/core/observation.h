@@ -20,6 +20,9 @@ struct Observation2D {
   std::vector<double> confidence;
   /// |w + h| of the box that encloses the person, in pixels (the normaliser of Eq. 2). > 0.
   double scale_px = 1.0;
+  /// The detection's appearance embedding, unit length (core::CheckEmbedding); empty when it
+  /// had none, it was unusable, or appearance is off.
+  std::vector<float> embedding;
 };
 
 /// A 2D tracklet: the observations of one camera's 2D track inside one window (Eq. 3, T_{k,i}).
@@ -59,6 +62,11 @@ struct Tracklet3D {
   /// The 2D tracklets of source_tracklets as (camera, 2D track) members, sorted by camera id
   /// then track id (filled by tracker::ProcessWindowJob; empty where no window job made it).
   std::vector<TrackletMember> members;
+  /// Appearance on: the unit-length mean of the embeddings of its 2D tracklets' observations
+  /// (those of the first embedding's dimension), empty when none had one; and how many
+  /// embeddings that mean averages.
+  std::vector<float> appearance;
+  int appearance_count = 0;
 
   int IndexOf(FrameIndex frame) const {
     auto it = std::lower_bound(frames.begin(), frames.end(), frame);

@@ -197,6 +197,24 @@ Json TrackingJson(const TrackingEvaluation& t) {
            {"num_id_fragmentations", Int(static_cast<std::int64_t>(cov.fragmentations.size()))},
            {"transfers", Arr(std::move(transfers))},
            {"fragmentations", Arr(std::move(fragmentations))}}));
+  const ReturnMetrics& ret = t.returns;
+  JsonArray returns;
+  for (const ReturnMetrics::Return& r : ret.list) {
+    returns.push_back(Obj({{"gt_id", Int(r.gt_id)},
+                           {"frame", Int(r.frame)},
+                           {"gap_frames", Int(r.gap_frames)},
+                           {"before_id", Int(r.before_id)},
+                           {"after_id", Int(r.after_id)},
+                           {"outcome", Str(ReturnOutcomeName(r.outcome))}}));
+  }
+  o.emplace_back("returns",
+                 Obj({{"min_gap_frames", Int(ret.min_gap_frames)},
+                      {"num_returns", Int(ret.returns)},
+                      {"kept", Int(ret.kept)},
+                      {"new_id", Int(ret.new_id)},
+                      {"other_person_id", Int(ret.other_person_id)},
+                      {"untracked", Int(ret.untracked)},
+                      {"list", Arr(std::move(returns))}}));
 
   const PoseErrorMetrics& p = t.pose;
   o.emplace_back("pose",
@@ -400,6 +418,20 @@ std::string TrackingTable(const TrackingEvaluation& t) {
       line += "; ... (" + std::to_string(cov.transfers.size() - 10) + " more)";
     }
     out += line + "\n";
+  }
+  // Returns of people who left and came back (only when there are any).
+  if (t.returns.returns > 0) {
+    const ReturnMetrics& ret = t.returns;
+    const auto share = [&](std::int64_t n) {
+      return std::to_string(n) + " (" +
+             internal::FormatFixed(
+                 100.0 * static_cast<double>(n) / static_cast<double>(ret.returns), 1) +
+             "%)";
+    };
+    out += "  returns after > " + std::to_string(ret.min_gap_frames) +
+           " frames away: " + std::to_string(ret.returns) + ", old id kept " + share(ret.kept) +
+           ", new id " + share(ret.new_id) + ", another person's id " + share(ret.other_person_id) +
+           ", untracked " + share(ret.untracked) + "\n";
   }
   out += "  MPJPE " + Metres(t.pose.mpjpe_m) + " m over " + std::to_string(t.pose.num_pairs) +
          " matched pairs (" + std::to_string(t.pose.num_joints) + " joints)\n";

@@ -36,6 +36,10 @@ std::string Protocol(const TrackingOptions& options, std::int64_t num_frames) {
   text += "IDTR (id transfers) = predicted ids covering >= 2 GT persons, IDFRAG = GT persons ";
   text += "covered by >= 2 predicted ids, where an id covers a person when CLEAR MOT matched ";
   text += "them in >= " + std::to_string(options.cover_min_frames) + " frames. ";
+  text += "Returns: a GT person absent for > " + std::to_string(options.return_min_gap_frames) +
+          " frames and present again; the id of a visit is the one CLEAR MOT matched in most of "
+          "its frames; kept = the previous visit's id, another person's id = an id that covered "
+          "another person before the return. ";
   text += "HOTA (Luiten et al. 2021, TrackEval's definitions): mean over alpha = 0.05..0.95 of ";
   text += "sqrt(DetA * AssA), similarity max(0, 1 - d / gate); DetA, AssA, LocA likewise. ";
   text += "Distance: ";
@@ -88,7 +92,22 @@ bool TrackingOptions::Validate(std::string* why) const {
     return fail("mean_joint_threshold_m must be finite and > 0");
   }
   if (cover_min_frames < 1) return fail("cover_min_frames must be >= 1");
+  if (return_min_gap_frames < 1) return fail("return_min_gap_frames must be >= 1");
   return ValidateFrameRanges(frame_ranges, why);
+}
+
+const char* ReturnOutcomeName(ReturnMetrics::Outcome outcome) {
+  switch (outcome) {
+    case ReturnMetrics::Outcome::kKept:
+      return "kept";
+    case ReturnMetrics::Outcome::kNewId:
+      return "new id";
+    case ReturnMetrics::Outcome::kOtherPersonId:
+      return "other person's id";
+    case ReturnMetrics::Outcome::kUntracked:
+      return "untracked";
+  }
+  return "unknown";
 }
 
 const char* TrackCoverageName(TrackCoverage coverage) {
@@ -135,6 +154,10 @@ TrackingEvaluation EvaluateTracking(const EvalSequence& ground_truth,
   std::map<std::pair<std::int64_t, std::int64_t>, std::int64_t> frames_within_gate;
   // Coverage: frames CLEAR MOT matched GT i and prediction j, and the frame of their first match.
   std::map<std::pair<std::int64_t, std::int64_t>, std::pair<std::int64_t, FrameIndex>> matched;
+  // Returns: per GT, its frames with the matched prediction (-1: missed); per prediction, the
+  // frames it was matched in with the GT.
+  std::map<std::int64_t, std::vector<std::pair<FrameIndex, std::int64_t>>> gt_frames;
+  std::map<std::int64_t, std::vector<std::pair<FrameIndex, std::int64_t>>> pred_matches;
 
   for (const AlignedFrame& f : frames) {
     ++clear.num_frames;
@@ -205,7 +228,9 @@ TrackingEvaluation EvaluateTracking(const EvalSequence& ground_truth,
       ++history.present;
       const int j = pred_of_gt[i];
       history.matched_when_present.push_back(j >= 0);
+      gt_frames[g.id].emplace_back(f.frame, j < 0 ? -1 : f.pred[static_cast<std::size_t>(j)]->id);
       if (j < 0) continue;
+      pred_matches[f.pred[static_cast<std::size_t>(j)]->id].emplace_back(f.frame, g.id);
       ++history.matched;
       ++matches;
       const EvalObject& p = *f.pred[static_cast<std::size_t>(j)];
@@ -359,6 +384,79 @@ TrackingEvaluation EvaluateTracking(const EvalSequence& ground_truth,
       fr.gt_id = gt;
       for (const auto& [frame, pred] : list) fr.prediction_ids.push_back(pred);
       cov.fragmentations.push_back(std::move(fr));
+    }
+  }
+  // Returns.
+  {
+    ReturnMetrics& ret = result.returns;
+    ret.min_gap_frames = options.return_min_gap_frames;
+    // The id matched in most frames of [b, e) of `frames` (ties: lowest), -1 if none.
+    const auto dominant = [](const std::vector<std::pair<FrameIndex, std::int64_t>>& visits,
+                             std::size_t b,
+                             std::size_t e) {
+      std::map<std::int64_t, std::int64_t> count;
+      for (std::size_t k = b; k < e; ++k) {
+        if (visits[k].second >= 0) ++count[visits[k].second];
+      }
+      std::int64_t best = -1, best_count = 0;
+      for (const auto& [id, c] : count) {
+        if (c > best_count) {
+          best = id;
+          best_count = c;
+        }
+      }
+      return best;
+    };
+    for (const auto& [gt, seen] : gt_frames) {
+      std::size_t visit_begin = 0;
+      std::int64_t previous_id = -1;
+      for (std::size_t k = 1; k <= seen.size(); ++k) {
+        const bool split = k == seen.size() ||
+                           seen[k].first - seen[k - 1].first - 1 > options.return_min_gap_frames;
+        if (!split) continue;
+        const std::int64_t id = dominant(seen, visit_begin, k);
+        if (visit_begin > 0) {
+          ReturnMetrics::Return r;
+          r.gt_id = gt;
+          r.frame = seen[visit_begin].first;
+          r.gap_frames = seen[visit_begin].first - seen[visit_begin - 1].first - 1;
+          r.before_id = previous_id;
+          r.after_id = id;
+          if (id < 0 || previous_id < 0) {
+            r.outcome = ReturnMetrics::Outcome::kUntracked;
+          } else if (id == previous_id) {
+            r.outcome = ReturnMetrics::Outcome::kKept;
+          } else {
+            // Did the return's id cover someone else before the return?
+            std::map<std::int64_t, std::int64_t> others;
+            bool other = false;
+            for (const auto& [frame, other_gt] : pred_matches[id]) {
+              if (frame >= r.frame) break;
+              if (other_gt != gt && ++others[other_gt] >= options.cover_min_frames) other = true;
+            }
+            r.outcome =
+                other ? ReturnMetrics::Outcome::kOtherPersonId : ReturnMetrics::Outcome::kNewId;
+          }
+          ++ret.returns;
+          switch (r.outcome) {
+            case ReturnMetrics::Outcome::kKept:
+              ++ret.kept;
+              break;
+            case ReturnMetrics::Outcome::kNewId:
+              ++ret.new_id;
+              break;
+            case ReturnMetrics::Outcome::kOtherPersonId:
+              ++ret.other_person_id;
+              break;
+            case ReturnMetrics::Outcome::kUntracked:
+              ++ret.untracked;
+              break;
+          }
+          ret.list.push_back(r);
+        }
+        previous_id = id;
+        visit_begin = k;
+      }
     }
   }
   result.hota =

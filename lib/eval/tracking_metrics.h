@@ -34,6 +34,10 @@ struct TrackingOptions {
   /// this many frames (IdentityCoverage): a few frames of a crossing do not count, half a
   /// second of a customer's visit (15 frames at 30 fps) does. >= 1.
   std::int64_t cover_min_frames = 15;
+  /// A ground-truth person absent for more than this many frames (and present again) has
+  /// returned (ReturnMetrics): 150 = 5 s at 30 fps, longer than any occlusion the trackers
+  /// bridge, shorter than a visit to a fitting room. >= 1.
+  std::int64_t return_min_gap_frames = 150;
 
   /// The gate of the selected distance.
   double threshold_m() const {
@@ -131,6 +135,37 @@ struct IdentityCoverage {
   std::int64_t cover_min_frames = 0;          ///< the option used
 };
 
+/// What happened to the ids of people who left and came back (re-identification): a person's
+/// presence in the ground truth split at gaps of more than return_min_gap_frames frames into
+/// visits; each visit after the first is a return. The id of a visit is the prediction CLEAR
+/// MOT matched to the person in most of its frames (ties: the lowest id).
+struct ReturnMetrics {
+  enum class Outcome {
+    kKept,           ///< the return's id is the previous visit's id
+    kNewId,          ///< another id, never (>= cover_min_frames) anyone else's before
+    kOtherPersonId,  ///< an id that covered another person before the return (the worst)
+    kUntracked,      ///< the return or the previous visit was never matched
+  };
+  struct Return {
+    std::int64_t gt_id = 0;
+    FrameIndex frame = 0;         ///< first frame of the return
+    std::int64_t gap_frames = 0;  ///< frames absent before it
+    std::int64_t before_id = -1;  ///< id of the previous visit (-1: none matched)
+    std::int64_t after_id = -1;   ///< id of the return (-1: none matched)
+    Outcome outcome = Outcome::kUntracked;
+  };
+  std::int64_t min_gap_frames = 0;  ///< the option used
+  std::int64_t returns = 0;
+  std::int64_t kept = 0;
+  std::int64_t new_id = 0;
+  std::int64_t other_person_id = 0;
+  std::int64_t untracked = 0;
+  std::vector<Return> list;  ///< in (GT id, frame) order
+};
+
+/// "kept", "new id", "other person's id" or "untracked".
+const char* ReturnOutcomeName(ReturnMetrics::Outcome outcome);
+
 /// Joint position error over the CLEAR MOT matched pairs.
 struct PoseErrorMetrics {
   std::int64_t num_pairs = 0;   ///< matched pairs with at least one joint valid in both
@@ -155,6 +190,8 @@ struct TrackingEvaluation {
   IdentityMetrics identity;
   /// Id transfers and fragmentations (TrackingOptions::cover_min_frames).
   IdentityCoverage coverage;
+  /// Returns of people who left and came back (TrackingOptions::return_min_gap_frames).
+  ReturnMetrics returns;
   /// HOTA (eval/hota.h) with the same distance, gate (similarity 1 - d / gate) and frames.
   HotaMetrics hota;
   PoseErrorMetrics pose;

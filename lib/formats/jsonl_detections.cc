@@ -34,8 +34,11 @@ class SchemaChecker : public json::Checker {
  public:
   bool Detection(const json::Value& v, const std::string& path, core::Detection2D* d) {
     std::map<std::string, const json::Value*> m;
-    if (!Members(
-            v, path, {"box", "score", "keypoints", "layout", "embedding"}, {"box", "score"}, &m)) {
+    if (!Members(v,
+                 path,
+                 {"box", "score", "keypoints", "layout", "embedding", "embedding_model"},
+                 {"box", "score"},
+                 &m)) {
       return false;
     }
     // box
@@ -123,6 +126,18 @@ class SchemaChecker : public json::Checker {
         if (!GetReal(e.items[i], Index(e_path, i), &value)) return false;
         d->embedding[i] = static_cast<float>(value);
       }
+    }
+    if (m.count("embedding_model") > 0) {
+      const json::Value& e = *m.at("embedding_model");
+      const std::string e_path = Join(path, "embedding_model");
+      if (!ExpectKind(e, e_path, json::Value::Kind::kString)) return false;
+      if (e.string.size() > static_cast<std::size_t>(kJsonlMaxModelName)) {
+        return Fail(e,
+                    e_path,
+                    std::to_string(e.string.size()) + " characters, more than the limit of " +
+                        std::to_string(kJsonlMaxModelName));
+      }
+      if (!d->embedding.empty()) d->embedding_model = e.string;
     }
     return true;
   }

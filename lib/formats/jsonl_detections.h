@@ -7,12 +7,12 @@
 ///   {"camera": 3, "frame": 120, "utime": 1700000004000000, "image_size": [1920, 1080],
 ///    "detections": [{"box": [x_min, y_min, x_max, y_max], "score": 0.93,
 ///                    "keypoints": [[x, y, conf], ...], "layout": "coco17",
-///                    "embedding": [...]}]}
+///                    "embedding": [...], "embedding_model": "osnet_x0_25"}]}
 ///
-/// in raw (distorted) image pixels. `image_size`, `keypoints` (with `layout`) and `embedding`
-/// are optional. Every line is a strict RFC 8259 JSON object checked against this schema
-/// (unknown, missing and duplicate keys, wrong types, out-of-range values are errors), and the
-/// lines together must satisfy the cross-line rules: frames never decrease, a camera appears at
+/// in raw (distorted) image pixels. `image_size`, `keypoints` (with `layout`), `embedding` and
+/// `embedding_model` are optional. Every line is a strict RFC 8259 JSON object checked against this
+/// schema (unknown, missing and duplicate keys, wrong types, out-of-range values are errors), and
+/// the lines together must satisfy the cross-line rules: frames never decrease, a camera appears at
 /// most once per frame, a camera's utime increases strictly from frame to frame, and (when the
 /// calibration is known) the camera exists and the image size matches.
 ///
@@ -42,6 +42,8 @@ namespace mvtrack::formats {
 inline constexpr int kJsonlMaxDetections = 1000;
 /// Most values one embedding may hold (the wire format's decode limit).
 inline constexpr int kJsonlMaxEmbedding = 4096;
+/// Longest embedding_model name (the wire format's string decode limit).
+inline constexpr int kJsonlMaxModelName = 64;
 /// Deepest nesting of arrays and objects the parser accepts (the schema needs 5:
 /// line, detections, detection, keypoints, keypoint).
 inline constexpr int kJsonlMaxDepth = 16;

@@ -20,6 +20,7 @@ constexpr double kForbidden = std::numeric_limits<double>::infinity();
 // Every finite cost is feasible; the gates are applied per pair by writing kForbidden.
 constexpr double kAnyFiniteCost = std::numeric_limits<double>::max();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
 // last_seen_frame of a track that has no footprint yet.
 constexpr FrameIndex kNoFrame = std::numeric_limits<FrameIndex>::min();
 
@@ -286,11 +287,260 @@ std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
   return motion;
 }
 
-WindowLinker::WindowLinker(LinkerOptions options, LinkerContext context)
-    : options_(options), context_(std::move(context)) {
+WindowLinker::WindowLinker(LinkerOptions options,
+                           LinkerContext context,
+                           core::AppearanceOptions appearance)
+    : options_(options), context_(std::move(context)), appearance_(appearance) {
   std::string why;
   MVTRACK_CHECK_MSG(options_.Validate(&why), why.c_str());
   MVTRACK_CHECK_MSG(context_.Validate(&why), why.c_str());
+  MVTRACK_CHECK_MSG(appearance_.Validate(&why), why.c_str());
+}
+
+namespace {
+
+// The nearest pair of entries of two galleries (cosine distance; 2 when none is comparable).
+double GalleriesDistance(const std::vector<std::vector<float>>& a,
+                         const std::vector<std::vector<float>>& b) {
+  double best = 2.0;
+  for (const std::vector<float>& x : a) best = std::min(best, core::GalleryDistance(b, x));
+  return best;
+}
+
+}  // namespace
+
+void WindowLinker::RecordSamePerson(const std::vector<core::Tracklet3D>& tracklets,
+                                    const LinkResult& result) {
+  const auto add = [](std::vector<TrackId3D>* list, TrackId3D id) {
+    const auto it = std::lower_bound(list->begin(), list->end(), id);
+    if (it != list->end() && *it == id) return;
+    list->insert(it, id);
+    if (static_cast<int>(list->size()) > kMaxSamePerson) list->erase(list->begin());
+  };
+  const auto find = [&](TrackId3D id) -> LinkedTrack* {
+    const auto it = std::lower_bound(
+        tracks_.begin(), tracks_.end(), id, [](const LinkedTrack& t, TrackId3D wanted) {
+          return t.id < wanted;
+        });
+    return it != tracks_.end() && it->id == id ? &*it : nullptr;
+  };
+  const auto looks_alike = [&](const core::Tracklet3D& t,
+                               const std::vector<std::vector<float>>& gallery) {
+    return !t.appearance.empty() &&
+           core::GalleryDistance(gallery, t.appearance) <= appearance_.reid_max_distance;
+  };
+  // (a) Two tracks of this window, side by side and alike: the person tracked twice.
+  for (std::size_t a = 0; a < tracklets.size(); ++a) {
+    if (tracklets[a].appearance.empty() || result.link_kind[a] == LinkKind::kDuplicate) continue;
+    for (std::size_t b = a + 1; b < tracklets.size(); ++b) {
+      if (tracklets[b].appearance.size() != tracklets[a].appearance.size() ||
+          result.link_kind[b] == LinkKind::kDuplicate ||
+          result.track_of_tracklet[a] == result.track_of_tracklet[b]) {
+        continue;
+      }
+      if (core::CosineDistance(tracklets[a].appearance, tracklets[b].appearance) >
+          appearance_.reid_max_distance) {
+        continue;
+      }
+      const std::optional<double> apart =
+          ClosestApproach(tracklets[a], tracklets[b], context_.footprint_points);
+      if (!apart || *apart > kSamePersonApartM) continue;
+      LinkedTrack* ta = find(result.track_of_tracklet[a]);
+      LinkedTrack* tb = find(result.track_of_tracklet[b]);
+      if (ta == nullptr || tb == nullptr) continue;
+      add(&ta->same_person, tb->id);
+      add(&tb->same_person, ta->id);
+    }
+  }
+  // (b) A track born where and when a lost or departed one that looks alike was last seen
+  // (within max_lost_s, reachable on foot): the person's next fragment.
+  for (std::size_t c = 0; c < tracklets.size(); ++c) {
+    if (result.link_kind[c] != LinkKind::kBirth || tracklets[c].appearance.empty()) continue;
+    LinkedTrack* born = find(result.track_of_tracklet[c]);
+    if (born == nullptr) continue;
+    std::optional<Vec2> first;
+    FrameIndex first_frame = 0;
+    for (std::size_t f = 0; f < tracklets[c].frames.size() && !first; ++f) {
+      first = FrameFootprint(tracklets[c].points[f], context_.footprint_points);
+      first_frame = tracklets[c].frames[f];
+    }
+    if (!first) continue;
+    const auto continues = [&](FrameIndex last_frame, const Vec2& last_position) {
+      const double gap_s = Seconds(last_frame, first_frame);
+      return gap_s >= 0.0 && gap_s <= options_.max_lost_s &&
+             (*first - last_position).norm() <= kMaxReidSpeedMps * gap_s + kSamePersonApartM;
+    };
+    for (LinkedTrack& t : tracks_) {
+      if (t.id == born->id || t.missed_windows == 0 || t.last_seen_frame == kNoFrame) continue;
+      if (continues(t.last_seen_frame, t.motion.position()) &&
+          looks_alike(tracklets[c], t.gallery)) {
+        add(&t.same_person, born->id);
+        add(&born->same_person, t.id);
+      }
+    }
+    for (DepartedTrack& d : departed_) {
+      if (continues(d.last_seen_frame, d.last_position) && looks_alike(tracklets[c], d.gallery)) {
+        add(&d.same_person, born->id);
+        add(&born->same_person, d.id);
+      }
+    }
+  }
+}
+
+std::size_t WindowLinker::gallery_bytes() const {
+  std::size_t bytes = 0;
+  const auto add = [&](const std::vector<std::vector<float>>& gallery) {
+    for (const std::vector<float>& g : gallery) bytes += g.size() * sizeof(float);
+  };
+  for (const LinkedTrack& t : tracks_) add(t.gallery);
+  for (const DepartedTrack& d : departed_) add(d.gallery);
+  return bytes;
+}
+
+void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& tracklets,
+                                    const std::vector<bool>& birth_candidate,
+                                    std::vector<int>* tracklet_of_track,
+                                    std::vector<int>* track_of_col,
+                                    std::vector<int>* revive,
+                                    std::vector<int>* same_as,
+                                    std::vector<int>* forget,
+                                    LinkResult* result) const {
+  // Candidates: lost tracks left unmatched (rows 0..), then departed tracks.
+  struct Candidate {
+    int track = -1;     // index into tracks_, or
+    int departed = -1;  // index into departed_
+    const std::vector<std::vector<float>>* gallery = nullptr;
+    FrameIndex last_seen_frame = 0;
+    Vec2 last_position = Vec2::Zero();
+    TrackId3D id = 0;
+    const std::vector<TrackId3D>* same_person = nullptr;
+  };
+  std::vector<Candidate> candidates;
+  for (std::size_t r = 0; r < tracks_.size(); ++r) {
+    const LinkedTrack& t = tracks_[r];
+    if ((*tracklet_of_track)[r] >= 0 || t.missed_windows == 0 || !t.confirmed ||
+        t.gallery.empty() || t.last_seen_frame == kNoFrame) {
+      continue;
+    }
+    candidates.push_back({static_cast<int>(r),
+                          -1,
+                          &t.gallery,
+                          t.last_seen_frame,
+                          t.motion.position(),
+                          t.id,
+                          &t.same_person});
+  }
+  for (std::size_t d = 0; d < departed_.size(); ++d) {
+    const DepartedTrack& dt = departed_[d];
+    candidates.push_back({-1,
+                          static_cast<int>(d),
+                          &dt.gallery,
+                          dt.last_seen_frame,
+                          dt.last_position,
+                          dt.id,
+                          &dt.same_person});
+  }
+  std::vector<int> cols;
+  for (std::size_t c = 0; c < tracklets.size(); ++c) {
+    if (birth_candidate[c] && !tracklets[c].appearance.empty()) cols.push_back(static_cast<int>(c));
+  }
+  if (candidates.empty() || cols.empty()) return;
+  const auto rows_n = static_cast<Eigen::Index>(candidates.size());
+  const auto cols_n = static_cast<Eigen::Index>(cols.size());
+  Eigen::MatrixXd dist = Eigen::MatrixXd::Constant(rows_n, cols_n, kInf);
+  for (Eigen::Index i = 0; i < rows_n; ++i) {
+    const Candidate& cand = candidates[static_cast<std::size_t>(i)];
+    for (Eigen::Index j = 0; j < cols_n; ++j) {
+      const core::Tracklet3D& t =
+          tracklets[static_cast<std::size_t>(cols[static_cast<std::size_t>(j)])];
+      // Physically possible: the footprint's speed since the track's last frame.
+      std::optional<Vec2> first;
+      FrameIndex first_frame = 0;
+      for (std::size_t f = 0; f < t.frames.size() && !first; ++f) {
+        first = FrameFootprint(t.points[f], context_.footprint_points);
+        first_frame = t.frames[f];
+      }
+      if (!first || first_frame <= cand.last_seen_frame) continue;
+      const double gap_s = Seconds(cand.last_seen_frame, first_frame);
+      if ((*first - cand.last_position).norm() > kMaxReidSpeedMps * gap_s) continue;
+      dist(i, j) = core::GalleryDistance(*cand.gallery, t.appearance);
+    }
+  }
+  // Greedy by increasing distance (ties: lowest candidate, then lowest column), each match
+  // unambiguous against every other entry of its row and column.
+  struct Entry {
+    double d;
+    Eigen::Index i, j;
+  };
+  std::vector<Entry> entries;
+  for (Eigen::Index i = 0; i < rows_n; ++i) {
+    for (Eigen::Index j = 0; j < cols_n; ++j) {
+      if (dist(i, j) <= appearance_.reid_max_distance) entries.push_back({dist(i, j), i, j});
+    }
+  }
+  std::stable_sort(
+      entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.d < b.d; });
+  std::vector<bool> row_used(candidates.size(), false), col_used(cols.size(), false);
+  for (const Entry& e : entries) {
+    const auto ui = static_cast<std::size_t>(e.i);
+    const auto uj = static_cast<std::size_t>(e.j);
+    if (row_used[ui] || col_used[uj]) continue;
+    // A close second on either side is ambiguous, unless it is the same person: another
+    // tracklet of this window next to the chosen one (a camera had two 2D tracks on them), or
+    // another remembered track that looks the same (the person's earlier fragment).
+    bool unambiguous = true;
+    std::vector<int> same_columns;
+    for (Eigen::Index k = 0; k < cols_n && unambiguous; ++k) {
+      if (k == e.j || !(dist(e.i, k) < e.d + appearance_.reid_margin)) continue;
+      const std::optional<double> apart =
+          ClosestApproach(tracklets[static_cast<std::size_t>(cols[uj])],
+                          tracklets[static_cast<std::size_t>(cols[static_cast<std::size_t>(k)])],
+                          context_.footprint_points);
+      if (apart && *apart <= kSamePersonApartM) {
+        same_columns.push_back(static_cast<int>(k));
+      } else {
+        unambiguous = false;
+      }
+    }
+    std::vector<int> same_rows;
+    for (Eigen::Index k = 0; k < rows_n && unambiguous; ++k) {
+      if (k == e.i || !(dist(k, e.j) < e.d + appearance_.reid_margin)) continue;
+      // The same person only on evidence (LinkedTrack::same_person: a duplicate track of the
+      // person, or its next fragment): two look-alikes are two people.
+      const Candidate& a = candidates[ui];
+      const Candidate& b = candidates[static_cast<std::size_t>(k)];
+      if ((std::binary_search(a.same_person->begin(), a.same_person->end(), b.id) ||
+           std::binary_search(b.same_person->begin(), b.same_person->end(), a.id)) &&
+          GalleriesDistance(*a.gallery, *b.gallery) <= appearance_.reid_max_distance) {
+        same_rows.push_back(static_cast<int>(k));
+      } else {
+        unambiguous = false;
+      }
+    }
+    if (!unambiguous) continue;
+    row_used[ui] = true;
+    col_used[uj] = true;
+    const int c = cols[uj];
+    for (const int k : same_columns) {
+      if (col_used[static_cast<std::size_t>(k)]) continue;
+      col_used[static_cast<std::size_t>(k)] = true;
+      (*same_as)[static_cast<std::size_t>(cols[static_cast<std::size_t>(k)])] = c;
+    }
+    for (const int k : same_rows) {
+      row_used[static_cast<std::size_t>(k)] = true;
+      const Candidate& other = candidates[static_cast<std::size_t>(k)];
+      if (other.departed >= 0) forget->push_back(other.departed);
+    }
+    const Candidate& cand = candidates[ui];
+    if (cand.track >= 0) {
+      (*tracklet_of_track)[static_cast<std::size_t>(cand.track)] = c;
+      (*track_of_col)[static_cast<std::size_t>(c)] = cand.track;
+    } else {
+      (*revive)[static_cast<std::size_t>(c)] = cand.departed;
+    }
+    result->link_kind[static_cast<std::size_t>(c)] = LinkKind::kAppearance;
+    result->link_distance_m[static_cast<std::size_t>(c)] = e.d;
+  }
 }
 
 TrackState WindowLinker::StateOf(const LinkedTrack& track) const {
@@ -332,6 +582,15 @@ void WindowLinker::Absorb(LinkedTrack* track,
   }
   MergeMembers(track, tracklet);
   track->last_tracklet = tracklet;
+  if (!tracklet.appearance.empty()) {
+    auto& gallery = track->gallery;
+    if (static_cast<int>(gallery.size()) >= appearance_.gallery_size) {
+      gallery.erase(gallery.begin(),
+                    gallery.begin() + (static_cast<std::ptrdiff_t>(gallery.size()) -
+                                       appearance_.gallery_size + 1));
+    }
+    gallery.push_back(tracklet.appearance);
+  }
 }
 
 void WindowLinker::MergeMembers(LinkedTrack* track, const core::Tracklet3D& tracklet) const {
@@ -375,6 +634,7 @@ std::vector<EndedTrack> WindowLinker::EndStream() {
   ended.reserve(tracks_.size());
   for (const LinkedTrack& t : tracks_) ended.push_back({t.id, EndReason::kStreamEnd});
   tracks_.clear();
+  departed_.clear();
   return ended;
 }
 
@@ -439,18 +699,39 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
   for (const LinkedTrack& t : tracks_) {
     if (const auto reason = end_reason(t)) ended.push_back({t.id, *reason});
   }
+  if (appearance_.enabled) {
+    // Departed tracks are remembered for max_reid_s.
+    std::erase_if(departed_, [&](const DepartedTrack& d) {
+      return Seconds(d.last_seen_frame, window_begin) > appearance_.max_reid_s;
+    });
+  }
   if (!ended.empty()) {
     std::size_t e = 0;
-    tracks_.erase(std::remove_if(tracks_.begin(),
-                                 tracks_.end(),
-                                 [&](const LinkedTrack& t) {
-                                   if (e < ended.size() && ended[e].id == t.id) {
-                                     ++e;
-                                     return true;
-                                   }
-                                   return false;
-                                 }),
-                  tracks_.end());
+    tracks_.erase(
+        std::remove_if(tracks_.begin(),
+                       tracks_.end(),
+                       [&](LinkedTrack& t) {
+                         if (e < ended.size() && ended[e].id == t.id) {
+                           ++e;
+                           if (appearance_.enabled && appearance_.max_departed > 0 && t.confirmed &&
+                               !t.gallery.empty() && t.last_seen_frame != kNoFrame) {
+                             if (static_cast<int>(departed_.size()) >= appearance_.max_departed) {
+                               departed_.erase(departed_.begin());
+                             }
+                             departed_.push_back({t.id,
+                                                  t.hits,
+                                                  t.first_window,
+                                                  t.last_window,
+                                                  t.last_seen_frame,
+                                                  t.motion.position(),
+                                                  std::move(t.gallery),
+                                                  std::move(t.same_person)});
+                           }
+                           return true;
+                         }
+                         return false;
+                       }),
+        tracks_.end());
   }
 
   const std::size_t num_tracks = tracks_.size();
@@ -617,6 +898,46 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     }
   }
 
+  // Duplicates: an unmatched tracklet of a matched track's person (before appearance, so a
+  // person seen twice never revives an old id).
+  std::vector<int> duplicate_of(num_tracklets, -1);
+  std::vector<double> duplicate_distance(num_tracklets, kNaN);
+  if (options_.duplicate_distance_m > 0.0) {
+    for (std::size_t c = 0; c < num_tracklets; ++c) {
+      if (track_of_col[c] >= 0) continue;
+      // The person of a linked tracklet seen a second time: the nearest such tracklet.
+      double nearest = options_.duplicate_distance_m;
+      for (std::size_t o = 0; o < num_tracklets; ++o) {
+        if (track_of_col[o] < 0) continue;
+        const std::optional<double> d = MedianOverlapDistanceOfChecked(tracklets[o], tracklets[c]);
+        if (d && *d <= nearest) {
+          nearest = *d;
+          duplicate_of[c] = track_of_col[o];
+        }
+      }
+      duplicate_distance[c] = nearest;
+    }
+  }
+  // Stage 5, appearance.
+  std::vector<int> revive(num_tracklets, -1);
+  std::vector<int> same_as(num_tracklets, -1);  // a second tracklet of a re-identified person
+  std::vector<int> forget;                      // departed fragments of re-identified people
+  if (appearance_.enabled) {
+    std::vector<bool> birth_candidate(num_tracklets);
+    for (std::size_t c = 0; c < num_tracklets; ++c) {
+      birth_candidate[c] = track_of_col[c] < 0 && duplicate_of[c] < 0;
+    }
+    LinkByAppearance(tracklets,
+                     birth_candidate,
+                     &tracklet_of_track,
+                     &track_of_col,
+                     &revive,
+                     &same_as,
+                     &forget,
+                     &result);
+    for (const int d : forget) departed_[static_cast<std::size_t>(d)].gallery.clear();
+  }
+
   // Track management: update the matched, age the unmatched, then give birth.
   for (std::size_t r = 0; r < num_tracks; ++r) {
     LinkedTrack& track = tracks_[r];
@@ -629,28 +950,33 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     result.track_of_tracklet[sc] = track.id;
     Absorb(&track, tracklets[sc], window_id);
   }
+  std::vector<LinkedTrack> revived;
   for (std::size_t c = 0; c < num_tracklets; ++c) {
-    if (track_of_col[c] >= 0) continue;
-    if (options_.duplicate_distance_m > 0.0) {
-      // The person of a linked tracklet seen a second time: the nearest such tracklet.
-      int of = -1;
-      double nearest = options_.duplicate_distance_m;
-      for (std::size_t o = 0; o < num_tracklets; ++o) {
-        if (track_of_col[o] < 0) continue;
-        const std::optional<double> d = MedianOverlapDistanceOfChecked(tracklets[o], tracklets[c]);
-        if (d && *d <= nearest) {
-          nearest = *d;
-          of = track_of_col[o];
-        }
-      }
-      if (of >= 0) {
-        LinkedTrack& person = tracks_[static_cast<std::size_t>(of)];
-        MergeMembers(&person, tracklets[c]);
-        result.track_of_tracklet[c] = person.id;
-        result.link_kind[c] = LinkKind::kDuplicate;
-        result.link_distance_m[c] = nearest;
-        continue;
-      }
+    if (track_of_col[c] >= 0 || same_as[c] >= 0) continue;
+    if (duplicate_of[c] >= 0) {
+      LinkedTrack& person = tracks_[static_cast<std::size_t>(duplicate_of[c])];
+      MergeMembers(&person, tracklets[c]);
+      result.track_of_tracklet[c] = person.id;
+      result.link_kind[c] = LinkKind::kDuplicate;
+      result.link_distance_m[c] = duplicate_distance[c];
+      continue;
+    }
+    if (revive[c] >= 0) {
+      // A departed track comes back: its id, hits and gallery; motion and members restart.
+      DepartedTrack& d = departed_[static_cast<std::size_t>(revive[c])];
+      LinkedTrack track;
+      track.id = d.id;
+      track.hits = d.hits;
+      track.confirmed = true;
+      track.first_window = d.first_window;
+      track.last_seen_frame = kNoFrame;
+      track.gallery = std::move(d.gallery);
+      track.same_person = std::move(d.same_person);
+      Absorb(&track, tracklets[c], window_id);
+      result.track_of_tracklet[c] = track.id;
+      result.revived.push_back(track.id);
+      revived.push_back(std::move(track));
+      continue;
     }
     LinkedTrack track;
     track.id = next_id_++;
@@ -673,6 +999,29 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     result.born.push_back(track.id);
     tracks_.push_back(std::move(track));  // fresh ids are the largest: tracks_ stays sorted
   }
+  if (!revived.empty() || !forget.empty()) {
+    std::erase_if(departed_, [](const DepartedTrack& d) { return d.gallery.empty(); });
+    for (LinkedTrack& t : revived) tracks_.push_back(std::move(t));
+    std::sort(tracks_.begin(), tracks_.end(), [](const LinkedTrack& a, const LinkedTrack& b) {
+      return a.id < b.id;
+    });
+    std::sort(result.revived.begin(), result.revived.end());
+  }
+  // Second tracklets of people re-identified in this window: duplicates of them.
+  for (std::size_t c = 0; c < num_tracklets; ++c) {
+    if (same_as[c] < 0) continue;
+    const TrackId3D id = result.track_of_tracklet[static_cast<std::size_t>(same_as[c])];
+    const auto it = std::lower_bound(
+        tracks_.begin(), tracks_.end(), id, [](const LinkedTrack& t, TrackId3D wanted) {
+          return t.id < wanted;
+        });
+    MVTRACK_CHECK(it != tracks_.end() && it->id == id);
+    MergeMembers(&*it, tracklets[c]);
+    result.track_of_tracklet[c] = id;
+    result.link_kind[c] = LinkKind::kDuplicate;
+    result.link_distance_m[c] = result.link_distance_m[static_cast<std::size_t>(same_as[c])];
+  }
+  if (appearance_.enabled) RecordSamePerson(tracklets, result);
   for (LinkedTrack& track : tracks_) track.state = StateOf(track);
   for (const EndedTrack& e : ended) {
     result.died.push_back(e.id);

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/appearance.h"
 #include "core/observation.h"
 #include "core/types.h"
 #include "linking/floor_motion.h"
@@ -142,6 +143,16 @@ struct LinkedTrack {
   std::vector<TrackMember> members;
   /// Footprint motion, updated with every frame of its tracklets (at last_seen_frame).
   FloorMotion motion;
+  /// Appearance on: the descriptors (Tracklet3D::appearance) of its latest windows, oldest
+  /// first, at most AppearanceOptions::gallery_size.
+  std::vector<std::vector<float>> gallery;
+  /// Appearance on: tracks that are, on evidence, the same person: they look alike
+  /// (reid_max_distance) and either were seen within kSamePersonApartM of it at the same time
+  /// (a duplicate track) or one was born where and when the other was lost (within max_lost_s,
+  /// reachable on foot: the next fragment). Such a pair does not make a re-identification
+  /// ambiguous; two look-alikes without such evidence do. Sorted, at most kMaxSamePerson (the
+  /// oldest forgotten).
+  std::vector<TrackId3D> same_person;
 };
 
 /// How an input tracklet was linked.
@@ -151,6 +162,7 @@ enum class LinkKind {
   kGap,           ///< linked across a gap: a shared 2D track and the motion gate
   kReidentified,  ///< linked across a gap by motion alone, unambiguously
   kDuplicate,     ///< unmatched, but a second tracklet of a linked track's person (not output)
+  kAppearance,    ///< unmatched, re-identified by appearance: a lost or departed track's id
 };
 
 /// A track that ended in a Link or EndStream call.
@@ -167,13 +179,16 @@ struct LinkResult {
   std::vector<TrackId3D> track_of_tracklet;
   /// Tracks started in this window (sorted ascending).
   std::vector<TrackId3D> born;
+  /// Tracks that had ended and came back in this window by appearance (sorted ascending).
+  std::vector<TrackId3D> revived;
   /// Tracks that ended in this window (sorted ascending).
   std::vector<TrackId3D> died;
   /// Parallel to `died`: why.
   std::vector<EndReason> died_reason;
   /// Parallel to the input: for kOverlap the Eq. 8 distance to the linked track (metres), for
   /// kGap and kReidentified the squared Mahalanobis distance of the motion test, for kDuplicate
-  /// the Eq. 8 distance to the person's other tracklet, NaN for births.
+  /// the Eq. 8 distance to the person's other tracklet, for kAppearance the appearance (cosine)
+  /// distance, NaN for births.
   std::vector<double> link_distance_m;
   /// Parallel to the input: how each tracklet was linked.
   std::vector<LinkKind> link_kind;
@@ -205,6 +220,15 @@ std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
                                          const MotionOptions& options,
                                          double seconds_per_frame);
 
+/// Appearance re-identification never links a tracklet to a track whose footprint would have
+/// had to move faster than this since the track's last frame (a brisk walk is 1.5-2 m/s).
+inline constexpr double kMaxReidSpeedMps = 3.0;
+/// Two tracklets of one window closer than this (metres, footprints at a common frame) may be
+/// one person; farther, they are two.
+inline constexpr double kSamePersonApartM = 0.5;
+/// "Same person" tracks remembered per track (LinkedTrack::same_person).
+inline constexpr int kMaxSamePerson = 16;
+
 /// Online track-to-track data association across sliding windows (paper Sec. "Link Sliding
 /// Windows", Eq. 8-9) with the track management of the mature online trackers (tentative,
 /// confirmed, lost with a time to live, removed). Per window, alive tracks as rows and the
@@ -218,10 +242,18 @@ std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
 ///  4. Re-identification: no overlap, no shared 2D track, a lost track, the gap <=
 ///     max_reid_gap_s, the motion distance <= reid_gate_chi2 and smaller by reid_margin_chi2
 ///     than every other candidate of the track and of the tracklet.
-/// Then matched tracks take their tracklet; an unmatched tracklet within duplicate_distance_m
-/// (Eq. 8) of a matched one is a duplicate of that person (its 2D tracks join the track's
-/// members, track_of_tracklet is that track's id, nothing is born), the other unmatched
-/// tracklets are born (fresh ids, in input order); unmatched tracks are lost. A lost track ends
+/// Then an unmatched tracklet within duplicate_distance_m (Eq. 8) of a matched one is a
+/// duplicate of that person (its 2D tracks join the track's members, track_of_tracklet is that
+/// track's id, nothing is born). With appearance (core::AppearanceOptions::enabled and
+/// tracklets that carry one):
+///  5. Appearance: each remaining tracklet with an appearance descriptor against the lost
+///     tracks left unmatched and the departed tracks (ended within max_reid_s, confirmed): the
+///     gallery distance (core::GalleryDistance) must be <= reid_max_distance and smaller by
+///     reid_margin than every other candidate of the track and of the tracklet, and the
+///     footprint may not have moved faster than kMaxReidSpeedMps since the track's last
+///     frame. A departed track matched so is revived with its old id (LinkResult::revived).
+/// Matched tracks take their tracklet, the other unmatched tracklets are born (fresh ids, in
+/// input order); unmatched tracks are lost. A lost track ends
 /// (before a window is linked) when its last footprint is older than max_lost_s; when none of its
 /// 2D tracks is alive any more (the person left every camera's view or every camera lost them: 2D
 /// track ids are never reused, so only re-identification could link it) and re-identification is
@@ -231,8 +263,11 @@ std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
 /// tracklet index).
 class WindowLinker {
  public:
-  /// `options` and `context` must be valid (checked; validate configuration beforehand).
-  explicit WindowLinker(LinkerOptions options = {}, LinkerContext context = {});
+  /// `options`, `context` and `appearance` must be valid (checked; validate configuration
+  /// beforehand).
+  explicit WindowLinker(LinkerOptions options = {},
+                        LinkerContext context = {},
+                        core::AppearanceOptions appearance = {});
 
   /// Links the next window, which starts at frame `window_begin`; frames are
   /// `seconds_per_frame` apart (the stream's measured period; finite, > 0, checked): it
@@ -248,8 +283,26 @@ class WindowLinker {
                   const std::vector<core::Tracklet3D>& tracklets,
                   const std::vector<core::TrackletMember>& live_tracks);
 
-  /// The stream ended: every track ends (kStreamEnd), returned sorted by id.
+  /// The stream ended: every track ends (kStreamEnd), returned sorted by id; the departed
+  /// tracks are forgotten.
   std::vector<EndedTrack> EndStream();
+
+  /// A track that ended (kLostTooLong or kLeftView) while confirmed and with a gallery,
+  /// remembered for re-identification by appearance.
+  struct DepartedTrack {
+    TrackId3D id = 0;
+    int hits = 0;
+    std::int64_t first_window = 0;
+    std::int64_t last_window = 0;
+    FrameIndex last_seen_frame = 0;
+    Vec2 last_position = Vec2::Zero();
+    std::vector<std::vector<float>> gallery;
+    std::vector<TrackId3D> same_person;  ///< see LinkedTrack::same_person
+  };
+  /// The departed tracks, in order of ending (AppearanceOptions::max_departed, max_reid_s).
+  const std::vector<DepartedTrack>& departed() const { return departed_; }
+  /// Bytes held by the galleries of alive and departed tracks (the appearance memory).
+  std::size_t gallery_bytes() const;
 
   /// Alive tracks sorted by id.
   const std::vector<LinkedTrack>& tracks() const { return tracks_; }
@@ -271,10 +324,26 @@ class WindowLinker {
   double Seconds(FrameIndex from, FrameIndex to) const;
   void Absorb(LinkedTrack* track, const core::Tracklet3D& tracklet, std::int64_t window_id);
   void MergeMembers(LinkedTrack* track, const core::Tracklet3D& tracklet) const;
+  // Stage 5 of Link (see the class comment): fills `revive` (departed index per tracklet, -1)
+  // and links lost tracks into tracklet_of_track / track_of_col.
+  void LinkByAppearance(const std::vector<core::Tracklet3D>& tracklets,
+                        const std::vector<bool>& birth_candidate,
+                        std::vector<int>* tracklet_of_track,
+                        std::vector<int>* track_of_col,
+                        std::vector<int>* revive,
+                        std::vector<int>* same_as,
+                        std::vector<int>* forget,
+                        LinkResult* result) const;
+
+  // Appearance on: records tracks of this window that are, on evidence, the same person
+  // (LinkedTrack::same_person).
+  void RecordSamePerson(const std::vector<core::Tracklet3D>& tracklets, const LinkResult& result);
 
   LinkerOptions options_;
   LinkerContext context_;
-  std::vector<LinkedTrack> tracks_;  // increasing id order
+  core::AppearanceOptions appearance_;
+  std::vector<DepartedTrack> departed_;  // in order of ending
+  std::vector<LinkedTrack> tracks_;      // increasing id order
   std::optional<std::int64_t> last_window_;
   TrackId3D next_id_ = 1;
   double seconds_per_frame_ = 1.0 / 30.0;

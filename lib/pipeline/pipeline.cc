@@ -198,6 +198,8 @@ void Pipeline::CameraLoop(int camera_index) {
       stats_.detections_rejected += counters.detections_rejected;
       stats_.detections_repaired += counters.detections_repaired;
       stats_.detections_filtered += counters.detections_filtered;
+      stats_.embeddings_used += counters.embeddings_used;
+      stats_.embeddings_dropped += counters.embeddings_dropped;
     }
     reorder_.Insert(work->seq, std::move(item));
   }
@@ -315,6 +317,8 @@ void Pipeline::FinalizerLoop() {
           std::lock_guard<std::mutex> lock(status_mu_);
           stats_.windows_processed = finalizer_.counters().windows_processed;
           stats_.tracks_born = finalizer_.counters().tracks_born;
+          stats_.tracks_revived = finalizer_.counters().tracks_revived;
+          stats_.gallery_bytes = finalizer_.counters().gallery_bytes;
           next_track_id_ = finalizer_.linker().next_id();
           if (finished.failed) {
             ++windows_failed_;

@@ -68,6 +68,15 @@ struct CrowdSimulator::State {
     double blocked_s = 0.0;
     double stay_left_s = 0.0;  // enter_and_leave only
     Random rng{0};
+    std::shared_ptr<const PersonAppearance> appearance;  // embedding_dim > 0 only
+    int visits = 0;                                      // earlier visits of this id (re-entries)
+  };
+  // Someone who left (re-entry candidates; reentry_probability > 0 only).
+  struct Departed {
+    int id = 0;
+    int visits = 0;  // visits so far
+    double height_m = 0.0;
+    double left_at_s = 0.0;
   };
   struct Slot {
     std::optional<Walker> walker;
@@ -75,12 +84,17 @@ struct CrowdSimulator::State {
   };
 
   explicit State(const SceneOptions& options)
-      : o(options), population(DeriveSeed(options.seed, Stream::kPopulation)) {}
+      : o(options),
+        population(DeriveSeed(options.seed, Stream::kPopulation)),
+        reentry(DeriveSeed(options.seed, Stream::kReentry)) {}
 
   SceneOptions o;
   FrameIndex frame = 0;
   int next_id = 0;
   Random population;
+  Random reentry;
+  std::vector<Departed> departed;  // in order of leaving
+  double time_s = 0.0;             // simulated time (sum of sub-steps)
   std::vector<Slot> slots;
   int substeps = 1;
   double substep_s = 0.0;
@@ -125,11 +139,18 @@ struct CrowdSimulator::State {
     return std::hypot(dx, dy);
   }
 
-  Walker MakeWalker(const Vec2& position, Mode mode) {
+  // A new person (returning == null) or the next visit of one who left.
+  Walker MakeWalker(const Vec2& position, Mode mode, const Departed* returning = nullptr) {
     Walker w;
-    w.id = next_id++;
-    w.rng = Random(DeriveSeed(o.seed, Stream::kPerson, static_cast<std::uint64_t>(w.id)));
+    w.id = returning != nullptr ? returning->id : next_id++;
+    w.visits = returning != nullptr ? returning->visits : 0;
+    w.rng = Random(DeriveSeed(o.seed,
+                              Stream::kPerson,
+                              static_cast<std::uint64_t>(w.id),
+                              static_cast<std::uint64_t>(w.visits)));
     w.height_m = w.rng.Uniform(o.min_height_m, o.max_height_m);
+    if (returning != nullptr) w.height_m = returning->height_m;
+    if (o.embedding_dim > 0) w.appearance = MakePersonAppearance(o, w.id);
     w.preferred_speed_mps = w.rng.Uniform(o.min_speed_mps, o.max_speed_mps);
     w.phase_rad = w.rng.Uniform(0.0, 2.0 * kPi);
     w.stay_left_s = w.rng.Uniform(0.5, 1.5) * o.mean_stay_s;
@@ -395,7 +416,26 @@ struct CrowdSimulator::State {
     for (const Slot& s : slots) {
       if (s.walker && (s.walker->position - p).norm() < clear) return;  // retry next sub-step
     }
-    slot->walker = MakeWalker(p, Mode::kEntering);
+    const Departed* returning = nullptr;
+    if (o.reentry_probability > 0.0) {
+      // Forget who has been away too long, then maybe bring back the longest-absent person
+      // who has been away long enough.
+      std::erase_if(departed, [&](const Departed& d) {
+        return time_s - d.left_at_s > o.max_reentry_absence_s;
+      });
+      if (reentry.Uniform() < o.reentry_probability) {
+        for (const Departed& d : departed) {
+          if (time_s - d.left_at_s >= o.min_reentry_absence_s) {
+            returning = &d;
+            break;
+          }
+        }
+      }
+    }
+    slot->walker = MakeWalker(p, Mode::kEntering, returning);
+    if (returning != nullptr) {
+      departed.erase(departed.begin() + (returning - departed.data()));
+    }
   }
 
   void Substep(double dt) {
@@ -406,10 +446,14 @@ struct CrowdSimulator::State {
     }
     BuildGrid();
     for (Walker* w : active) StepWalker(w, dt);
+    time_s += dt;
     if (o.enter_and_leave) {
       for (Slot& s : slots) {
         if (s.walker && s.walker->mode == Mode::kLeaving &&
             OutsideDistance(s.walker->position) >= kDespawnDistanceM) {
+          if (o.reentry_probability > 0.0) {
+            departed.push_back({s.walker->id, s.walker->visits + 1, s.walker->height_m, time_s});
+          }
           s.walker.reset();
           s.absence_left_s = population.Uniform(0.0, 2.0) * o.mean_absence_s;
         }
@@ -439,6 +483,7 @@ struct CrowdSimulator::State {
       p.velocity_mps = Vec3(w.frame_velocity.x(), w.frame_velocity.y(), 0.0);
       p.heading_rad = w.heading_rad;
       p.height_m = w.height_m;
+      p.appearance = w.appearance;
       t.people.push_back(std::move(p));
     }
     std::sort(t.people.begin(), t.people.end(), [](const PersonTruth& a, const PersonTruth& b) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "sim/appearance.h"
 #include "sim/body.h"
 #include "sim/scene_options.h"
 
@@ -16,13 +17,17 @@ namespace mvtrack::sim {
 
 /// Ground truth of one person at one frame.
 struct PersonTruth {
-  int id = 0;                        ///< unique per person (a re-entering person gets a new id)
+  /// Unique per person. A person entering again gets a new id, except a re-entry
+  /// (SceneOptions::reentry_probability), which keeps the id it had.
+  int id = 0;
   Vec3 footprint_m = Vec3::Zero();   ///< ground point under the pelvis (z = 0), world frame
   std::vector<Vec3> joints_m;        ///< 17 COCO joints (core::KeypointLayoutId::kCoco17), world
   Vec3 head_top_m = Vec3::Zero();    ///< top of the head, world
   Vec3 velocity_mps = Vec3::Zero();  ///< footprint velocity over the last frame (z = 0)
   double heading_rad = 0.0;          ///< facing direction, counter-clockwise from world +x
   double height_m = 0.0;             ///< standing height
+  /// Its appearance (SceneOptions::embedding_dim > 0), else null. Shared, immutable.
+  std::shared_ptr<const PersonAppearance> appearance;
 };
 
 /// Ground truth of one frame.

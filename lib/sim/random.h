@@ -23,6 +23,9 @@ enum class Stream : std::uint64_t {
   kConfidence = 5,     ///< per camera-frame: scores, keypoint confidences and dropout
   kFalsePositive = 6,  ///< per camera-frame: false-positive count, boxes and poses
   kShuffle = 7,        ///< per camera-frame: detection order
+  kAppearance = 8,     ///< per person (a = id + 1): embedding prototypes; a = 0: the population's
+  kEmbedding = 9,      ///< per camera-frame: embedding noise and false positives' embeddings
+  kReentry = 10,       ///< re-entry decisions (enter_and_leave with reentry_probability > 0)
 };
 
 using core::Mix64;

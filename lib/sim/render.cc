@@ -303,6 +303,13 @@ core::CameraFrame RenderCameraImpl(const SceneOptions& options,
   Random confidence_rng(DeriveSeed(options.seed, Stream::kConfidence, frame_key, camera_key));
   Random fp_rng(DeriveSeed(options.seed, Stream::kFalsePositive, frame_key, camera_key));
   Random shuffle_rng(DeriveSeed(options.seed, Stream::kShuffle, frame_key, camera_key));
+  // Embeddings: a stream of their own, drawn from only when they are on (scenes without them
+  // are unchanged).
+  const bool embeddings = options.embedding_dim > 0;
+  Random embedding_rng(DeriveSeed(options.seed, Stream::kEmbedding, frame_key, camera_key));
+  std::vector<double> embedding_noise(static_cast<std::size_t>(options.embedding_dim));
+  const Vec3 camera_centre =
+      -camera.cam_from_world.rotation.transpose() * camera.cam_from_world.translation;
 
   core::CameraFrame out;
   out.utime = truth.utime;
@@ -351,13 +358,19 @@ core::CameraFrame RenderCameraImpl(const SceneOptions& options,
         k.u_dropout = confidence_rng.Uniform();
       }
     }
+    if (embeddings) {
+      for (double& e : embedding_noise) e = embedding_rng.Normal();
+    }
     if (missed) continue;
 
     occluders.clear();
+    std::size_t nearest_occluder = n;  // index into truth.people of the nearest occluder
     if (options.occlusion && rank[i] < n) {
       for (std::size_t r = 0; r < rank[i]; ++r) {
         const core::BoxPx& b = projections[by_depth[r]]->clipped_box;
-        if (Overlap(b, p.clipped_box)) occluders.push_back(b);
+        if (!Overlap(b, p.clipped_box)) continue;
+        occluders.push_back(b);
+        if (nearest_occluder == n) nearest_occluder = by_depth[r];
       }
     }
     const double own_area = Area(p.clipped_box);
@@ -395,6 +408,22 @@ core::CameraFrame RenderCameraImpl(const SceneOptions& options,
     EnsureExtent(&d.box.x_min, &d.box.x_max, camera.width_px);
     EnsureExtent(&d.box.y_min, &d.box.y_max, camera.height_px);
     d.score = 0.5 + 0.5 * (1.0 - 0.6 * u_score) * (1.0 - covered);
+    if (embeddings) {
+      const PersonTruth& person = truth.people[i];
+      MVTRACK_CHECK_MSG(person.appearance != nullptr, "embeddings need people with appearance");
+      const Vec2 to_camera(camera_centre.x() - person.footprint_m.x(),
+                           camera_centre.y() - person.footprint_m.y());
+      const double norm = to_camera.norm();
+      const double view_cos = norm > 1e-9 ? (std::cos(person.heading_rad) * to_camera.x() +
+                                             std::sin(person.heading_rad) * to_camera.y()) /
+                                                norm
+                                          : 1.0;
+      const PersonAppearance* occluder =
+          nearest_occluder < n ? truth.people[nearest_occluder].appearance.get() : nullptr;
+      ObserveEmbedding(
+          options, *person.appearance, view_cos, occluder, covered, embedding_noise, &d.embedding);
+      d.embedding_model = kSimEmbeddingModel;
+    }
     out.detections.push_back(std::move(d));
     ids.push_back(truth.people[i].id);
   }
@@ -402,6 +431,10 @@ core::CameraFrame RenderCameraImpl(const SceneOptions& options,
   const int false_positives = fp_rng.Poisson(options.false_positives_per_frame);
   for (int k = 0; k < false_positives; ++k) {
     out.detections.push_back(FalsePositive(options, camera, &fp_rng));
+    if (embeddings) {
+      out.detections.back().embedding = StrangerEmbedding(options, &embedding_rng);
+      out.detections.back().embedding_model = kSimEmbeddingModel;
+    }
     ids.push_back(-1);
   }
 

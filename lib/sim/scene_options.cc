@@ -103,6 +103,23 @@ bool SceneOptions::Validate(std::string* why) const {
   if (!finite(occlusion_threshold) || !(occlusion_threshold > 0.0) || occlusion_threshold > 1.0) {
     return fail("occlusion_threshold must be in (0, 1]");
   }
+  if (embedding_dim < 0 || embedding_dim > 4096) return fail("embedding_dim must be in [0, 4096]");
+  const auto unit = [&](double v) { return finite(v) && v >= 0.0 && v <= 1.0; };
+  const auto non_negative = [&](double v) { return finite(v) && v >= 0.0 && v <= 100.0; };
+  if (!non_negative(embedding_noise)) return fail("embedding_noise must be in [0, 100]");
+  if (!non_negative(embedding_view_drift)) return fail("embedding_view_drift must be in [0, 100]");
+  if (!unit(embedding_population_similarity) || embedding_population_similarity >= 1.0) {
+    return fail("embedding_population_similarity must be in [0, 1)");
+  }
+  if (!unit(look_alike_fraction)) return fail("look_alike_fraction must be in [0, 1]");
+  if (!non_negative(look_alike_spread)) return fail("look_alike_spread must be in [0, 100]");
+  if (!unit(reentry_probability)) return fail("reentry_probability must be in [0, 1]");
+  if (!finite(min_reentry_absence_s) || min_reentry_absence_s < 0.0) {
+    return fail("min_reentry_absence_s must be >= 0");
+  }
+  if (!finite(max_reentry_absence_s) || max_reentry_absence_s < min_reentry_absence_s) {
+    return fail("max_reentry_absence_s must be >= min_reentry_absence_s");
+  }
   const int capacity = InitialCapacity(*this);
   if (num_people > capacity) {
     return fail("num_people = " + std::to_string(num_people) + " do not fit in the room: at most " +

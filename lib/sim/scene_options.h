@@ -93,6 +93,32 @@ struct SceneOptions {
   /// Emit COCO-17 keypoints (layout kCoco17) with each detection; boxes are always present.
   bool poses = true;
 
+  // --- Appearance (sim/appearance.h). -----------------------------------------------------------
+  /// Length d of the re-identification embedding of every detection; 0 = no embeddings (and
+  /// not a single random draw more: scenes without embeddings are unchanged). <= 4096.
+  int embedding_dim = 0;
+  /// Per-observation noise: an isotropic Gaussian of this expected norm is added to the unit
+  /// prototype before renormalising (0.5: two views of one person at a cosine distance of
+  /// about 0.2, the typical same-person distance of OSNet-class models). Finite, >= 0.
+  double embedding_noise = 0.5;
+  /// Back prototype = front prototype plus this times a random unit direction, renormalised;
+  /// views in between blend the two by the viewing angle. Finite, >= 0.
+  double embedding_view_drift = 0.5;
+  /// Cosine similarity of two strangers' prototypes (real embeddings of different people are
+  /// far from orthogonal). In [0, 1).
+  double embedding_population_similarity = 0.3;
+  /// Probability that an odd-id person is a look-alike of the person with the id below. [0, 1].
+  double look_alike_fraction = 0.0;
+  /// A look-alike's prototype is its twin's plus this times a random unit direction. Finite,
+  /// >= 0 (0.3: its observations are about as close to the twin's as to its own).
+  double look_alike_spread = 0.3;
+  /// enter_and_leave: probability that a person entering is someone who left earlier and has
+  /// been away for [min_reentry_absence_s, max_reentry_absence_s] (the longest-absent such
+  /// person; same id, same appearance, same height), instead of a new person. [0, 1].
+  double reentry_probability = 0.0;
+  double min_reentry_absence_s = 10.0;  ///< see reentry_probability; finite, >= 0
+  double max_reentry_absence_s = 60.0;  ///< see reentry_probability; >= min_reentry_absence_s
+
   /// Checks ranges and feasibility (e.g. that num_people fit in the room at the initial spacing).
   /// On failure returns false and, if `why` is not null, sets it to a reason naming the field.
   bool Validate(std::string* why) const;

@@ -196,6 +196,19 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
       ++counters->detections_filtered;
       continue;
     }
+    if (options_.appearance.enabled && !detection.embedding.empty()) {
+      std::string why =
+          core::CheckEmbedding(detection.embedding_model, &detection.embedding, &embedding_stream_);
+      if (why.empty()) {
+        obs->embedding = std::move(detection.embedding);
+        ++counters->embeddings_used;
+      } else {
+        ++counters->embeddings_dropped;
+        if (counters->first_embedding_reason.empty()) {
+          counters->first_embedding_reason = std::move(why);
+        }
+      }
+    }
     boxes.push_back(sort_box);
     observations.push_back(std::move(*obs));
   }

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/appearance.h"
 #include "core/detection.h"
 #include "core/keypoint_layout.h"
 #include "core/observation.h"
@@ -42,6 +43,12 @@ struct CameraStageCounters {
   int detections_filtered = 0;  ///< valid but below the score / keypoint thresholds
   /// Why the first rejected detection of the frame was rejected (empty if none was).
   std::string first_rejection_reason;
+  /// Appearance on: embeddings attached to observations / dropped as unusable
+  /// (core::CheckEmbedding; the detection is used without it).
+  int embeddings_used = 0;
+  int embeddings_dropped = 0;
+  /// Why the first dropped embedding of the frame was dropped (empty if none was).
+  std::string first_embedding_reason;
 };
 
 /// Per-camera stage: validation, observation, SORT. See the file comment.
@@ -66,6 +73,8 @@ class CameraStage {
   int camera_index() const { return camera_index_; }
   /// The camera's 2D tracker (diagnostics).
   const tracking2d::SortTracker& sort() const { return sort_; }
+  /// The dimension and model this camera's embeddings must have (fixed by the first usable one).
+  const core::EmbeddingStream& embedding_stream() const { return embedding_stream_; }
 
  private:
   // Converts a validated detection to an observation; nullopt if filtered. Sets `sort_box` to
@@ -84,6 +93,7 @@ class CameraStage {
   int num_points_ = 1;
   std::map<core::KeypointLayoutId, core::KeypointMapping> mappings_;
   tracking2d::SortTracker sort_;
+  core::EmbeddingStream embedding_stream_;  // outlives stream epochs: the camera's model
   // This camera's frame period (its own capture times) and the one SORT's options were last
   // scaled to (TrackerOptions::reference_fps).
   FramePeriod period_;

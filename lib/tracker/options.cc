@@ -49,6 +49,7 @@ bool TrackerOptions::Validate(std::string* why) const {
   if (!triangulation.Validate(&nested)) return fail(nested);  // already prefixed "triangulation: "
   if (!linking.Validate(&nested)) return fail("linking: " + nested);
   if (!refinement.Validate(&nested)) return fail(nested);  // already prefixed "refinement: "
+  if (!appearance.Validate(&nested)) return fail("appearance: " + nested);
   return true;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "association/options.h"
+#include "core/appearance.h"
 #include "core/keypoint_layout.h"
 #include "linking/window_linker.h"
 #include "tracking2d/sort_tracker.h"
@@ -97,6 +98,8 @@ struct TrackerOptions {
   /// outlier rejection, completion of joints no camera pair could triangulate;
   /// docs/ACCURACY.md). Not applied in box mode.
   triangulation::RefinementOptions refinement;
+  /// Appearance embeddings (the paper's "w/ appearance" variant); off by default.
+  core::AppearanceOptions appearance;
 
   /// Validates these options and the nested ones; on failure `why` names the field.
   bool Validate(std::string* why) const;

@@ -61,6 +61,11 @@ AddResult Tracker::Add(const core::CameraFrame& frame) {
   stats_.detections_rejected += result.detections_rejected;
   stats_.detections_repaired += result.detections_repaired;
   stats_.detections_filtered += result.detections_filtered;
+  result.embeddings_used = counters.embeddings_used;
+  result.embeddings_dropped = counters.embeddings_dropped;
+  stats_.embeddings_used += counters.embeddings_used;
+  stats_.embeddings_dropped += counters.embeddings_dropped;
+  if (result.reason.empty()) result.reason = std::move(counters.first_embedding_reason);
   return result;
 }
 
@@ -82,6 +87,8 @@ void Tracker::RunOutputs(std::vector<BuilderOutput>* outputs, std::vector<Frame3
       linking::LinkResult link = finalizer_.Finalize(result, finalized);
       stats_.windows_processed = finalizer_.counters().windows_processed;
       stats_.tracks_born = finalizer_.counters().tracks_born;
+      stats_.tracks_revived = finalizer_.counters().tracks_revived;
+      stats_.gallery_bytes = finalizer_.counters().gallery_bytes;
       WindowOutput w;
       w.window_id = job->window_id;
       w.begin = job->begin;

@@ -49,6 +49,8 @@ struct AddResult {
   int detections_rejected = 0;     ///< invalid detections dropped (ValidateDetection)
   int detections_repaired = 0;     ///< detections kept with some keypoints invalidated
   int detections_filtered = 0;     ///< valid but below score / keypoint thresholds
+  int embeddings_used = 0;         ///< appearance on: embeddings attached to observations
+  int embeddings_dropped = 0;      ///< appearance on: unusable embeddings (CheckEmbedding)
   std::vector<Frame3D> finalized;  ///< frames finalized by this call, in increasing order
 };
 
@@ -65,6 +67,10 @@ struct TrackerStats {
   std::int64_t windows_processed = 0;                 ///< windows linked
   std::int64_t reanchors = 0;                         ///< stream restarts (max_frame_jump exceeded)
   std::int64_t tracks_born = 0;                       ///< long-term 3D tracks started
+  std::int64_t tracks_revived = 0;      ///< ended tracks that came back by appearance (same id)
+  std::int64_t embeddings_used = 0;     ///< appearance on: embeddings attached to observations
+  std::int64_t embeddings_dropped = 0;  ///< appearance on: unusable embeddings (CheckEmbedding)
+  std::int64_t gallery_bytes = 0;       ///< appearance galleries' memory, bytes
 };
 
 /// Output of one window (exposed for tests, ablations and diagnostics).

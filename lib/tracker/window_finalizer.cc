@@ -31,7 +31,7 @@ WindowFinalizer::WindowFinalizer(const TrackerOptions& options)
     : mode_(options.mode),
       ground_height_m_(options.ground_height_m),
       num_points_(NumPoints(options)),
-      linker_(options.linking, MakeLinkerContext(options)),
+      linker_(options.linking, MakeLinkerContext(options), options.appearance),
       bridge_max_gap_s_(options.bridge_max_gap_s) {}
 
 void WindowFinalizer::AddClosedFrame(const ClosedFrame& frame) {
@@ -74,6 +74,8 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
       result.window_id, result.begin, result.seconds_per_frame, result.persons, result.live_tracks);
   counters_.windows_processed += 1;
   counters_.tracks_born += static_cast<std::int64_t>(link.born.size());
+  counters_.tracks_revived += static_cast<std::int64_t>(link.revived.size());
+  counters_.gallery_bytes = static_cast<std::int64_t>(linker_.gallery_bytes());
   // The linker's alive tracks, sorted by id (WindowLinker::tracks()): looked up by bisection.
   const std::vector<linking::LinkedTrack>& alive = linker_.tracks();
   // The longest gap bridged, in frames of this stream (0 when bridging is off).

@@ -24,6 +24,8 @@ struct FinalizerCounters {
   std::int64_t frames_finalized = 0;   ///< Frame3D emitted
   std::int64_t windows_processed = 0;  ///< WindowResults linked
   std::int64_t tracks_born = 0;        ///< long-term tracks started
+  std::int64_t tracks_revived = 0;     ///< ended tracks re-identified by appearance
+  std::int64_t gallery_bytes = 0;      ///< appearance galleries' memory (latest window)
 };
 
 /// Consumes, in the order of the WindowBuilder's output sequence, closed frames

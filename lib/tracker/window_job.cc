@@ -364,6 +364,35 @@ void SetMembers(const WindowJob& job, core::Tracklet3D* person) {
 
 }  // namespace
 
+// Sets person->appearance: the normalised mean of its observations' embeddings (those of the
+// first embedding's dimension, in the order of source_tracklets and frames).
+void SetAppearance(const WindowJob& job, core::Tracklet3D* person) {
+  person->appearance.clear();
+  person->appearance_count = 0;
+  std::vector<double> sum;
+  for (const int t : person->source_tracklets) {
+    for (const core::Observation2D& obs : job.tracklets[static_cast<std::size_t>(t)].observations) {
+      if (obs.embedding.empty()) continue;
+      if (sum.empty()) sum.assign(obs.embedding.size(), 0.0);
+      if (obs.embedding.size() != sum.size()) continue;
+      for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += static_cast<double>(obs.embedding[k]);
+      ++person->appearance_count;
+    }
+  }
+  if (person->appearance_count == 0) return;
+  double n2 = 0.0;
+  for (const double v : sum) n2 += v * v;
+  const double n = std::sqrt(n2);
+  if (!(n > 1e-9)) {  // embeddings that cancel out say nothing
+    person->appearance_count = 0;
+    return;
+  }
+  person->appearance.resize(sum.size());
+  for (std::size_t k = 0; k < sum.size(); ++k) {
+    person->appearance[k] = static_cast<float>(sum[k] / n);
+  }
+}
+
 WindowResult EmptyWindowResult(const WindowJob& job) {
   WindowResult r;
   r.window_id = job.window_id;
@@ -451,7 +480,10 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
       }
     }
   }
-  for (core::Tracklet3D& person : r.persons) SetMembers(job, &person);
+  for (core::Tracklet3D& person : r.persons) {
+    SetMembers(job, &person);
+    if (options.appearance.enabled) SetAppearance(job, &person);
+  }
   return r;
 }
 

@@ -110,6 +110,7 @@ core::Detection2D ToDetection2D(const mvtrack::detection_t& d) {
     det.keypoints.push_back(keypoint);
   }
   det.embedding = d.embedding;
+  det.embedding_model = d.embedding_model;
   return det;
 }
 
@@ -177,7 +178,7 @@ std::vector<std::uint8_t> EncodeCameraDetections(const core::CameraFrame& frame,
       k.confidence = NarrowToFloat(kp.confidence);
       d.keypoints.push_back(k);
     }
-    d.embedding_model.clear();
+    d.embedding_model = det.embedding.empty() ? std::string() : det.embedding_model;
     d.num_embedding = static_cast<std::int16_t>(det.embedding.size());
     d.embedding = det.embedding;
     msg.detections.push_back(std::move(d));

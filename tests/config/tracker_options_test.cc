@@ -92,6 +92,12 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.refinement.max_fill_gap == b.refinement.max_fill_gap);
   REQUIRE(a.refinement.fill_neighbors == b.refinement.fill_neighbors);
   REQUIRE(a.refinement.min_points_to_fill == b.refinement.min_points_to_fill);
+  REQUIRE(a.appearance.enabled == b.appearance.enabled);
+  REQUIRE(a.appearance.gallery_size == b.appearance.gallery_size);
+  REQUIRE(a.appearance.reid_max_distance == b.appearance.reid_max_distance);
+  REQUIRE(a.appearance.reid_margin == b.appearance.reid_margin);
+  REQUIRE(a.appearance.max_reid_s == b.appearance.max_reid_s);
+  REQUIRE(a.appearance.max_departed == b.appearance.max_departed);
 }
 
 // Valid options with every field drawn at random (full-precision reals).
@@ -169,6 +175,12 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.refinement.max_fill_gap = small(0, 30);
   o.refinement.fill_neighbors = small(1, 8);
   o.refinement.min_points_to_fill = small(1, 10);
+  o.appearance.enabled = unit(*rng) < 0.5;
+  o.appearance.gallery_size = small(1, 64);
+  o.appearance.reid_max_distance = 2.0 * unit(*rng);
+  o.appearance.reid_margin = unit(*rng);
+  o.appearance.max_reid_s = 600.0 * unit(*rng);
+  o.appearance.max_departed = small(0, 1000);
   return o;
 }
 
@@ -201,7 +213,8 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
   CHECK(sizeof(linking::LinkerOptions) == 104);
   CHECK(sizeof(triangulation::RefinementOptions) == 136);
-  CHECK(sizeof(TrackerOptions) == 432);
+  CHECK(sizeof(core::AppearanceOptions) == 40);
+  CHECK(sizeof(TrackerOptions) == 472);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -402,7 +415,8 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
-  CHECK(written.size() == 65);
+  // + 6 (appearance)
+  CHECK(written.size() == 71);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

@@ -254,25 +254,50 @@ TEST_CASE("box-only detections need no keypoints", "[unit]") {
   }
 }
 
-TEST_CASE("embeddings are bounded and finite", "[unit]") {
+TEST_CASE("oversized or non-finite embeddings are dropped, the detection is kept", "[unit]") {
   DetectionLimits limits = Limits640x480();
   limits.max_embedding_size = 512;
-  SECTION("huge embedding rejected") {
+  const auto require_dropped = [&](Detection2D d, const std::string& why) {
+    d.embedding_model = "osnet";
+    const Detection2D before = d;
+    const DetectionCheck check = ValidateDetection(&d, limits);
+    CHECK(check.verdict == DetectionVerdict::kAcceptedRepaired);
+    CHECK(check.reason.find("embedding dropped: ") != std::string::npos);
+    CHECK(check.reason.find(why) != std::string::npos);
+    CHECK(d.embedding.empty());
+    CHECK(d.embedding_model.empty());
+    CHECK(d.keypoints.size() == before.keypoints.size());
+    CHECK(d.box.x_min == before.box.x_min);
+  };
+  SECTION("huge embedding") {
     Detection2D d = ValidPoseDetection();
     d.embedding.assign(1000000, 0.001f);
-    RequireRejected(d, limits, "max_embedding_size");
+    require_dropped(d, "embedding of size 1000000 exceeds max_embedding_size");
   }
-  SECTION("one over the limit rejected, at the limit accepted") {
+  SECTION("one over the limit dropped, at the limit kept") {
     Detection2D d = ValidPoseDetection();
     d.embedding.assign(513, 0.5f);
-    RequireRejected(d, limits, "max_embedding_size");
+    require_dropped(d, "exceeds max_embedding_size");
     d.embedding.pop_back();
     CHECK(ValidateDetection(&d, limits).verdict == DetectionVerdict::kAccepted);
+    CHECK(d.embedding.size() == 512);
   }
-  SECTION("non-finite value rejected") {
+  SECTION("non-finite value") {
     Detection2D d = ValidPoseDetection();
     d.embedding[17] = std::numeric_limits<float>::quiet_NaN();
-    RequireRejected(d, limits, "embedding has a non-finite value");
+    require_dropped(d, "embedding has a non-finite value");
+    d = ValidPoseDetection();
+    d.embedding[3] = -std::numeric_limits<float>::infinity();
+    require_dropped(d, "embedding has a non-finite value");
+  }
+  SECTION("with repaired keypoints both are reported") {
+    Detection2D d = ValidPoseDetection();
+    d.embedding[0] = std::numeric_limits<float>::quiet_NaN();
+    d.keypoints[0].confidence = 3.0;
+    const DetectionCheck check = ValidateDetection(&d, limits);
+    CHECK(check.verdict == DetectionVerdict::kAcceptedRepaired);
+    CHECK(check.reason.find("invalidated keypoints") != std::string::npos);
+    CHECK(check.reason.find("embedding dropped") != std::string::npos);
   }
   SECTION("no embedding is fine") {
     Detection2D d = ValidPoseDetection();

@@ -420,3 +420,63 @@ TEST_CASE("Invalid inputs and options are rejected with a reason", "[unit]") {
 
 }  // namespace
 }  // namespace mvtrack::eval
+
+namespace mvtrack::eval {
+namespace {
+
+TEST_CASE("Returns: kept, new id, another person's id, untracked", "[unit]") {
+  // return_min_gap_frames 5. GT 1 visits [0, 10), [20, 30), [40, 50), [60, 70), [80, 90);
+  // GT 2 is present in [0, 30) far away. Predictions: visit 1 id 10; visit 2 id 10 (kept);
+  // visit 3 id 11, never anyone else's (new id); visit 4 id 20, which covered GT 2 for 30
+  // frames before (another person's id); visit 5 unmatched (untracked).
+  EvalSequence gt;
+  EvalSequence pred;
+  const std::int64_t id_of_visit[] = {10, 10, 11, 20, -1};
+  for (int v = 0; v < 5; ++v) {
+    for (FrameIndex f = 20 * v; f < 20 * v + 10; ++f) {
+      Add(&gt, f, At(1, 0.0, 0.0));
+      if (id_of_visit[v] >= 0) Add(&pred, f, At(id_of_visit[v], 0.05, 0.0));
+    }
+  }
+  for (FrameIndex f = 0; f < 30; ++f) {
+    Add(&gt, f, At(2, 9.0, 9.0));
+    Add(&pred, f, At(20, 9.0, 9.0));
+  }
+  TrackingOptions o;
+  o.return_min_gap_frames = 5;
+  const TrackingEvaluation r = EvaluateTracking(gt, pred, o);
+  REQUIRE(r.valid);
+  const ReturnMetrics& ret = r.returns;
+  CHECK(ret.min_gap_frames == 5);
+  REQUIRE(ret.returns == 4);
+  CHECK(ret.kept == 1);
+  CHECK(ret.new_id == 1);
+  CHECK(ret.other_person_id == 1);
+  CHECK(ret.untracked == 1);
+  REQUIRE(ret.list.size() == 4);
+  CHECK(ret.list[0].gt_id == 1);
+  CHECK(ret.list[0].frame == 20);
+  CHECK(ret.list[0].gap_frames == 10);
+  CHECK(ret.list[0].before_id == 10);
+  CHECK(ret.list[0].after_id == 10);
+  CHECK(ret.list[0].outcome == ReturnMetrics::Outcome::kKept);
+  CHECK(ret.list[1].outcome == ReturnMetrics::Outcome::kNewId);
+  CHECK(ret.list[2].after_id == 20);
+  CHECK(ret.list[2].outcome == ReturnMetrics::Outcome::kOtherPersonId);
+  CHECK(ret.list[3].after_id == -1);
+  CHECK(ret.list[3].outcome == ReturnMetrics::Outcome::kUntracked);
+  CHECK(std::string(ReturnOutcomeName(ReturnMetrics::Outcome::kOtherPersonId)) ==
+        "other person's id");
+  // A gap of exactly the threshold is not a return.
+  o.return_min_gap_frames = 10;
+  CHECK(EvaluateTracking(gt, pred, o).returns.returns == 0);
+  o.return_min_gap_frames = 9;
+  CHECK(EvaluateTracking(gt, pred, o).returns.returns == 4);
+  o.return_min_gap_frames = 0;
+  std::string why;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK(why.find("return_min_gap_frames") != std::string::npos);
+}
+
+}  // namespace
+}  // namespace mvtrack::eval

@@ -625,3 +625,146 @@ TEST_CASE("A tracklet without valid points is born and later linked by others on
 
 }  // namespace
 }  // namespace mvtrack::linking
+
+namespace mvtrack::linking {
+namespace {
+
+// A unit appearance vector along axis `k` of 8, tilted by `tilt` towards axis 7.
+std::vector<float> Look(int k, double tilt = 0.0) {
+  std::vector<float> v(8, 0.0f);
+  v[static_cast<std::size_t>(k)] = static_cast<float>(std::cos(tilt));
+  v[7] += static_cast<float>(std::sin(tilt));
+  return v;
+}
+
+core::Tracklet3D Looking(core::Tracklet3D t, const std::vector<float>& look) {
+  t.appearance = look;
+  t.appearance_count = 40;
+  return t;
+}
+
+core::AppearanceOptions AppearanceOn() {
+  core::AppearanceOptions a;
+  a.enabled = true;
+  return a;
+}
+
+// Person A walks in windows 0-1 and leaves every view; `back` comes at window `k` (~13 s
+// later at 20 frames per window) with tracks {tracks}.
+TEST_CASE("Appearance: a person who left comes back with the old id", "[unit]") {
+  WindowLinker linker({}, {}, AppearanceOn());
+  const Vec3 at(1.0, 1.0, 1.0);
+  LinkResult r = LinkWindow(&linker, 0, {Looking(ConstantTracklet(0, 29, at, {1, 2}), Look(0))});
+  REQUIRE(r.track_of_tracklet[0] == 1);
+  LinkWindow(&linker, 1, {Looking(ConstantTracklet(20, 49, at, {1, 2}), Look(0, 0.1))});
+  // Gone from every view: lost in window 2, ended (and remembered) in window 3.
+  r = linker.Link(2, 40, kSpf, {}, {});
+  CHECK(r.died.empty());
+  r = linker.Link(3, 60, kSpf, {}, {});
+  CHECK(r.died == std::vector<TrackId3D>{1});
+  REQUIRE(linker.departed().size() == 1);
+  CHECK(linker.departed()[0].gallery.size() == 2);
+  CHECK(linker.gallery_bytes() == 2 * 8 * sizeof(float));
+  for (std::int64_t k = 4; k < 20; ++k) linker.Link(k, k * kDelta, kSpf, {}, {});
+  // Back 3 m away after about 12 s, new 2D tracks, the same look (slightly different view);
+  // and a stranger entering in the same window.
+  r = LinkWindow(&linker,
+                 20,
+                 {Looking(ConstantTracklet(400, 429, Vec3(4.0, 1.0, 1.0), {7, 8}), Look(3)),
+                  Looking(ConstantTracklet(400, 429, Vec3(1.0, 4.0, 1.0), {5, 6}), Look(0, 0.3))});
+  CHECK(r.track_of_tracklet[1] == 1);
+  CHECK(r.link_kind[1] == LinkKind::kAppearance);
+  CHECK(r.link_distance_m[1] < 0.1);
+  CHECK(r.revived == std::vector<TrackId3D>{1});
+  CHECK(r.track_of_tracklet[0] == 2);
+  CHECK(r.link_kind[0] == LinkKind::kBirth);
+  const LinkedTrack* back = FindTrack(linker, 1);
+  REQUIRE(back != nullptr);
+  CHECK(back->confirmed);
+  CHECK(back->gallery.size() == 3);
+  CHECK(linker.departed().empty());
+}
+
+TEST_CASE("Appearance: ambiguous, too far, too fast or off means a new id", "[unit]") {
+  const Vec3 at(1.0, 1.0, 1.0);
+  // Two people leave who look alike; one comes back: ambiguous.
+  {
+    WindowLinker linker({}, {}, AppearanceOn());
+    LinkWindow(&linker,
+               0,
+               {Looking(ConstantTracklet(0, 29, at, {1, 2}), Look(0)),
+                Looking(ConstantTracklet(0, 29, Vec3(3.0, 1.0, 1.0), {3, 4}), Look(0, 0.2))});
+    LinkWindow(&linker,
+               1,
+               {Looking(ConstantTracklet(20, 49, at, {1, 2}), Look(0)),
+                Looking(ConstantTracklet(20, 49, Vec3(3.0, 1.0, 1.0), {3, 4}), Look(0, 0.2))});
+    linker.Link(2, 40, kSpf, {}, {});
+    linker.Link(3, 60, kSpf, {}, {});
+    REQUIRE(linker.departed().size() == 2);
+    for (std::int64_t k = 4; k < 20; ++k) linker.Link(k, k * kDelta, kSpf, {}, {});
+    const LinkResult r =
+        LinkWindow(&linker, 20, {Looking(ConstantTracklet(400, 429, at, {7, 8}), Look(0, 0.1))});
+    CHECK(r.link_kind[0] == LinkKind::kBirth);
+    CHECK(r.track_of_tracklet[0] == 3);
+  }
+  // Someone else (distance > reid_max_distance); then the person, but from 30 m away after
+  // 2 s (faster than kMaxReidSpeedMps).
+  {
+    WindowLinker linker({}, {}, AppearanceOn());
+    LinkWindow(&linker, 0, {Looking(ConstantTracklet(0, 29, at, {1, 2}), Look(0))});
+    LinkWindow(&linker, 1, {Looking(ConstantTracklet(20, 49, at, {1, 2}), Look(0))});
+    linker.Link(2, 40, kSpf, {}, {});
+    LinkResult r =
+        LinkWindow(&linker, 4, {Looking(ConstantTracklet(80, 109, at, {7, 8}), Look(0, 0.9))});
+    CHECK(r.link_kind[0] == LinkKind::kBirth);
+    r = LinkWindow(
+        &linker, 5, {Looking(ConstantTracklet(100, 129, Vec3(31.0, 1.0, 1.0), {9, 10}), Look(0))});
+    CHECK(r.link_kind[0] == LinkKind::kBirth);
+  }
+  // Appearance off: the same inputs never revive anybody, and nothing is remembered.
+  {
+    WindowLinker linker;
+    LinkWindow(&linker, 0, {Looking(ConstantTracklet(0, 29, at, {1, 2}), Look(0))});
+    LinkWindow(&linker, 1, {Looking(ConstantTracklet(20, 49, at, {1, 2}), Look(0))});
+    linker.Link(2, 40, kSpf, {}, {});
+    CHECK(linker.departed().empty());
+    const LinkResult r =
+        LinkWindow(&linker, 20, {Looking(ConstantTracklet(400, 429, at, {7, 8}), Look(0))});
+    CHECK(r.track_of_tracklet[0] == 2);
+  }
+}
+
+TEST_CASE("Appearance: departed tracks are bounded in number and in time", "[unit]") {
+  core::AppearanceOptions a = AppearanceOn();
+  a.max_departed = 2;
+  a.max_reid_s = 5.0;
+  a.gallery_size = 1;
+  WindowLinker linker({}, {}, a);
+  // Three people, each seen in one confirmed stretch and leaving.
+  std::int64_t k = 0;
+  for (int p = 0; p < 3; ++p, k += 3) {
+    const Vec3 at(static_cast<double>(p), 0.0, 1.0);
+    const TrackId2D t = 10 * (p + 1);
+    LinkWindow(&linker,
+               k,
+               {Looking(ConstantTracklet(k * kDelta, k * kDelta + 29, at, {t, t + 1}), Look(p))});
+    LinkWindow(&linker,
+               k + 1,
+               {Looking(ConstantTracklet((k + 1) * kDelta, (k + 1) * kDelta + 29, at, {t, t + 1}),
+                        Look(p))});
+    linker.Link(k + 2, (k + 2) * kDelta, kSpf, {}, {});
+  }
+  linker.Link(k, k * kDelta, kSpf, {}, {});  // the last one ends
+  ++k;
+  REQUIRE(linker.departed().size() == 2);  // the oldest was forgotten
+  CHECK(linker.departed()[0].id == 2);
+  CHECK(linker.departed()[1].id == 3);
+  CHECK(linker.departed()[0].gallery.size() == 1);  // gallery_size
+  // 5 s later every one of them is forgotten.
+  for (std::int64_t w = k; w < k + 10; ++w) linker.Link(w, w * kDelta, kSpf, {}, {});
+  CHECK(linker.departed().empty());
+  CHECK(linker.gallery_bytes() == 0);
+}
+
+}  // namespace
+}  // namespace mvtrack::linking

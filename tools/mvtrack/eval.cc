@@ -208,6 +208,11 @@ int RunEval(int argc, char** argv) {
               "a predicted id covers a GT person when CLEAR MOT matches them in at least this "
               "many frames (IDTR: ids covering >= 2 persons, IDFRAG: persons covered by >= 2 ids)",
               "15")
+      .Option("return-gap",
+              "a GT person absent for more than this many frames and present again has "
+              "returned: its id after the return is scored (old id kept, new id, another "
+              "person's id)",
+              "150")
       .Option("actors", "PCP only: GT actor ids scored, e.g. 0,1,2 (default: every actor)")
       .Option("head-rule",
               "how head_top is derived when joints are mapped to shelf14: campus (VoxelPose's "
@@ -234,6 +239,7 @@ int RunEval(int argc, char** argv) {
           argv,
           "mvtrack eval --gt GT [--pred] TRACKS [--layout NAME] "
           "[--distance footprint|joints] [--threshold M] [--frames A-B[,C-D]] [--cover-frames N] "
+          "[--return-gap N] "
           "[--actors 0,1,2] [--head-rule campus|shelf-4da] [--pcp | --points [--area X0,X1,Y0,Y1]] "
           "[--json OUT.json]",
           "Scores tracks against ground truth with CLEAR MOT (MOTA, MOTP, FP, FN, IDSW, MT,\n"
@@ -279,6 +285,8 @@ int RunEval(int argc, char** argv) {
   }
   tracking_options.cover_min_frames = args.GetInt("cover-frames");
   if (tracking_options.cover_min_frames < 1) throw UsageError("--cover-frames must be >= 1");
+  tracking_options.return_min_gap_frames = args.GetInt("return-gap");
+  if (tracking_options.return_min_gap_frames < 1) throw UsageError("--return-gap must be >= 1");
   const bool pcp = args.Has("pcp");
   const bool points = args.Has("points");
   if (points && pcp) throw UsageError("--points and --pcp exclude each other");

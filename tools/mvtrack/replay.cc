@@ -475,6 +475,11 @@ int RunReplay(int argc, char** argv) {
   report << "\n  detections: " << st.detections_used << " used, " << st.detections_rejected
          << " rejected, " << st.detections_repaired << " repaired, " << st.detections_filtered
          << " filtered\n";
+  if (st.embeddings_used + st.embeddings_dropped > 0 || st.tracks_revived > 0) {
+    report << "  appearance: " << st.embeddings_used << " embeddings used, "
+           << st.embeddings_dropped << " dropped as unusable; " << st.tracks_revived
+           << " track(s) re-identified after leaving; galleries " << st.gallery_bytes << " bytes\n";
+  }
   report << "  output: " << frames.size() << " frame(s), " << track_ids.size() << " track id(s), "
          << track_frames << " track-frame(s), layout " << formats::LayoutName(output_layout) << "; "
          << st.windows_processed << " window(s)";

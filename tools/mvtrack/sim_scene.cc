@@ -1,6 +1,7 @@
 #include "mvtrack/sim_scene.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "sim/scene_presets.h"
@@ -50,7 +51,27 @@ void DeclareSceneOptions(Args* args) {
               "0.7")
       .Flag("no-occlusion", "no occlusion by depth order (everyone in view is a candidate)")
       .Flag("enter-leave", "people enter and leave through the walls (new ids on re-entry)")
-      .Option("mean-stay", "--enter-leave: mean stay in the room, seconds", "8");
+      .Option("mean-stay", "--enter-leave: mean stay in the room, seconds", "8")
+      .Option("embedding-dim",
+              "length of a re-identification embedding on every detection (0 = none)",
+              "0")
+      .Option("embedding-noise",
+              "embedding noise (expected norm of the Gaussian added to the unit prototype; "
+              "0.5: same person at a cosine distance of about 0.2)",
+              "0.5")
+      .Option("embedding-view-drift",
+              "how far the back view's prototype is from the front's (0 = one look)",
+              "0.5")
+      .Option("look-alikes",
+              "probability that an odd-id person is a look-alike of the one with the id below",
+              "0")
+      .Option("reentry",
+              "--enter-leave: probability that an entering person is someone who left 10-60 s "
+              "before (same id and appearance)",
+              "0")
+      .Option("reentry-absence",
+              "--reentry: MIN-MAX seconds away before a return (e.g. 10-60)",
+              "10-60");
 }
 
 sim::SceneOptions SceneOptionsFromArgs(const Args& args) {
@@ -108,10 +129,63 @@ sim::SceneOptions SceneOptionsFromArgs(const Args& args) {
   o.occlusion = !args.Has("no-occlusion");
   o.enter_and_leave = args.Has("enter-leave");
   o.mean_stay_s = args.GetDouble("mean-stay");
+  const std::int64_t dim = args.GetInt("embedding-dim");
+  if (dim < 0 || dim > 4096) throw UsageError("--embedding-dim must be in [0, 4096]");
+  o.embedding_dim = static_cast<int>(dim);
+  o.embedding_noise = args.GetDouble("embedding-noise");
+  o.embedding_view_drift = args.GetDouble("embedding-view-drift");
+  o.look_alike_fraction = args.GetDouble("look-alikes");
+  o.reentry_probability = args.GetDouble("reentry");
+  {
+    const std::string text = args.Get("reentry-absence");
+    const std::size_t dash = text.find('-');
+    char* end = nullptr;
+    const double lo = dash == std::string::npos ? -1.0 : std::strtod(text.c_str(), &end);
+    const bool lo_ok = dash != std::string::npos && end == text.c_str() + dash;
+    const double hi = lo_ok ? std::strtod(text.c_str() + dash + 1, &end) : -1.0;
+    if (!lo_ok || end != text.c_str() + text.size() || dash + 1 == text.size()) {
+      throw UsageError("--reentry-absence: expected MIN-MAX seconds (e.g. 10-60), got '" + text +
+                       "'");
+    }
+    o.min_reentry_absence_s = lo;
+    o.max_reentry_absence_s = hi;
+  }
+  if (o.reentry_probability > 0.0 && !o.enter_and_leave) {
+    throw UsageError("--reentry needs --enter-leave");
+  }
   std::string why;
   if (!o.Validate(&why)) throw UsageError("scene: " + why);
   return o;
 }
+
+namespace {
+
+std::string EmbeddingText(const sim::SceneOptions& o) {
+  std::string text;
+  char part[160];
+  if (o.embedding_dim > 0) {
+    std::snprintf(part,
+                  sizeof(part),
+                  "; %d-d embeddings (noise %.2f, view drift %.2f, look-alikes %.2f)",
+                  o.embedding_dim,
+                  o.embedding_noise,
+                  o.embedding_view_drift,
+                  o.look_alike_fraction);
+    text += part;
+  }
+  if (o.reentry_probability > 0.0) {
+    std::snprintf(part,
+                  sizeof(part),
+                  "; re-entry %.2f after %.0f-%.0f s",
+                  o.reentry_probability,
+                  o.min_reentry_absence_s,
+                  o.max_reentry_absence_s);
+    text += part;
+  }
+  return text;
+}
+
+}  // namespace
 
 std::string DescribeScene(const sim::SceneOptions& o) {
   char line[512];
@@ -119,7 +193,7 @@ std::string DescribeScene(const sim::SceneOptions& o) {
                 sizeof(line),
                 "%d cameras (%s, %dx%d px, %.0f deg, %.1f m high), %d people%s on %.0f x %.0f m, "
                 "%d frames at %.0f fps, %s; noise %.1f px, miss %.2f, false positives %.2f/frame, "
-                "occlusion %s, seed %llu",
+                "occlusion %s%s, seed %llu",
                 o.num_cameras,
                 o.camera_layout == sim::CameraLayout::kRing ? "ring" : "ceiling grid",
                 o.image_width_px,
@@ -137,6 +211,7 @@ std::string DescribeScene(const sim::SceneOptions& o) {
                 o.miss_rate,
                 o.false_positives_per_frame,
                 o.occlusion ? "on" : "off",
+                EmbeddingText(o).c_str(),
                 static_cast<unsigned long long>(o.seed));
   return line;
 }

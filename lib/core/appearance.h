@@ -1,0 +1,69 @@
+#pragma once
+/// @file
+/// Appearance (re-identification) embeddings as the tracker uses them (the paper's "w/
+/// appearance" variant, DeepSORT-style): the options, the validation of untrusted embeddings
+/// and the cosine distance. Stateless functions, pure data.
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mvtrack::core {
+
+/// How appearance embeddings are used. Off by default: with `enabled` false (or a stream
+/// without embeddings) the output is exactly that of the same stream without embeddings.
+struct AppearanceOptions {
+  /// Use the detections' embeddings. false: they are ignored (not even validated).
+  bool enabled = false;
+  /// Window descriptors (the mean of a person's embeddings over one window) a long-term track
+  /// keeps, newest first replacing the oldest: the gallery whose nearest entry is the track's
+  /// appearance distance (DeepSORT's gallery, per window instead of per detection: one
+  /// descriptor averages tens of detections). >= 1.
+  int gallery_size = 16;
+  /// A new tracklet takes the id of a track that left (or was lost) when its appearance distance
+  /// to that track is at most this (cosine distance, 1 - cos; 0 identical, 1 orthogonal). In
+  /// [0, 2].
+  double reid_max_distance = 0.2;
+  /// ... and the second-nearest candidate (on both sides: the track's other candidate
+  /// tracklets, the tracklet's other candidate tracks) is farther by at least this: an ambiguous
+  /// match starts a new id. In [0, 2].
+  double reid_margin = 0.05;
+  /// Tracks that ended are remembered for re-identification this long, seconds of stream time
+  /// since their last frame. Finite, >= 0.
+  double max_reid_s = 120.0;
+  /// At most this many ended tracks are remembered (the oldest is forgotten first): bounds the
+  /// galleries' memory to max_departed x gallery_size x dimension floats. >= 0.
+  int max_departed = 256;
+
+  /// Checks the ranges above; on failure writes a reason to `why` (if not null).
+  bool Validate(std::string* why) const;
+};
+
+/// What a camera's embeddings must agree with: fixed by its first valid embedding.
+struct EmbeddingStream {
+  std::size_t dimension = 0;  ///< 0: nothing seen yet
+  std::string model;          ///< the model name of the first valid embedding (may be empty)
+};
+
+/// Longest embedding accepted (the wire format's decode limit).
+inline constexpr std::size_t kMaxEmbeddingSize = 4096;
+
+/// Validates `embedding` (untrusted, from `model`) against the camera's `stream` and normalises
+/// it to unit length in place. Returns an empty string when it is usable; otherwise the reason
+/// it is not (the caller drops the embedding and keeps the detection): empty, longer than
+/// kMaxEmbeddingSize, a non-finite value, (near) zero length, or a dimension or model other than
+/// the stream's. The first usable embedding of a stream fixes its dimension and model.
+std::string CheckEmbedding(std::string_view model,
+                           std::vector<float>* embedding,
+                           EmbeddingStream* stream);
+
+/// Cosine distance 1 - a.b of two unit vectors of the same length (checked), in [0, 2].
+double CosineDistance(const std::vector<float>& a, const std::vector<float>& b);
+
+/// The nearest entry of `gallery` to `query` (CosineDistance); entries of another length are
+/// skipped. 2 (the largest distance) when none is comparable.
+double GalleryDistance(const std::vector<std::vector<float>>& gallery,
+                       const std::vector<float>& query);
+
+}  // namespace mvtrack::core
