@@ -42,6 +42,9 @@ bool AssociationOptions::Validate(std::string* why) const {
     return fail("min_confidence must be in [0, 1]");
   }
   if (num_points < 0) return fail("num_points must be >= 0");
+  if (!std::isfinite(appearance_weight) || appearance_weight < 0.0) {
+    return fail("appearance_weight must be finite and >= 0");
+  }
   if (!std::isfinite(empty_upper_bound) || empty_upper_bound < 0.0) {
     return fail("empty_upper_bound must be finite and >= 0");
   }

@@ -48,6 +48,11 @@ struct AssociationOptions {
   /// them). Set by the tracker (box ends that do not take part in association); not a file
   /// option. >= 0.
   int num_points = 0;
+  /// Appearance fusion (the paper's "w/ appearance" variant): a finite cross-camera distance
+  /// becomes d + appearance_weight x the cosine distance between the two tracklets' mean
+  /// embeddings (when both have one); ∅ and ∞ are unchanged. 0 = epipolar only. Set by the
+  /// tracker from core::AppearanceOptions; not a file option of this map. Finite, >= 0.
+  double appearance_weight = 0.0;
   /// Clustering strategy; kPdnc is the paper's method, the others exist for the ablation.
   ClusteringMethod method = ClusteringMethod::kPdnc;
   /// Value substituted for ∅ by kCompleteLinkageEmptyAsUpper and kSingleLinkageEmptyAsUpper

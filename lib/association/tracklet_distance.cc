@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "core/appearance.h"
 #include "core/check.h"
 #include "geometry/epipolar.h"
 
@@ -52,6 +53,28 @@ TrackletDistance MeanValue(double sum, int frames) {
       std::min(sum / static_cast<double>(frames), std::numeric_limits<double>::max()));
 }
 
+// The unit-length mean of a tracklet's embeddings (those of the first one's length); empty
+// when it has none.
+std::vector<float> MeanLook(const core::Tracklet2D& t) {
+  core::EmbeddingMean mean;
+  for (const core::Observation2D& o : t.observations) {
+    if (o.embedding) mean.Add(*o.embedding);
+  }
+  return mean.Unit();
+}
+
+// Appearance fusion of a cross-camera distance (AssociationOptions::appearance_weight).
+TrackletDistance Fuse(TrackletDistance d,
+                      const std::vector<float>& look_a,
+                      const std::vector<float>& look_b,
+                      double weight) {
+  if (!d.is_value() || weight <= 0.0 || look_a.empty() || look_a.size() != look_b.size()) {
+    return d;
+  }
+  return TrackletDistance::Value(std::min(d.value + weight * core::CosineDistance(look_a, look_b),
+                                          std::numeric_limits<double>::max()));
+}
+
 bool DisjointRanges(const core::Tracklet2D& a, const core::Tracklet2D& b) {
   return a.frames.empty() || b.frames.empty() || a.frames.back() < b.frames.front() ||
          b.frames.back() < a.frames.front();
@@ -67,7 +90,7 @@ class AllPairs {
   AllPairs(const geometry::CameraRig& rig,
            const std::vector<core::Tracklet2D>& tracklets,
            const AssociationOptions& options)
-      : rig_(rig), n_(tracklets.size()) {
+      : rig_(rig), n_(tracklets.size()), appearance_weight_(options.appearance_weight) {
     std::string why;
     MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
     // Group tracklets by camera (rig order), keeping input order inside a camera.
@@ -100,6 +123,10 @@ class AllPairs {
       num_points_[s] = max_points;
       frame_begin_[s + 1] = frame_begin_[s] + t.frames.size();
       point_begin_[s + 1] = point_begin_[s] + t.frames.size() * max_points;
+    }
+    if (appearance_weight_ > 0.0) {
+      looks_.resize(n_);
+      for (std::size_t s = 0; s < n_; ++s) looks_[s] = MeanLook(tracklets[order_[s]]);
     }
     frames_.resize(frame_begin_[n_]);
     inv_scale_.resize(frame_begin_[n_]);
@@ -152,7 +179,8 @@ class AllPairs {
         ComputeLines(h, rig_.fundamental(group_camera_[h], group_camera_[g]), &lines_b_);
         for (std::size_t a = group_begin_[g]; a < group_begin_[g + 1]; ++a) {
           for (std::size_t b = group_begin_[h]; b < group_begin_[h + 1]; ++b) {
-            const TrackletDistance d = CrossCamera(g, a, h, b, cutoff);
+            TrackletDistance d = CrossCamera(g, a, h, b, cutoff);
+            if (appearance_weight_ > 0.0) d = Fuse(d, looks_[a], looks_[b], appearance_weight_);
             if (!d.is_empty()) Set(&matrix, a, b, d);
           }
         }
@@ -274,10 +302,12 @@ class AllPairs {
 
   const geometry::CameraRig& rig_;
   std::size_t n_;
-  std::vector<std::size_t> order_;        ///< flat position -> input index
-  std::vector<std::size_t> frame_begin_;  ///< per flat tracklet (+1), into frames_/inv_scale_
-  std::vector<std::size_t> point_begin_;  ///< per flat tracklet (+1), into px_/py_
-  std::vector<std::size_t> num_points_;   ///< points per observation slot of a flat tracklet
+  double appearance_weight_ = 0.0;
+  std::vector<std::vector<float>> looks_;  ///< appearance on: per flat tracklet, MeanLook
+  std::vector<std::size_t> order_;         ///< flat position -> input index
+  std::vector<std::size_t> frame_begin_;   ///< per flat tracklet (+1), into frames_/inv_scale_
+  std::vector<std::size_t> point_begin_;   ///< per flat tracklet (+1), into px_/py_
+  std::vector<std::size_t> num_points_;    ///< points per observation slot of a flat tracklet
   std::vector<FrameIndex> frames_;
   std::vector<double> inv_scale_;
   std::vector<double> px_, py_;            ///< px_ is NaN for an unusable point
@@ -362,7 +392,9 @@ TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
     }
   }
   if (used_frames == 0) return TrackletDistance::Empty();  // no common (usable) frame
-  return MeanValue(sum, used_frames);                      // Eq. 4, mean(S)
+  const TrackletDistance d = MeanValue(sum, used_frames);  // Eq. 4, mean(S)
+  if (options.appearance_weight <= 0.0) return d;
+  return Fuse(d, MeanLook(a), MeanLook(b), options.appearance_weight);
 }
 
 DistanceMatrix ComputeDistanceMatrix(const geometry::CameraRig& rig,

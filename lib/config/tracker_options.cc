@@ -501,6 +501,32 @@ std::vector<Field> MakeFields() {
       [](auto& o) -> auto& { return o.appearance.max_departed; },
       0,
       kIntMax));
+  f.push_back(DoubleField(
+      "appearance",
+      "link_max_distance",
+      [](auto& o) -> auto& { return o.appearance.link_max_distance; },
+      DoubleRange::Closed(0.0, 2.0)));
+  f.push_back(DoubleField(
+      "appearance",
+      "association_weight",
+      [](auto& o) -> auto& { return o.appearance.association_weight; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "appearance",
+      "sort_weight",
+      [](auto& o) -> auto& { return o.appearance.sort_weight; },
+      unit));
+  f.push_back(DoubleField(
+      "appearance",
+      "sort_gate",
+      [](auto& o) -> auto& { return o.appearance.sort_gate; },
+      DoubleRange::Closed(0.0, 2.0)));
+  f.push_back(IntField(
+      "appearance",
+      "sort_gallery_size",
+      [](auto& o) -> auto& { return o.appearance.sort_gallery_size; },
+      1,
+      kIntMax));
   f.push_back(IntField(
       "refinement",
       "min_points_to_fill",

@@ -1,5 +1,6 @@
 #include "core/appearance.h"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 
@@ -21,6 +22,19 @@ bool AppearanceOptions::Validate(std::string* why) const {
   }
   if (!std::isfinite(max_reid_s) || max_reid_s < 0.0) return fail("max_reid_s must be >= 0");
   if (max_departed < 0) return fail("max_departed must be >= 0");
+  if (!std::isfinite(link_max_distance) || link_max_distance < 0.0 || link_max_distance > 2.0) {
+    return fail("link_max_distance must be in [0, 2]");
+  }
+  if (!std::isfinite(association_weight) || association_weight < 0.0) {
+    return fail("association_weight must be finite and >= 0");
+  }
+  if (!std::isfinite(sort_weight) || sort_weight < 0.0 || sort_weight > 1.0) {
+    return fail("sort_weight must be in [0, 1]");
+  }
+  if (!std::isfinite(sort_gate) || sort_gate < 0.0 || sort_gate > 2.0) {
+    return fail("sort_gate must be in [0, 2]");
+  }
+  if (sort_gallery_size < 1) return fail("sort_gallery_size must be >= 1");
   return true;
 }
 
@@ -58,13 +72,32 @@ std::string CheckEmbedding(std::string_view model,
   return std::string();
 }
 
+void EmbeddingMean::Add(const std::vector<float>& embedding) {
+  if (embedding.empty()) return;
+  if (sum_.empty()) sum_.assign(embedding.size(), 0.0);
+  if (embedding.size() != sum_.size()) return;
+  for (std::size_t k = 0; k < sum_.size(); ++k) sum_[k] += static_cast<double>(embedding[k]);
+  ++count_;
+}
+
+std::vector<float> EmbeddingMean::Unit() const {
+  double n2 = 0.0;
+  for (const double v : sum_) n2 += v * v;
+  const double n = std::sqrt(n2);
+  if (!(n > 1e-9)) return {};  // nothing, or embeddings that cancel out: says nothing
+  std::vector<float> unit(sum_.size());
+  for (std::size_t k = 0; k < sum_.size(); ++k) unit[k] = static_cast<float>(sum_[k] / n);
+  return unit;
+}
+
 double CosineDistance(const std::vector<float>& a, const std::vector<float>& b) {
   MVTRACK_CHECK(a.size() == b.size());
-  double dot = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    dot += static_cast<double>(a[k]) * static_cast<double>(b[k]);
-  }
-  return std::clamp(1.0 - dot, 0.0, 2.0);
+  // Single-precision dot product (vectorised by Eigen): unit vectors, so the sum stays <= 1
+  // and float rounding (~1e-7 relative) is far below any gate.
+  const auto n = static_cast<Eigen::Index>(a.size());
+  const float dot = Eigen::Map<const Eigen::VectorXf>(a.data(), n)
+                        .dot(Eigen::Map<const Eigen::VectorXf>(b.data(), n));
+  return std::clamp(1.0 - static_cast<double>(dot), 0.0, 2.0);
 }
 
 double GalleryDistance(const std::vector<std::vector<float>>& gallery,

@@ -5,6 +5,7 @@
 /// and the cosine distance. Stateless functions, pure data.
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -35,6 +36,22 @@ struct AppearanceOptions {
   /// At most this many ended tracks are remembered (the oldest is forgotten first): bounds the
   /// galleries' memory to max_departed x gallery_size x dimension floats. >= 0.
   int max_departed = 256;
+  /// Window linking: a track never takes a tracklet (at any stage: overlap, gap, motion
+  /// re-identification) whose descriptor is farther than this from its gallery: it looks
+  /// like somebody else (an id passing from one person to another). In [0, 2]; 2 disables.
+  double link_max_distance = 0.4;
+  /// Cross-view association: a finite Eq. 4 distance between 2D tracklets of two cameras
+  /// becomes d + association_weight x the cosine distance of their mean embeddings
+  /// (association::AssociationOptions::appearance_weight; ∅ and ∞ unchanged). Finite, >= 0.
+  double association_weight = 0.3;
+  /// SORT per camera (tracking2d::SortAppearance): weight of the appearance distance in the
+  /// fused cost (1 - w) (1 - IoU) + w d. In [0, 1].
+  double sort_weight = 0.3;
+  /// SORT: a detection farther than this (cosine distance to the track's nearest gallery
+  /// entry) never continues the track. In [0, 2].
+  double sort_gate = 0.6;
+  /// SORT: embeddings a 2D track keeps. >= 1.
+  int sort_gallery_size = 32;
 
   /// Checks the ranges above; on failure writes a reason to `why` (if not null).
   bool Validate(std::string* why) const;
@@ -57,6 +74,24 @@ inline constexpr std::size_t kMaxEmbeddingSize = 4096;
 std::string CheckEmbedding(std::string_view model,
                            std::vector<float>* embedding,
                            EmbeddingStream* stream);
+
+/// Shared, immutable embedding (one detection's; copied cheaply into every window it is in).
+using EmbeddingPtr = std::shared_ptr<const std::vector<float>>;
+
+/// The unit-length mean of embeddings: Add() each (those of another length than the first are
+/// skipped), then Unit(). Accumulates in double.
+class EmbeddingMean {
+ public:
+  void Add(const std::vector<float>& embedding);
+  /// Embeddings added (of the first one's length).
+  int count() const { return count_; }
+  /// The mean direction, unit length; empty when nothing was added or the sum is (near) zero.
+  std::vector<float> Unit() const;
+
+ private:
+  std::vector<double> sum_;
+  int count_ = 0;
+};
 
 /// Cosine distance 1 - a.b of two unit vectors of the same length (checked), in [0, 2].
 double CosineDistance(const std::vector<float>& a, const std::vector<float>& b);

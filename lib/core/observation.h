@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/appearance.h"
 #include "core/types.h"
 
 namespace mvtrack::core {
@@ -20,9 +21,9 @@ struct Observation2D {
   std::vector<double> confidence;
   /// |w + h| of the box that encloses the person, in pixels (the normaliser of Eq. 2). > 0.
   double scale_px = 1.0;
-  /// The detection's appearance embedding, unit length (core::CheckEmbedding); empty when it
-  /// had none, it was unusable, or appearance is off.
-  std::vector<float> embedding;
+  /// The detection's appearance embedding, unit length (core::CheckEmbedding); null when it
+  /// had none, it was unusable, or appearance is off. Shared: windows copy observations.
+  EmbeddingPtr embedding;
 };
 
 /// A 2D tracklet: the observations of one camera's 2D track inside one window (Eq. 3, T_{k,i}).

@@ -418,8 +418,9 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
   std::vector<Candidate> candidates;
   for (std::size_t r = 0; r < tracks_.size(); ++r) {
     const LinkedTrack& t = tracks_[r];
-    if ((*tracklet_of_track)[r] >= 0 || t.missed_windows == 0 || !t.confirmed ||
-        t.gallery.empty() || t.last_seen_frame == kNoFrame) {
+    // Unmatched in this window (lost now or before), confirmed, with a gallery.
+    if ((*tracklet_of_track)[r] >= 0 || !t.confirmed || t.gallery.empty() ||
+        t.last_seen_frame == kNoFrame) {
       continue;
     }
     candidates.push_back({static_cast<int>(r),
@@ -453,16 +454,24 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
     for (Eigen::Index j = 0; j < cols_n; ++j) {
       const core::Tracklet3D& t =
           tracklets[static_cast<std::size_t>(cols[static_cast<std::size_t>(j)])];
-      // Physically possible: the footprint's speed since the track's last frame.
-      std::optional<Vec2> first;
-      FrameIndex first_frame = 0;
-      for (std::size_t f = 0; f < t.frames.size() && !first; ++f) {
-        first = FrameFootprint(t.points[f], context_.footprint_points);
-        first_frame = t.frames[f];
+      // Physically possible: from the track's last footprint to the tracklet's footprint
+      // nearest in time (after it, or overlapping it when the track broke in this window),
+      // at most kMaxReidSpeedMps plus a body width.
+      Vec2 nearest = Vec2::Zero();
+      double dt_s = kInf;
+      for (std::size_t f = 0; f < t.frames.size(); ++f) {
+        const std::optional<Vec2> xy = FrameFootprint(t.points[f], context_.footprint_points);
+        if (!xy) continue;
+        const double dt = std::abs(Seconds(cand.last_seen_frame, t.frames[f]));
+        if (dt < dt_s) {
+          nearest = *xy;
+          dt_s = dt;
+        }
       }
-      if (!first || first_frame <= cand.last_seen_frame) continue;
-      const double gap_s = Seconds(cand.last_seen_frame, first_frame);
-      if ((*first - cand.last_position).norm() > kMaxReidSpeedMps * gap_s) continue;
+      if (!(dt_s < kInf) || t.frames.back() <= cand.last_seen_frame) continue;
+      if ((nearest - cand.last_position).norm() > kMaxReidSpeedMps * dt_s + kSamePersonApartM) {
+        continue;
+      }
       dist(i, j) = core::GalleryDistance(*cand.gallery, t.appearance);
     }
   }
@@ -801,12 +810,23 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     }
   };
 
+  // Appearance on: a track never takes a tracklet that looks like somebody else (its gallery
+  // farther than link_max_distance from the tracklet's descriptor), at any stage.
+  const auto vetoed = [&](int r, int c) {
+    if (!appearance_.enabled) return false;
+    const auto& gallery = tracks_[static_cast<std::size_t>(r)].gallery;
+    const auto& look = tracklets[static_cast<std::size_t>(c)].appearance;
+    if (gallery.empty() || look.empty()) return false;
+    return core::GalleryDistance(gallery, look) > appearance_.link_max_distance;
+  };
+
   // Stage 1: overlap with a shared 2D track (Eq. 8 + Eq. 9). Each shared 2D track outweighs
   // any difference in Eq. 8 within the gate: when one person appears twice in a window (split
   // into two clusters), the track keeps the tracklet that continues more of its 2D tracks.
   solve_stage(LinkKind::kOverlap, [&](int r, int c) -> std::optional<double> {
     const double d = overlap(r, c);
     if (std::isnan(d) || d > options_.max_link_distance_m || shared(r, c) == 0) return std::nullopt;
+    if (vetoed(r, c)) return std::nullopt;
     return d - options_.max_link_distance_m * static_cast<double>(shared(r, c));
   });
   // Stage 2: overlap without a shared 2D track, where neither side shares one with anybody.
@@ -817,6 +837,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
       if (row_shares[static_cast<std::size_t>(r)] || col_shares[static_cast<std::size_t>(c)]) {
         return std::nullopt;
       }
+      if (vetoed(r, c)) return std::nullopt;
       return d;
     });
   }
@@ -853,6 +874,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     if (shared(r, c) == 0) return std::nullopt;
     const std::optional<double> d2 = motion_distance(r, c, options_.max_lost_s);
     if (!d2 || !(*d2 <= options_.gap_gate_chi2)) return std::nullopt;
+    if (vetoed(r, c)) return std::nullopt;
     return d2;
   });
 
@@ -865,7 +887,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
         static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()), kForbidden);
     for (std::size_t i = 0; i < rows.size(); ++i) {
       for (std::size_t j = 0; j < cols.size(); ++j) {
-        if (shared(rows[i], cols[j]) > 0) continue;
+        if (shared(rows[i], cols[j]) > 0 || vetoed(rows[i], cols[j])) continue;
         if (const auto v = motion_distance(rows[i], cols[j], options_.max_reid_gap_s)) {
           d2(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = *v;
         }

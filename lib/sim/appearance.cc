@@ -77,14 +77,13 @@ std::vector<double> FrontPrototype(const SceneOptions& o, int id, int* look_alik
 
 }  // namespace
 
-std::shared_ptr<const PersonAppearance> MakePersonAppearance(const SceneOptions& options,
-                                                             int id) {
+std::shared_ptr<const PersonAppearance> MakePersonAppearance(const SceneOptions& options, int id) {
   MVTRACK_CHECK(options.embedding_dim > 0);
   MVTRACK_CHECK(id >= 0);
   auto a = std::make_shared<PersonAppearance>();
   std::vector<double> front = FrontPrototype(options, id, &a->look_alike_of);
-  core::Random rng(DeriveSeed(options.seed, Stream::kAppearance, static_cast<std::uint64_t>(id) + 1,
-                              kIdentity + 1));
+  core::Random rng(DeriveSeed(
+      options.seed, Stream::kAppearance, static_cast<std::uint64_t>(id) + 1, kIdentity + 1));
   std::vector<double> back = front;
   Perturb(&back, options.embedding_view_drift, UnitVector(options.embedding_dim, &rng));
   a->front = ToFloat(front);

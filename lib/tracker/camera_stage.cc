@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <utility>
 
@@ -28,6 +29,14 @@ bool TouchesBorder(double edge_px, int border_px) {
                         : edge_px >= b - 1.0 - kClipMarginPx && edge_px <= b + kClipMarginPx;
 }
 
+tracking2d::SortAppearance SortAppearanceOf(const core::AppearanceOptions& a) {
+  tracking2d::SortAppearance s;
+  s.weight = a.sort_weight;
+  s.gate = a.sort_gate;
+  s.gallery_size = a.sort_gallery_size;
+  return s;
+}
+
 }  // namespace
 
 CameraStage::CameraStage(geometry::CameraModel camera,
@@ -42,6 +51,7 @@ CameraStage::CameraStage(geometry::CameraModel camera,
       world_from_cam_(camera_.cam_from_world.rotation.transpose()),
       up_vanishing_(camera_.K * camera_.cam_from_world.rotation.col(2)),
       sin_ends_limit_(std::sin(options.box_ends_max_elevation_deg * std::numbers::pi / 180.0)) {
+  if (options_.appearance.enabled) sort_.set_appearance(SortAppearanceOf(options_.appearance));
   if (options_.mode == InputMode::kPoses) {
     for (core::KeypointLayoutId from : core::AllKeypointLayouts()) {
       mappings_[from] = core::MakeKeypointMapping(from, options_.layout);
@@ -166,6 +176,7 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
   if (stream_epoch != stream_epoch_) {
     // The stream ended (re-anchor or flush) since this camera's last frame: SORT restarts.
     sort_ = tracking2d::SortTracker(options_.sort);
+    if (options_.appearance.enabled) sort_.set_appearance(SortAppearanceOf(options_.appearance));
     stream_epoch_ = stream_epoch;
     period_.Clear();
     sort_seconds_per_frame_ = 0.0;
@@ -200,7 +211,7 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
       std::string why =
           core::CheckEmbedding(detection.embedding_model, &detection.embedding, &embedding_stream_);
       if (why.empty()) {
-        obs->embedding = std::move(detection.embedding);
+        obs->embedding = std::make_shared<const std::vector<float>>(std::move(detection.embedding));
         ++counters->embeddings_used;
       } else {
         ++counters->embeddings_dropped;
@@ -231,7 +242,16 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
       sort_seconds_per_frame_ = s;
     }
   }
-  const std::vector<tracking2d::TrackedDetection> tracked = sort_.Update(frame.frame, boxes);
+  std::vector<const std::vector<float>*>* embeddings = nullptr;
+  if (options_.appearance.enabled) {
+    embeddings_.clear();
+    for (const core::Observation2D& obs : observations) {
+      embeddings_.push_back(obs.embedding.get());
+    }
+    embeddings = &embeddings_;
+  }
+  const std::vector<tracking2d::TrackedDetection> tracked =
+      sort_.Update(frame.frame, boxes, embeddings);
   out.observations.reserve(tracked.size());
   // Each detection belongs to at most one track, so its observation can be moved out.
   for (const tracking2d::TrackedDetection& td : tracked) {

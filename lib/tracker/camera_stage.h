@@ -93,7 +93,9 @@ class CameraStage {
   int num_points_ = 1;
   std::map<core::KeypointLayoutId, core::KeypointMapping> mappings_;
   tracking2d::SortTracker sort_;
-  core::EmbeddingStream embedding_stream_;  // outlives stream epochs: the camera's model
+  core::EmbeddingStream embedding_stream_;
+  std::vector<const std::vector<float>*> embeddings_;  // Process scratch, parallel to boxes_  //
+                                                       // outlives stream epochs: the camera's model
   // This camera's frame period (its own capture times) and the one SORT's options were last
   // scaled to (TrackerOptions::reference_fps).
   FramePeriod period_;

@@ -367,30 +367,14 @@ void SetMembers(const WindowJob& job, core::Tracklet3D* person) {
 // Sets person->appearance: the normalised mean of its observations' embeddings (those of the
 // first embedding's dimension, in the order of source_tracklets and frames).
 void SetAppearance(const WindowJob& job, core::Tracklet3D* person) {
-  person->appearance.clear();
-  person->appearance_count = 0;
-  std::vector<double> sum;
+  core::EmbeddingMean mean;
   for (const int t : person->source_tracklets) {
     for (const core::Observation2D& obs : job.tracklets[static_cast<std::size_t>(t)].observations) {
-      if (obs.embedding.empty()) continue;
-      if (sum.empty()) sum.assign(obs.embedding.size(), 0.0);
-      if (obs.embedding.size() != sum.size()) continue;
-      for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += static_cast<double>(obs.embedding[k]);
-      ++person->appearance_count;
+      if (obs.embedding) mean.Add(*obs.embedding);
     }
   }
-  if (person->appearance_count == 0) return;
-  double n2 = 0.0;
-  for (const double v : sum) n2 += v * v;
-  const double n = std::sqrt(n2);
-  if (!(n > 1e-9)) {  // embeddings that cancel out say nothing
-    person->appearance_count = 0;
-    return;
-  }
-  person->appearance.resize(sum.size());
-  for (std::size_t k = 0; k < sum.size(); ++k) {
-    person->appearance[k] = static_cast<float>(sum[k] / n);
-  }
+  person->appearance = mean.Unit();
+  person->appearance_count = person->appearance.empty() ? 0 : mean.count();
 }
 
 WindowResult EmptyWindowResult(const WindowJob& job) {
@@ -430,6 +414,7 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
   // Cross-view association (Eq. 2-4, PDNC / Algorithm 1).
   association::AssociationOptions ao = options.association;
   if (options.mode == InputMode::kBoxes && !options.box_ends_in_association) ao.num_points = 1;
+  if (options.appearance.enabled) ao.appearance_weight = options.appearance.association_weight;
   r.clusters = association::AssociateTracklets(rig, job.tracklets, ao);
   // CMMT (Algorithm 2) per person seen by at least two cameras.
   const int num_points = NumPoints(options);

@@ -7,6 +7,7 @@
 #include <optional>
 #include <utility>
 
+#include "core/appearance.h"
 #include "core/check.h"
 #include "core/linear_assignment.h"
 #include "tracking2d/box_iou.h"
@@ -31,14 +32,72 @@ SortTracker::SortTracker(SortOptions options) : options_(options) {
   MVTRACK_CHECK_MSG(options_.Validate(&why), why.c_str());
 }
 
+bool SortAppearance::Validate(std::string* why) const {
+  auto fail = [&](const char* msg) {
+    if (why != nullptr) *why = msg;
+    return false;
+  };
+  if (!std::isfinite(weight) || weight < 0.0 || weight > 1.0)
+    return fail("weight must be in [0, 1]");
+  if (!std::isfinite(gate) || gate < 0.0 || gate > 2.0) return fail("gate must be in [0, 2]");
+  if (gallery_size < 1) return fail("gallery_size must be >= 1");
+  return true;
+}
+
+void SortTracker::set_appearance(const SortAppearance& appearance) {
+  std::string why;
+  MVTRACK_CHECK_MSG(appearance.Validate(&why), why.c_str());
+  appearance_ = appearance;
+}
+
+void SortTracker::RecordSameTrackDistance(double d) {
+  if (same_track_distances_.size() < kSameTrackSamples) {
+    same_track_distances_.push_back(d);
+  } else {
+    same_track_distances_[next_sample_] = d;
+  }
+  next_sample_ = (next_sample_ + 1) % kSameTrackSamples;
+}
+
+bool SortTracker::AppearanceReliable() const {
+  if (same_track_distances_.size() < kMinSameTrackSamples) return false;
+  std::vector<double> d = same_track_distances_;
+  const auto mid = d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2);
+  std::nth_element(d.begin(), mid, d.end());
+  return *mid <= 0.5 * appearance_->gate;
+}
+
+void SortTracker::AddToGallery(Track* track, const std::vector<float>* embedding) const {
+  if (!appearance_ || embedding == nullptr || embedding->empty()) return;
+  auto& gallery = track->gallery;
+  if (!gallery.empty() && gallery.front().size() != embedding->size()) return;
+  if (static_cast<int>(gallery.size()) >= appearance_->gallery_size) gallery.erase(gallery.begin());
+  gallery.push_back(*embedding);
+}
+
+std::size_t SortTracker::gallery_bytes() const {
+  std::size_t bytes = 0;
+  for (const Track& t : tracks_) {
+    for (const auto& g : t.gallery) bytes += g.size() * sizeof(float);
+  }
+  return bytes;
+}
+
 void SortTracker::set_options(const SortOptions& options) {
   std::string why;
   MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
   options_ = options;
 }
 
-std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
-                                                  const std::vector<core::BoxPx>& boxes) {
+std::vector<TrackedDetection> SortTracker::Update(
+    FrameIndex frame,
+    const std::vector<core::BoxPx>& boxes,
+    const std::vector<const std::vector<float>*>* embeddings) {
+  MVTRACK_CHECK(embeddings == nullptr || embeddings->size() == boxes.size());
+  const bool use_appearance = appearance_.has_value() && embeddings != nullptr;
+  const auto embedding_of = [&](int detection) -> const std::vector<float>* {
+    return use_appearance ? (*embeddings)[static_cast<std::size_t>(detection)] : nullptr;
+  };
   if (last_frame_.has_value() && frame <= *last_frame_) return {};
   const FrameIndex previous_frame = last_frame_.value_or(frame);
   last_frame_ = frame;
@@ -87,7 +146,48 @@ std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
       cost(r, c) = 1.0 - BoxIouOfUsable(predicted, boxes[detection]);
     }
   }
-  core::SolveAssignment(cost, 1.0 - options_.iou_threshold, &assignment_workspace_, &assignment_);
+  double max_cost = 1.0 - options_.iou_threshold;
+  // Row / column counts of pairs inside the IoU gate (appearance only).
+  if (use_appearance) {
+    row_feasible_.assign(static_cast<std::size_t>(num_tracks_before), 0);
+    col_feasible_.assign(static_cast<std::size_t>(num_usable), 0);
+    for (Eigen::Index r = 0; r < num_tracks_before; ++r) {
+      for (Eigen::Index c = 0; c < num_usable; ++c) {
+        if (cost(r, c) > max_cost) continue;
+        ++row_feasible_[static_cast<std::size_t>(r)];
+        ++col_feasible_[static_cast<std::size_t>(c)];
+      }
+    }
+  }
+  if (use_appearance && AppearanceReliable()) {
+    // Where motion is ambiguous (a track with two detections inside its IoU gate, or a
+    // detection inside two tracks' gates): the fused cost and the appearance gate. Elsewhere
+    // motion alone decides, as in SORT: appearance only arbitrates between candidates, so
+    // embeddings too noisy to tell people apart cannot break tracks that motion alone keeps.
+    // Forbidden pairs get a cost above every allowed one (allowed costs are <= 2).
+    constexpr double kForbidden = 4.0;
+    const double w = appearance_->weight;
+    for (Eigen::Index r = 0; r < num_tracks_before; ++r) {
+      const auto& gallery = tracks_[static_cast<std::size_t>(r)].gallery;
+      for (Eigen::Index c = 0; c < num_usable; ++c) {
+        const double motion = cost(r, c);
+        if (motion > max_cost) {
+          cost(r, c) = kForbidden;
+          continue;
+        }
+        if (row_feasible_[static_cast<std::size_t>(r)] < 2 &&
+            col_feasible_[static_cast<std::size_t>(c)] < 2) {
+          continue;
+        }
+        const std::vector<float>* e = embedding_of(usable[static_cast<std::size_t>(c)]);
+        if (e == nullptr || gallery.empty() || gallery.front().size() != e->size()) continue;
+        const double d = core::GalleryDistance(gallery, *e);
+        cost(r, c) = d > appearance_->gate ? kForbidden : (1.0 - w) * motion + w * d;
+      }
+    }
+    max_cost = 3.0;
+  }
+  core::SolveAssignment(cost, max_cost, &assignment_workspace_, &assignment_);
   const core::Assignment& assignment = assignment_;
 
   std::vector<TrackedDetection> reported;
@@ -97,11 +197,21 @@ std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
   for (const auto& [row, col] : assignment.matches) {
     Track& t = tracks_[static_cast<std::size_t>(row)];
     const int detection = usable[static_cast<std::size_t>(col)];
+    // How far apart one person's embeddings are in this camera: sampled on every 4th frame
+    // from continuations motion alone made certain (one candidate on both sides).
+    if (use_appearance && frame % 4 == 0 && row_feasible_[static_cast<std::size_t>(row)] == 1 &&
+        col_feasible_[static_cast<std::size_t>(col)] == 1) {
+      const std::vector<float>* e = embedding_of(detection);
+      if (e != nullptr && !t.gallery.empty() && t.gallery.front().size() == e->size()) {
+        RecordSameTrackDistance(core::GalleryDistance(t.gallery, *e));
+      }
+    }
     t.filter.Update(boxes[static_cast<std::size_t>(detection)]);
     t.hit_streak = t.last_matched_frame == previous_frame ? t.hit_streak + 1 : 1;
     t.last_matched_frame = frame;
     if (t.hit_streak >= options_.min_hits) t.confirmed = true;
     if (t.confirmed) reported.push_back({t.id, detection});
+    AddToGallery(&t, embedding_of(detection));
   }
 
   // 5. Delete tracks unmatched for more than max_age frames: they could not be matched at the
@@ -115,7 +225,9 @@ std::vector<TrackedDetection> SortTracker::Update(FrameIndex frame,
             KalmanBoxTracker(boxes[static_cast<std::size_t>(detection)]),
             frame,
             1,
-            options_.min_hits <= 1};
+            options_.min_hits <= 1,
+            {}};
+    AddToGallery(&t, embedding_of(detection));
     if (t.confirmed) reported.push_back({t.id, detection});
     tracks_.push_back(std::move(t));
   }

@@ -41,6 +41,25 @@ struct SortOptions {
   bool Validate(std::string* why) const;
 };
 
+/// Appearance in SORT (DeepSORT's metric, fused into one cost instead of its matching cascade:
+/// docs/DECISIONS.md "Appearance"). Off when weight is 0 and gate is 2 (motion only, SORT).
+struct SortAppearance {
+  /// Cost of a (track, detection) pair that both carry appearance, where motion is ambiguous
+  /// (the track has another detection, or the detection another track, inside the IoU gate):
+  /// (1 - weight) (1 - IoU) + weight d, d the cosine distance of the detection's embedding to
+  /// the track's nearest gallery entry. Unambiguous pairs keep SORT's cost. In [0, 1].
+  double weight = 0.0;
+  /// Ambiguous pairs with d above this are never matched. In [0, 2]. Appearance takes part only
+  /// while one person's own detections in this camera lie within half the gate of their
+  /// track's gallery (median of the latest certain continuations): with noisier embeddings
+  /// SORT runs on motion alone.
+  double gate = 2.0;
+  /// Embeddings a track keeps (the latest). >= 1.
+  int gallery_size = 32;
+
+  bool Validate(std::string* why) const;
+};
+
 /// One detection of this frame with the 2D track it was assigned to.
 struct TrackedDetection {
   /// Unique within this SortTracker, starts at 1, never reused.
@@ -80,7 +99,18 @@ class SortTracker {
   /// Returns the detections of THIS frame that belong to confirmed tracks (observed boxes only,
   /// never Kalman predictions), sorted by track id. When `frame` is not greater than the
   /// previous frame, returns an empty vector and changes nothing (the caller validates).
-  std::vector<TrackedDetection> Update(FrameIndex frame, const std::vector<core::BoxPx>& boxes);
+  ///
+  /// `embeddings` (optional; else parallel to `boxes`): each detection's unit embedding or
+  /// null. Used only with set_appearance(); embeddings of another length than a track's
+  /// gallery are not compared.
+  std::vector<TrackedDetection> Update(
+      FrameIndex frame,
+      const std::vector<core::BoxPx>& boxes,
+      const std::vector<const std::vector<float>*>* embeddings = nullptr);
+  /// Uses appearance from now on (valid: checked).
+  void set_appearance(const SortAppearance& appearance);
+  /// Bytes held by the tracks' galleries.
+  std::size_t gallery_bytes() const;
 
   /// Number of live tracks (confirmed or not).
   int num_tracks() const { return static_cast<int>(tracks_.size()); }
@@ -101,16 +131,33 @@ class SortTracker {
     FrameIndex last_matched_frame = 0;
     int hit_streak = 0;
     bool confirmed = false;
+    std::vector<std::vector<float>> gallery;  // appearance on: the latest embeddings
   };
 
+  // Appearance on: the latest distances of certain continuations to their track's gallery
+  // (ring buffer), and whether their median is at most half the gate: only then does
+  // appearance take part (embeddings so noisy that one person's own detections are far apart
+  // would only break tracks).
+  static constexpr std::size_t kSameTrackSamples = 128;
+  static constexpr std::size_t kMinSameTrackSamples = 16;
+  void RecordSameTrackDistance(double d);
+  bool AppearanceReliable() const;
+  std::vector<double> same_track_distances_;
+  std::size_t next_sample_ = 0;
+  // Appearance on: keeps `embedding` (if any, and of the gallery's length) in the track's
+  // gallery, the oldest dropped beyond gallery_size.
+  void AddToGallery(Track* track, const std::vector<float>* embedding) const;
+
   SortOptions options_;
+  std::optional<SortAppearance> appearance_;
   std::vector<Track> tracks_;  // increasing id order
   std::optional<FrameIndex> last_frame_;
   TrackId2D next_id_ = 1;
   // Per-frame scratch kept between Update() calls so a warmed-up tracker does not reallocate
   // (the cost matrix only when its shape changes).
   std::vector<int> usable_;
-  std::vector<core::BoxPx> predicted_;  // Update scratch: predicted box of each track
+  std::vector<core::BoxPx> predicted_;            // Update scratch: predicted box of each track
+  std::vector<int> row_feasible_, col_feasible_;  // Update scratch (appearance): gated pairs
   Eigen::MatrixXd cost_;
   core::AssignmentWorkspace assignment_workspace_;
   core::Assignment assignment_;

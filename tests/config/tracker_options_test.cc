@@ -98,6 +98,11 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.appearance.reid_margin == b.appearance.reid_margin);
   REQUIRE(a.appearance.max_reid_s == b.appearance.max_reid_s);
   REQUIRE(a.appearance.max_departed == b.appearance.max_departed);
+  REQUIRE(a.appearance.link_max_distance == b.appearance.link_max_distance);
+  REQUIRE(a.appearance.association_weight == b.appearance.association_weight);
+  REQUIRE(a.appearance.sort_weight == b.appearance.sort_weight);
+  REQUIRE(a.appearance.sort_gate == b.appearance.sort_gate);
+  REQUIRE(a.appearance.sort_gallery_size == b.appearance.sort_gallery_size);
 }
 
 // Valid options with every field drawn at random (full-precision reals).
@@ -181,6 +186,11 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.appearance.reid_margin = unit(*rng);
   o.appearance.max_reid_s = 600.0 * unit(*rng);
   o.appearance.max_departed = small(0, 1000);
+  o.appearance.link_max_distance = 2.0 * unit(*rng);
+  o.appearance.association_weight = unit(*rng);
+  o.appearance.sort_weight = unit(*rng);
+  o.appearance.sort_gate = 2.0 * unit(*rng);
+  o.appearance.sort_gallery_size = small(1, 100);
   return o;
 }
 
@@ -209,12 +219,12 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   // above, the explicit mapping test below, docs/examples/tracker_options.yaml and
   // docs/FORMATS.md, then update the sizes here (x86-64, g++).
   CHECK(sizeof(tracking2d::SortOptions) == 16);
-  CHECK(sizeof(association::AssociationOptions) == 32);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
   CHECK(sizeof(linking::LinkerOptions) == 104);
   CHECK(sizeof(triangulation::RefinementOptions) == 136);
-  CHECK(sizeof(core::AppearanceOptions) == 40);
-  CHECK(sizeof(TrackerOptions) == 472);
+  CHECK(sizeof(core::AppearanceOptions) == 80);
+  CHECK(sizeof(association::AssociationOptions) == 48);
+  CHECK(sizeof(TrackerOptions) == 528);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -415,8 +425,8 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
-  // + 6 (appearance)
-  CHECK(written.size() == 71);
+  // + 11 (appearance)
+  CHECK(written.size() == 76);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

@@ -399,3 +399,62 @@ TEST_CASE("SORT ignores unusable boxes", "[unit]") {
 
 }  // namespace
 }  // namespace mvtrack::tracking2d
+
+namespace mvtrack::tracking2d {
+namespace {
+
+// Two people standing side by side swap places between two frames (boxes overlapping enough
+// that IoU alone prefers the swap); their embeddings tell them apart. `noise` perturbs every
+// embedding (0: identical to the person's own look).
+std::vector<TrackId2D> SwapIds(bool appearance, double noise) {
+  SortTracker sort;
+  if (appearance) {
+    SortAppearance a;
+    a.weight = 0.5;
+    a.gate = 0.6;
+    sort.set_appearance(a);
+  }
+  const std::vector<float> look_a = {1.0f, 0.0f, 0.0f}, look_b = {0.0f, 1.0f, 0.0f};
+  std::mt19937 rng(7);
+  std::normal_distribution<float> n(0.0f, static_cast<float>(noise));
+  const auto noisy = [&](const std::vector<float>& v) {
+    std::vector<float> e = {v[0] + n(rng), v[1] + n(rng), v[2] + n(rng)};
+    const float norm = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    for (float& x : e) x /= norm;
+    return e;
+  };
+  std::vector<TrackId2D> last;
+  for (FrameIndex f = 0; f < 40; ++f) {
+    // Standing still for 39 frames at x = 100 (A) and x = 130 (B); at frame 39 they step
+    // 18 px towards each other: each now overlaps the other's track more than its own.
+    const double a_x = f < 39 ? 100.0 : 118.0, b_x = f < 39 ? 130.0 : 112.0;
+    const std::vector<core::BoxPx> boxes = {{a_x, 100.0, a_x + 60.0, 260.0},
+                                            {b_x, 100.0, b_x + 60.0, 260.0}};
+    const std::vector<float> ea = noisy(look_a), eb = noisy(look_b);
+    const std::vector<const std::vector<float>*> embeddings = {&ea, &eb};
+    const std::vector<TrackedDetection> out = sort.Update(f, boxes, &embeddings);
+    last.assign(2, 0);
+    for (const TrackedDetection& t : out)
+      last[static_cast<std::size_t>(t.detection_index)] = t.track_id;
+  }
+  return last;  // track id of A's and B's detection at the last frame
+}
+
+TEST_CASE("SORT with appearance keeps two people apart where IoU alone swaps them", "[unit]") {
+  // Motion only: the swap (A's detection continues B's track).
+  const std::vector<TrackId2D> motion = SwapIds(false, 0.0);
+  CHECK(motion == std::vector<TrackId2D>{2, 1});
+  // Appearance: identities kept.
+  CHECK(SwapIds(true, 0.05) == std::vector<TrackId2D>{1, 2});
+  // Embeddings so noisy that one person's own detections are far apart: SORT ignores them
+  // and behaves as without.
+  CHECK(SwapIds(true, 3.0) == motion);
+  SortAppearance bad;
+  bad.weight = 1.5;
+  std::string why;
+  CHECK_FALSE(bad.Validate(&why));
+  CHECK(why.find("weight") != std::string::npos);
+}
+
+}  // namespace
+}  // namespace mvtrack::tracking2d
