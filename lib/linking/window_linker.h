@@ -246,12 +246,17 @@ inline constexpr int kMaxSamePerson = 16;
 /// duplicate of that person (its 2D tracks join the track's members, track_of_tracklet is that
 /// track's id, nothing is born). With appearance (core::AppearanceOptions::enabled and
 /// tracklets that carry one):
-///  5. Appearance: each remaining tracklet with an appearance descriptor against the lost
-///     tracks left unmatched and the departed tracks (ended within max_reid_s, confirmed): the
-///     gallery distance (core::GalleryDistance) must be <= reid_max_distance and smaller by
-///     reid_margin than every other candidate of the track and of the tracklet, and the
-///     footprint may not have moved faster than kMaxReidSpeedMps since the track's last
-///     frame. A departed track matched so is revived with its old id (LinkResult::revived).
+///  5. Appearance: each remaining tracklet with an appearance descriptor against the confirmed
+///     tracks left unmatched by stages 1-4 (lost before or in this window) and the departed
+///     tracks (ended within max_reid_s): the gallery distance (core::GalleryDistance) must be
+///     <= reid_max_distance and smaller by reid_margin than every other candidate of the track
+///     and of the tracklet (candidates that are on evidence the same person,
+///     LinkedTrack::same_person, and tracklets within kSamePersonApartM of the chosen one do
+///     not count; such a tracklet becomes a duplicate), and the footprint may not have moved
+///     faster than kMaxReidSpeedMps (plus kSamePersonApartM) since the track's last frame. A
+///     departed track matched so is revived with its old id (LinkResult::revived).
+///  With appearance, no stage links a track to a tracklet whose descriptor is farther than
+///  link_max_distance from the track's gallery.
 /// Matched tracks take their tracklet, the other unmatched tracklets are born (fresh ids, in
 /// input order); unmatched tracks are lost. A lost track ends
 /// (before a window is linked) when its last footprint is older than max_lost_s; when none of its
