@@ -130,6 +130,18 @@ struct FootprintSpan {
   FrameIndex last = 0;
 };
 
+// Every frame of `tracklet` that has a footprint, with it, in frame order.
+std::vector<std::pair<FrameIndex, Vec2>> Footprints(const core::Tracklet3D& tracklet,
+                                                    const std::vector<int>& footprint_points) {
+  std::vector<std::pair<FrameIndex, Vec2>> out;
+  for (std::size_t f = 0; f < tracklet.frames.size(); ++f) {
+    if (const std::optional<Vec2> xy = FrameFootprint(tracklet.points[f], footprint_points)) {
+      out.emplace_back(tracklet.frames[f], *xy);
+    }
+  }
+  return out;
+}
+
 std::optional<FootprintSpan> SpanOf(const core::Tracklet3D& tracklet,
                                     const std::vector<int>& footprint_points) {
   std::optional<FootprintSpan> span;
@@ -358,17 +370,13 @@ void WindowLinker::RecordSamePerson(const std::vector<core::Tracklet3D>& trackle
     if (result.link_kind[c] != LinkKind::kBirth || tracklets[c].appearance.empty()) continue;
     LinkedTrack* born = find(result.track_of_tracklet[c]);
     if (born == nullptr) continue;
-    std::optional<Vec2> first;
-    FrameIndex first_frame = 0;
-    for (std::size_t f = 0; f < tracklets[c].frames.size() && !first; ++f) {
-      first = FrameFootprint(tracklets[c].points[f], context_.footprint_points);
-      first_frame = tracklets[c].frames[f];
-    }
-    if (!first) continue;
+    const auto footprints = Footprints(tracklets[c], context_.footprint_points);
+    if (footprints.empty()) continue;
+    const auto& [first_frame, first] = footprints.front();
     const auto continues = [&](FrameIndex last_frame, const Vec2& last_position) {
       const double gap_s = Seconds(last_frame, first_frame);
       return gap_s >= 0.0 && gap_s <= options_.max_lost_s &&
-             (*first - last_position).norm() <= kMaxReidSpeedMps * gap_s + kSamePersonApartM;
+             (first - last_position).norm() <= kMaxReidSpeedMps * gap_s + kSamePersonApartM;
     };
     for (LinkedTrack& t : tracks_) {
       if (t.id == born->id || t.missed_windows == 0 || t.last_seen_frame == kNoFrame) continue;
@@ -449,6 +457,11 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
   const auto rows_n = static_cast<Eigen::Index>(candidates.size());
   const auto cols_n = static_cast<Eigen::Index>(cols.size());
   Eigen::MatrixXd dist = Eigen::MatrixXd::Constant(rows_n, cols_n, kInf);
+  std::vector<std::vector<std::pair<FrameIndex, Vec2>>> footprints(cols.size());
+  for (std::size_t j = 0; j < cols.size(); ++j) {
+    footprints[j] =
+        Footprints(tracklets[static_cast<std::size_t>(cols[j])], context_.footprint_points);
+  }
   for (Eigen::Index i = 0; i < rows_n; ++i) {
     const Candidate& cand = candidates[static_cast<std::size_t>(i)];
     for (Eigen::Index j = 0; j < cols_n; ++j) {
@@ -459,12 +472,10 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
       // at most kMaxReidSpeedMps plus a body width.
       Vec2 nearest = Vec2::Zero();
       double dt_s = kInf;
-      for (std::size_t f = 0; f < t.frames.size(); ++f) {
-        const std::optional<Vec2> xy = FrameFootprint(t.points[f], context_.footprint_points);
-        if (!xy) continue;
-        const double dt = std::abs(Seconds(cand.last_seen_frame, t.frames[f]));
+      for (const auto& [frame, xy] : footprints[static_cast<std::size_t>(j)]) {
+        const double dt = std::abs(Seconds(cand.last_seen_frame, frame));
         if (dt < dt_s) {
-          nearest = *xy;
+          nearest = xy;
           dt_s = dt;
         }
       }

@@ -29,12 +29,17 @@ bool TouchesBorder(double edge_px, int border_px) {
                         : edge_px >= b - 1.0 - kClipMarginPx && edge_px <= b + kClipMarginPx;
 }
 
-tracking2d::SortAppearance SortAppearanceOf(const core::AppearanceOptions& a) {
-  tracking2d::SortAppearance s;
-  s.weight = a.sort_weight;
-  s.gate = a.sort_gate;
-  s.gallery_size = a.sort_gallery_size;
-  return s;
+// A camera's SORT: `options.sort`, and appearance when it is on.
+tracking2d::SortTracker MakeSort(const TrackerOptions& options) {
+  tracking2d::SortTracker sort(options.sort);
+  if (options.appearance.enabled) {
+    tracking2d::SortAppearance s;
+    s.weight = options.appearance.sort_weight;
+    s.gate = options.appearance.sort_gate;
+    s.gallery_size = options.appearance.sort_gallery_size;
+    sort.set_appearance(s);
+  }
+  return sort;
 }
 
 }  // namespace
@@ -46,12 +51,11 @@ CameraStage::CameraStage(geometry::CameraModel camera,
       camera_index_(camera_index),
       options_(options),
       num_points_(NumPoints(options)),
-      sort_(options.sort),
+      sort_(MakeSort(options)),
       k_inverse_(camera_.K.inverse()),
       world_from_cam_(camera_.cam_from_world.rotation.transpose()),
       up_vanishing_(camera_.K * camera_.cam_from_world.rotation.col(2)),
       sin_ends_limit_(std::sin(options.box_ends_max_elevation_deg * std::numbers::pi / 180.0)) {
-  if (options_.appearance.enabled) sort_.set_appearance(SortAppearanceOf(options_.appearance));
   if (options_.mode == InputMode::kPoses) {
     for (core::KeypointLayoutId from : core::AllKeypointLayouts()) {
       mappings_[from] = core::MakeKeypointMapping(from, options_.layout);
@@ -175,8 +179,7 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
   *counters = CameraStageCounters{};
   if (stream_epoch != stream_epoch_) {
     // The stream ended (re-anchor or flush) since this camera's last frame: SORT restarts.
-    sort_ = tracking2d::SortTracker(options_.sort);
-    if (options_.appearance.enabled) sort_.set_appearance(SortAppearanceOf(options_.appearance));
+    sort_ = MakeSort(options_);
     stream_epoch_ = stream_epoch;
     period_.Clear();
     sort_seconds_per_frame_ = 0.0;
