@@ -189,8 +189,8 @@ DetectionCheck ValidateDetection(Detection2D* detection, const DetectionLimits& 
   }
   if (non_finite_position + bad_confidence + outside_image == 0) {
     if (!embedding_problem.empty()) {
-      return DetectionCheck{DetectionVerdict::kAcceptedRepaired,
-                            "embedding dropped: " + embedding_problem};
+      return DetectionCheck{
+          DetectionVerdict::kAcceptedRepaired, "embedding dropped: " + embedding_problem, true};
     }
     return DetectionCheck{DetectionVerdict::kAccepted, std::string()};
   }
@@ -199,7 +199,8 @@ DetectionCheck ValidateDetection(Detection2D* detection, const DetectionLimits& 
   AppendCount(&reason, bad_confidence, "with confidence non-finite or outside [0, 1]");
   AppendCount(&reason, outside_image, "outside the image margin");
   if (!embedding_problem.empty()) reason += "; embedding dropped: " + embedding_problem;
-  return DetectionCheck{DetectionVerdict::kAcceptedRepaired, std::move(reason)};
+  return DetectionCheck{
+      DetectionVerdict::kAcceptedRepaired, std::move(reason), !embedding_problem.empty()};
 }
 
 }  // namespace mvtrack::core

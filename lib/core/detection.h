@@ -83,6 +83,8 @@ enum class DetectionVerdict {
 struct DetectionCheck {
   DetectionVerdict verdict = DetectionVerdict::kAccepted;
   std::string reason;  ///< empty when accepted unchanged
+  /// The embedding was dropped (oversized or non-finite; the reason says which).
+  bool embedding_dropped = false;
 };
 
 /// Validates `detection` in place: non-finite or degenerate boxes, non-finite or out-of-range

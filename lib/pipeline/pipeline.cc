@@ -76,6 +76,7 @@ Pipeline::Pipeline(geometry::CameraRig rig,
     stages_.push_back(std::make_unique<tracker::CameraStage>(rig_.camera(c), c, options_));
   }
   camera_counters_.resize(static_cast<std::size_t>(rig_.size()));
+  gallery_memory_ = tracker::GalleryMemory(static_cast<std::size_t>(rig_.size()));
   const int workers = executor_->num_workers();
   MVTRACK_CHECK(workers >= 1);
   workspaces_.reserve(static_cast<std::size_t>(workers));
@@ -194,6 +195,9 @@ void Pipeline::CameraLoop(int camera_index) {
       std::lock_guard<std::mutex> lock(status_mu_);
       ++camera_counters_[c].frames_processed;
       camera_counters_[c].detections_rejected += counters.detections_rejected;
+      camera_counters_[c].embeddings_dropped += counters.embeddings_dropped;
+      gallery_memory_.SetCamera(c, counters.sort_gallery_bytes);
+      stats_.gallery_bytes = gallery_memory_.total();
       stats_.detections_used += counters.detections_used;
       stats_.detections_rejected += counters.detections_rejected;
       stats_.detections_repaired += counters.detections_repaired;
@@ -318,7 +322,8 @@ void Pipeline::FinalizerLoop() {
           stats_.windows_processed = finalizer_.counters().windows_processed;
           stats_.tracks_born = finalizer_.counters().tracks_born;
           stats_.tracks_revived = finalizer_.counters().tracks_revived;
-          stats_.gallery_bytes = finalizer_.counters().gallery_bytes;
+          gallery_memory_.SetLinker(finalizer_.counters().gallery_bytes);
+          stats_.gallery_bytes = gallery_memory_.total();
           next_track_id_ = finalizer_.linker().next_id();
           if (finished.failed) {
             ++windows_failed_;
@@ -392,6 +397,7 @@ PipelineStatus Pipeline::Status() const {
   for (std::size_t c = 0; c < s.cameras.size(); ++c) {
     s.cameras[c].frames_processed = camera_counters_[c].frames_processed;
     s.cameras[c].detections_rejected = camera_counters_[c].detections_rejected;
+    s.cameras[c].embeddings_dropped = camera_counters_[c].embeddings_dropped;
   }
   s.windows_submitted = windows_submitted_;
   s.windows_failed = windows_failed_;

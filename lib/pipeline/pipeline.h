@@ -136,6 +136,7 @@ struct CameraStatus {
   std::int64_t frames_processed = 0;     ///< camera-frames run through the CameraStage
   std::int64_t frames_dropped = 0;       ///< camera-frames whose detections overflow discarded
   std::int64_t detections_rejected = 0;  ///< this camera's detections that failed validation
+  std::int64_t embeddings_dropped = 0;   ///< this camera's unusable embeddings (appearance on)
 };
 
 /// A snapshot of the pipeline's counters and queue depths (for the daemon's status message).
@@ -241,6 +242,7 @@ class Pipeline {
   struct CameraCounters {
     std::int64_t frames_processed = 0;
     std::int64_t detections_rejected = 0;
+    std::int64_t embeddings_dropped = 0;
   };
 
   Pipeline(geometry::CameraRig rig,
@@ -304,6 +306,7 @@ class Pipeline {
   mutable std::mutex status_mu_;
   tracker::TrackerStats stats_;
   std::vector<CameraCounters> camera_counters_;
+  tracker::GalleryMemory gallery_memory_;
   std::int64_t windows_submitted_ = 0;
   std::int64_t windows_failed_ = 0;
   TrackId3D next_track_id_ = 1;  // guarded by status_mu_

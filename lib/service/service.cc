@@ -486,6 +486,13 @@ bool Service::Reload(const DaemonConfig& next, std::string* why) {
       std::lock_guard<std::mutex> lock(mu_);
       windows_before_ += old.tracker.windows_processed;
       jobs_failed_before_ += old.windows_failed;
+      embeddings_used_before_ += old.tracker.embeddings_used;
+      embeddings_dropped_before_ += old.tracker.embeddings_dropped;
+      tracks_revived_before_ += old.tracker.tracks_revived;
+      for (std::size_t i = 0; i < inputs_.size() && i < old.cameras.size(); ++i) {
+        inputs_[i].rejected_before += old.cameras[i].detections_rejected;
+        inputs_[i].embeddings_dropped_before += old.cameras[i].embeddings_dropped;
+      }
       id_offset_ = max_published_id_;
     }
     pipeline_ = std::move(fresh);
@@ -587,8 +594,10 @@ std::vector<std::uint8_t> Service::BuildStatus() {
       cs.received = in.received;
       cs.late = sc.late;
       cs.dropped = sc.flood + (i < ps.cameras.size() ? ps.cameras[i].frames_dropped : 0);
-      cs.rejected =
-          sc.detections_rejected + (i < ps.cameras.size() ? ps.cameras[i].detections_rejected : 0);
+      cs.rejected = sc.detections_rejected + in.rejected_before +
+                    (i < ps.cameras.size() ? ps.cameras[i].detections_rejected : 0);
+      cs.embeddings_dropped = in.embeddings_dropped_before +
+                              (i < ps.cameras.size() ? ps.cameras[i].embeddings_dropped : 0);
       cs.decode_errors = in.decode_errors;
       cs.lost = sc.lost;
       cs.clock_offset_us = sc.offset_us;
@@ -606,6 +615,9 @@ std::vector<std::uint8_t> Service::BuildStatus() {
       }
       if (sc.clock_flagged) f |= mvtrack::camera_status_t::FLAG_CLOCK_OFFSET;
       if (cs.lost > in.lost_at_period_start) f |= mvtrack::camera_status_t::FLAG_LOSING;
+      if (cs.embeddings_dropped > in.embeddings_dropped_at_period_start) {
+        f |= mvtrack::camera_status_t::FLAG_BAD_EMBEDDINGS;
+      }
       cs.flags = f;
       if ((f & (mvtrack::camera_status_t::FLAG_NO_DATA | mvtrack::camera_status_t::FLAG_STALE)) !=
           0) {
@@ -621,6 +633,7 @@ std::vector<std::uint8_t> Service::BuildStatus() {
       in.rejected_at_period_start = cs.rejected;
       in.decode_errors_at_period_start = cs.decode_errors;
       in.lost_at_period_start = cs.lost;
+      in.embeddings_dropped_at_period_start = cs.embeddings_dropped;
       msg.cameras.push_back(cs);
     }
     msg.num_cameras = static_cast<std::int16_t>(msg.cameras.size());
@@ -634,6 +647,10 @@ std::vector<std::uint8_t> Service::BuildStatus() {
     }
     jobs_failed_at_period_start_ = msg.jobs_failed;
     msg.kernel_drops = kernel_drops;
+    msg.embeddings_used = embeddings_used_before_ + ps.tracker.embeddings_used;
+    msg.embeddings_dropped = embeddings_dropped_before_ + ps.tracker.embeddings_dropped;
+    msg.tracks_revived = tracks_revived_before_ + ps.tracker.tracks_revived;
+    msg.gallery_bytes = ps.tracker.gallery_bytes;
     if (kernel_drops > kernel_drops_at_period_start_) {
       flags |= mvtrack::tracker_status_t::FLAG_INPUT_LOSS;
     }

@@ -173,6 +173,10 @@ class Service {
     std::int64_t rejected_at_period_start = 0;
     std::int64_t decode_errors_at_period_start = 0;
     std::int64_t lost_at_period_start = 0;
+    std::int64_t embeddings_dropped_at_period_start = 0;
+    // This camera's counts in earlier pipelines (reloads), which start from 0.
+    std::int64_t rejected_before = 0;
+    std::int64_t embeddings_dropped_before = 0;
     std::int64_t last_receive_us = 0;
     std::int64_t last_utime = 0;
   };
@@ -229,6 +233,9 @@ class Service {
   int confirmed_tracks_ = 0;
   std::int64_t windows_before_ = 0;  // windows processed by earlier pipelines (reloads)
   std::int64_t jobs_failed_before_ = 0;
+  std::int64_t embeddings_used_before_ = 0;
+  std::int64_t embeddings_dropped_before_ = 0;
+  std::int64_t tracks_revived_before_ = 0;
   std::int64_t jobs_failed_at_period_start_ = 0;
   // Largest value hooks_.kernel_drops returned (it never decreases, even if a socket closed);
   // -1 while never measured.

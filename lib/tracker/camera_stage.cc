@@ -210,7 +210,10 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
       ++counters->detections_filtered;
       continue;
     }
-    if (options_.appearance.enabled && !detection.embedding.empty()) {
+    if (options_.appearance.enabled && check.embedding_dropped) {
+      ++counters->embeddings_dropped;
+      if (counters->first_embedding_reason.empty()) counters->first_embedding_reason = check.reason;
+    } else if (options_.appearance.enabled && !detection.embedding.empty()) {
       std::string why =
           core::CheckEmbedding(detection.embedding_model, &detection.embedding, &embedding_stream_);
       if (why.empty()) {
@@ -260,6 +263,9 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
   for (const tracking2d::TrackedDetection& td : tracked) {
     out.observations.emplace_back(
         td.track_id, std::move(observations[static_cast<std::size_t>(td.detection_index)]));
+  }
+  if (options_.appearance.enabled) {
+    counters->sort_gallery_bytes = static_cast<std::int64_t>(sort_.gallery_bytes());
   }
   return out;
 }

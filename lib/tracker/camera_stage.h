@@ -43,12 +43,15 @@ struct CameraStageCounters {
   int detections_filtered = 0;  ///< valid but below the score / keypoint thresholds
   /// Why the first rejected detection of the frame was rejected (empty if none was).
   std::string first_rejection_reason;
-  /// Appearance on: embeddings attached to observations / dropped as unusable
-  /// (core::CheckEmbedding; the detection is used without it).
+  /// Appearance on: embeddings attached to observations / dropped as unusable (oversized or
+  /// non-finite: core::ValidateDetection; zero, or another dimension or model than the stream:
+  /// core::CheckEmbedding); the detection is used without it.
   int embeddings_used = 0;
   int embeddings_dropped = 0;
   /// Why the first dropped embedding of the frame was dropped (empty if none was).
   std::string first_embedding_reason;
+  /// Appearance on: memory of the camera's SORT galleries after this frame, bytes (0 off).
+  std::int64_t sort_gallery_bytes = 0;
 };
 
 /// Per-camera stage: validation, observation, SORT. See the file comment.

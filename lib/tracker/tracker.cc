@@ -29,6 +29,7 @@ Tracker::Tracker(geometry::CameraRig rig, TrackerOptions options)
       finalizer_(options_) {
   cameras_.reserve(static_cast<std::size_t>(rig_.size()));
   for (int i = 0; i < rig_.size(); ++i) cameras_.emplace_back(rig_.camera(i), i, options_);
+  gallery_memory_ = GalleryMemory(cameras_.size());
 }
 
 AddResult Tracker::Add(const core::CameraFrame& frame) {
@@ -47,6 +48,9 @@ AddResult Tracker::Add(const core::CameraFrame& frame) {
   CameraStageCounters counters;
   TrackedCameraFrame tracked = cameras_[static_cast<std::size_t>(admission.camera_index)].Process(
       frame, admission.stream_epoch, &counters);
+  gallery_memory_.SetCamera(static_cast<std::size_t>(admission.camera_index),
+                            counters.sort_gallery_bytes);
+  stats_.gallery_bytes = gallery_memory_.total();
   outputs_.clear();
   builder_.Add(admission.events, std::move(tracked), &outputs_);
   RunOutputs(&outputs_, &result.finalized);
@@ -88,7 +92,8 @@ void Tracker::RunOutputs(std::vector<BuilderOutput>* outputs, std::vector<Frame3
       stats_.windows_processed = finalizer_.counters().windows_processed;
       stats_.tracks_born = finalizer_.counters().tracks_born;
       stats_.tracks_revived = finalizer_.counters().tracks_revived;
-      stats_.gallery_bytes = finalizer_.counters().gallery_bytes;
+      gallery_memory_.SetLinker(finalizer_.counters().gallery_bytes);
+      stats_.gallery_bytes = gallery_memory_.total();
       WindowOutput w;
       w.window_id = job->window_id;
       w.begin = job->begin;

@@ -50,7 +50,7 @@ struct AddResult {
   int detections_repaired = 0;     ///< detections kept with some keypoints invalidated
   int detections_filtered = 0;     ///< valid but below score / keypoint thresholds
   int embeddings_used = 0;         ///< appearance on: embeddings attached to observations
-  int embeddings_dropped = 0;      ///< appearance on: unusable embeddings (CheckEmbedding)
+  int embeddings_dropped = 0;      ///< appearance on: unusable embeddings (dropped)
   std::vector<Frame3D> finalized;  ///< frames finalized by this call, in increasing order
 };
 
@@ -69,8 +69,30 @@ struct TrackerStats {
   std::int64_t tracks_born = 0;                       ///< long-term 3D tracks started
   std::int64_t tracks_revived = 0;      ///< ended tracks that came back by appearance (same id)
   std::int64_t embeddings_used = 0;     ///< appearance on: embeddings attached to observations
-  std::int64_t embeddings_dropped = 0;  ///< appearance on: unusable embeddings (CheckEmbedding)
-  std::int64_t gallery_bytes = 0;       ///< appearance galleries' memory, bytes
+  std::int64_t embeddings_dropped = 0;  ///< appearance on: unusable embeddings (dropped)
+  /// Appearance on: memory of the galleries now (GalleryMemory::total()), bytes.
+  std::int64_t gallery_bytes = 0;
+};
+
+/// The memory of the appearance galleries, in bytes: the window linker's (tracks and departed
+/// tracks) plus each camera's SORT galleries, each as last reported.
+class GalleryMemory {
+ public:
+  explicit GalleryMemory(std::size_t num_cameras = 0) : sort_(num_cameras, 0) {}
+  /// The linker's galleries now.
+  void SetLinker(std::int64_t bytes) { linker_ = bytes; }
+  /// Camera `camera_index`'s SORT galleries now (a rig index below num_cameras).
+  void SetCamera(std::size_t camera_index, std::int64_t bytes) {
+    sort_total_ += bytes - sort_.at(camera_index);
+    sort_[camera_index] = bytes;
+  }
+  /// Linker plus every camera.
+  std::int64_t total() const { return linker_ + sort_total_; }
+
+ private:
+  std::vector<std::int64_t> sort_;
+  std::int64_t sort_total_ = 0;
+  std::int64_t linker_ = 0;
 };
 
 /// Output of one window (exposed for tests, ablations and diagnostics).
@@ -131,6 +153,7 @@ class Tracker {
   WindowFinalizer finalizer_;
   std::optional<WindowOutput> last_window_;
   TrackerStats stats_;
+  GalleryMemory gallery_memory_;
   std::vector<BuilderOutput> outputs_;  // Add's scratch, emptied after each call
 };
 

@@ -193,6 +193,7 @@ struct CameraStatus {
   std::int64_t decode_errors = 0;
   std::int64_t lost = 0;
   std::int64_t clock_offset_us = 0;
+  std::int64_t embeddings_dropped = 0;
   std::int32_t queue_depth = 0;
   std::int32_t queue_capacity = 0;
 };
@@ -216,6 +217,10 @@ struct TrackerStatus {
   std::int64_t jobs_failed = 0;
   std::int32_t executor_queue_depth = 0;
   std::int64_t kernel_drops = -1;
+  std::int64_t embeddings_used = 0;
+  std::int64_t embeddings_dropped = 0;
+  std::int64_t tracks_revived = 0;
+  std::int64_t gallery_bytes = 0;
   std::vector<CameraStatus> cameras;  ///< as in the message (the daemon sorts by camera id)
 };
 
@@ -241,8 +246,8 @@ StatusDecodeResult DecodeTrackerStatus(const void* data,
 std::vector<std::uint8_t> EncodeTrackerStatus(const TrackerStatus& status);
 
 /// The names of the camera_status_t::FLAG_* bits set in `flags` ("NO_DATA", "STALE", "LATE",
-/// "DROPPING", "REJECTING", "DECODE_ERRORS", "CLOCK_OFFSET", "LOSING"), in bit order; an
-/// unknown bit n is named "BIT<n>".
+/// "DROPPING", "REJECTING", "DECODE_ERRORS", "CLOCK_OFFSET", "LOSING", "BAD_EMBEDDINGS"), in bit
+/// order; an unknown bit n is named "BIT<n>".
 std::vector<std::string> CameraFlagNames(std::int64_t flags);
 
 /// The names of the tracker_status_t::FLAG_* bits set in `flags` ("CAMERA_MISSING",

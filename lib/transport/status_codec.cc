@@ -20,9 +20,9 @@ using internal::kInt32Bytes;
 using internal::kInt64Bytes;
 using internal::WireWalker;
 
-// camera_status_t: camera_id, flags, rate_hz, 2 utimes, 7 counters, 2 queue fields.
+// camera_status_t: camera_id, flags, rate_hz, 2 utimes, 8 counters, 2 queue fields.
 constexpr std::size_t kCameraStatusBytes =
-    kInt32Bytes + kInt64Bytes + kFloatBytes + 2 * kInt64Bytes + 7 * kInt64Bytes + 2 * kInt32Bytes;
+    kInt32Bytes + kInt64Bytes + kFloatBytes + 2 * kInt64Bytes + 8 * kInt64Bytes + 2 * kInt32Bytes;
 
 bool WalkStatus(WireWalker* w, const DecodeLimits& limits) {
   if (!internal::WalkFingerprint(
@@ -38,6 +38,7 @@ bool WalkStatus(WireWalker* w, const DecodeLimits& limits) {
   w->Skip("latency, windows, jobs", 5 * kInt64Bytes);
   w->Skip("executor_queue_depth", kInt32Bytes);
   w->Skip("kernel_drops", kInt64Bytes);
+  w->Skip("embeddings_used, embeddings_dropped, tracks_revived, gallery_bytes", 4 * kInt64Bytes);
   std::int32_t num_cameras = 0;
   if (!w->ReadCount16("num_cameras", limits.max_cameras, kCameraStatusBytes, &num_cameras)) {
     return false;
@@ -77,6 +78,7 @@ void CopyCameraFields(const From& c, To* cs) {
   cs->decode_errors = c.decode_errors;
   cs->lost = c.lost;
   cs->clock_offset_us = c.clock_offset_us;
+  cs->embeddings_dropped = c.embeddings_dropped;
   cs->queue_depth = c.queue_depth;
   cs->queue_capacity = c.queue_capacity;
 }
@@ -101,6 +103,10 @@ void CopyStatusFields(const From& msg, To* out) {
   out->jobs_failed = msg.jobs_failed;
   out->executor_queue_depth = msg.executor_queue_depth;
   out->kernel_drops = msg.kernel_drops;
+  out->embeddings_used = msg.embeddings_used;
+  out->embeddings_dropped = msg.embeddings_dropped;
+  out->tracks_revived = msg.tracks_revived;
+  out->gallery_bytes = msg.gallery_bytes;
 }
 
 }  // namespace
@@ -144,7 +150,8 @@ std::vector<std::string> CameraFlagNames(std::int64_t flags) {
                     "REJECTING",
                     "DECODE_ERRORS",
                     "CLOCK_OFFSET",
-                    "LOSING"});
+                    "LOSING",
+                    "BAD_EMBEDDINGS"});
 }
 
 std::vector<std::string> TrackerFlagNames(std::int64_t flags) {

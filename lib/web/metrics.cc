@@ -111,6 +111,16 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
            "counter",
            "input datagrams the kernel dropped (receive buffer full); -1 not measured");
   e.Sample(D(s.kernel_drops));
+  e.Family("mvtrack_embeddings_used_total", "counter", "embeddings used for appearance");
+  e.Sample(D(s.embeddings_used));
+  e.Family("mvtrack_embeddings_dropped_total", "counter", "embeddings dropped as unusable");
+  e.Sample(D(s.embeddings_dropped));
+  e.Family("mvtrack_tracks_revived_total",
+           "counter",
+           "ended tracks that came back with their old id by appearance");
+  e.Sample(D(s.tracks_revived));
+  e.Family("mvtrack_gallery_bytes", "gauge", "memory of the appearance galleries");
+  e.Sample(D(s.gallery_bytes));
   e.Family("mvtrack_tracker_flag", "gauge", "1 when the tracker flag is set this period");
   FlagSamples(&e, s.flags, transport::TrackerFlagNames, "");
   e.Family("mvtrack_cameras", "gauge", "configured cameras");
@@ -141,6 +151,9 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
       {"mvtrack_camera_lost_total",
        "frames the camera never delivered",
        &transport::CameraStatus::lost},
+      {"mvtrack_camera_embeddings_dropped_total",
+       "embeddings dropped as unusable",
+       &transport::CameraStatus::embeddings_dropped},
   };
   for (const Counter& c : counters) {
     e.Family(c.name, "counter", c.help);

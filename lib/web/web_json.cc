@@ -81,6 +81,7 @@ std::string StatusEventJson(const transport::TrackerStatus& s) {
                        {"decode_errors", c.decode_errors},
                        {"lost", c.lost},
                        {"clock_offset_us", c.clock_offset_us},
+                       {"embeddings_dropped", c.embeddings_dropped},
                        {"queue_depth", c.queue_depth},
                        {"queue_capacity", c.queue_capacity}});
   }
@@ -106,6 +107,10 @@ std::string StatusEventJson(const transport::TrackerStatus& s) {
                   {"jobs_failed", s.jobs_failed},
                   {"executor_queue_depth", s.executor_queue_depth},
                   {"kernel_drops", s.kernel_drops},
+                  {"embeddings_used", s.embeddings_used},
+                  {"embeddings_dropped", s.embeddings_dropped},
+                  {"tracks_revived", s.tracks_revived},
+                  {"gallery_bytes", s.gallery_bytes},
                   {"cameras", std::move(cameras)}};
   return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);
 }

@@ -279,6 +279,7 @@ camera_status_t MakeCameraStatus(std::uint32_t seed, std::int32_t camera_id) {
   status.decode_errors = gen.UniformInt64(0, 10);
   status.lost = gen.UniformInt64(0, 100);
   status.clock_offset_us = gen.UniformInt64(-300'000, 300'000);
+  status.embeddings_dropped = gen.UniformInt64(0, 100);
   status.queue_capacity = 64;
   status.queue_depth = gen.UniformInt(0, 64);
   return status;
@@ -304,6 +305,10 @@ tracker_status_t MakeTrackerStatus(std::uint32_t seed, int num_cameras) {
   status.jobs_failed = gen.UniformInt64(0, 10);
   status.executor_queue_depth = gen.UniformInt(0, 8);
   status.kernel_drops = gen.UniformInt64(-1, 50);
+  status.embeddings_used = gen.UniformInt64(0, 1'000'000);
+  status.embeddings_dropped = gen.UniformInt64(0, 1000);
+  status.tracks_revived = gen.UniformInt64(0, 50);
+  status.gallery_bytes = gen.UniformInt64(0, 10'000'000);
   status.num_cameras = static_cast<std::int16_t>(num_cameras);
   for (int c = 0; c < num_cameras; ++c) {
     status.cameras.push_back(MakeCameraStatus(seed * 7u + static_cast<std::uint32_t>(c), c + 1));
@@ -396,6 +401,7 @@ std::string Dump(const camera_status_t& msg, const std::string& prefix) {
   f.Int("decode_errors", msg.decode_errors);
   f.Int("lost", msg.lost);
   f.Int("clock_offset_us", msg.clock_offset_us);
+  f.Int("embeddings_dropped", msg.embeddings_dropped);
   f.Int("queue_depth", msg.queue_depth);
   f.Int("queue_capacity", msg.queue_capacity);
   return f.Render();
@@ -420,6 +426,10 @@ std::string Dump(const tracker_status_t& msg, const std::string& prefix) {
   f.Int("jobs_failed", msg.jobs_failed);
   f.Int("executor_queue_depth", msg.executor_queue_depth);
   f.Int("kernel_drops", msg.kernel_drops);
+  f.Int("embeddings_used", msg.embeddings_used);
+  f.Int("embeddings_dropped", msg.embeddings_dropped);
+  f.Int("tracks_revived", msg.tracks_revived);
+  f.Int("gallery_bytes", msg.gallery_bytes);
   f.Int("num_cameras", msg.num_cameras);
   f.StructArray("cameras", msg.cameras);
   return f.Render();
@@ -435,12 +445,14 @@ std::vector<SampleEvent> MakeSampleEvents() {
   fresh.num_latency_samples = 0;
   fresh.latency_p50_us = fresh.latency_p99_us = fresh.latency_max_us = 0;
   fresh.flags = tracker_status_t::FLAG_CAMERA_MISSING;
+  fresh.embeddings_used = fresh.embeddings_dropped = fresh.tracks_revived = 0;
+  fresh.gallery_bytes = 0;
   for (camera_status_t& camera : fresh.cameras) {
     camera.flags = camera_status_t::FLAG_NO_DATA | camera_status_t::FLAG_STALE;
     camera.rate_hz = 0.0f;
     camera.last_utime = camera.last_receive_utime = 0;
     camera.received = camera.late = camera.dropped = camera.rejected = camera.decode_errors = 0;
-    camera.lost = camera.clock_offset_us = 0;
+    camera.lost = camera.clock_offset_us = camera.embeddings_dropped = 0;
     camera.queue_depth = 0;
   }
   events.push_back(MakeEvent("TEST_TRACKER_STATUS", fresh));

@@ -6,8 +6,10 @@
 
 #include "service/service.h"
 
+#include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -286,6 +288,96 @@ TEST_CASE("service status carries each camera's lost frames and clock offset", "
           static_cast<int>(next.size()));
   CHECK(st.cameras[2].lost == 3);
   CHECK((st.cameras[2].flags & mvtrack::camera_status_t::FLAG_LOSING) == 0);
+  s->Stop();
+}
+
+TEST_CASE("service status carries the appearance counters, per camera, across a reload", "[unit]") {
+  static const sim::Scene scene = [] {
+    sim::SceneOptions o = Scene().options;
+    o.embedding_dim = 32;
+    return sim::GenerateScene(o);
+  }();
+  pipeline::ManualClock clock(scene.detections[0][0].utime);
+  Sink sink;
+  std::string why;
+  DaemonConfig config = Config(1);
+  config.tracker.appearance.enabled = true;
+  std::unique_ptr<Service> s = Service::Create(config, sink.Hooks(&clock), &why);
+  REQUIRE(s);
+  // Camera 1's embeddings are unusable in frames 10-19: NaN in even frames (dropped by
+  // validation), a zero vector in odd ones (dropped by the stream check).
+  std::int64_t spoiled = 0;
+  const auto feed = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      for (core::CameraFrame f : scene.detections[i]) {
+        if (f.camera_id == 1 && i >= 10 && i < 20) {
+          for (core::Detection2D& d : f.detections) {
+            REQUIRE(d.embedding.size() == 32);
+            std::fill(d.embedding.begin(), d.embedding.end(), i % 2 == 0 ? NAN : 0.0f);
+            ++spoiled;
+          }
+        }
+        clock.SetMicros(f.utime + 1000);
+        const std::vector<std::uint8_t> bytes = Encode(f);
+        s->OnMessage(
+            transport::DetectionsChannelForCamera(f.camera_id), bytes.data(), bytes.size());
+      }
+    }
+  };
+  const auto status = [&] {
+    mvtrack::tracker_status_t st;
+    s->EndOfInput();
+    const std::vector<std::uint8_t> bytes = s->BuildStatus();
+    REQUIRE(st.decode(bytes.data(), 0, static_cast<int>(bytes.size())) ==
+            static_cast<int>(bytes.size()));
+    return st;
+  };
+  feed(0, 45);
+  REQUIRE(spoiled > 0);
+  mvtrack::tracker_status_t st = status();
+  REQUIRE(st.num_cameras == 3);
+  CHECK(st.embeddings_dropped == spoiled);
+  CHECK(st.cameras[1].embeddings_dropped == spoiled);
+  CHECK(st.cameras[0].embeddings_dropped == 0);
+  CHECK(st.cameras[2].embeddings_dropped == 0);
+  CHECK((st.cameras[1].flags & mvtrack::camera_status_t::FLAG_BAD_EMBEDDINGS) != 0);
+  CHECK((st.cameras[0].flags & mvtrack::camera_status_t::FLAG_BAD_EMBEDDINGS) == 0);
+  CHECK(st.cameras[1].rejected == 0);  // the detections were kept, without their embeddings
+  const std::int64_t used_before = st.embeddings_used;
+  CHECK(used_before > 0);
+  CHECK(st.gallery_bytes > 0);
+  CHECK(st.gallery_bytes % static_cast<std::int64_t>(32 * sizeof(float)) == 0);
+
+  // A reload starts a new pipeline; the cumulative counters continue, the flag clears.
+  DaemonConfig next = config;
+  next.tracker.appearance.reid_margin = 0.1;
+  REQUIRE(s->Reload(next, &why));
+  feed(45, 90);
+  st = status();
+  CHECK(st.embeddings_dropped == spoiled);
+  CHECK(st.cameras[1].embeddings_dropped == spoiled);
+  CHECK((st.cameras[1].flags & mvtrack::camera_status_t::FLAG_BAD_EMBEDDINGS) == 0);
+  CHECK(st.embeddings_used > used_before);
+  CHECK(st.gallery_bytes > 0);
+  s->Stop();
+}
+
+TEST_CASE("service status: appearance off reports no embeddings and no galleries", "[unit]") {
+  pipeline::ManualClock clock(Scene().detections[0][0].utime);
+  Sink sink;
+  std::string why;
+  std::unique_ptr<Service> s = Service::Create(Config(1), sink.Hooks(&clock), &why);
+  REQUIRE(s);
+  Feed(s.get(), &clock, 0, 45);
+  s->EndOfInput();
+  mvtrack::tracker_status_t st;
+  const std::vector<std::uint8_t> bytes = s->BuildStatus();
+  REQUIRE(st.decode(bytes.data(), 0, static_cast<int>(bytes.size())) ==
+          static_cast<int>(bytes.size()));
+  CHECK(st.embeddings_used == 0);
+  CHECK(st.embeddings_dropped == 0);
+  CHECK(st.tracks_revived == 0);
+  CHECK(st.gallery_bytes == 0);
   s->Stop();
 }
 

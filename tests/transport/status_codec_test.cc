@@ -17,7 +17,7 @@ TrackerStatus Sample() {
   s.utime = 1'700'000'000'000'000;
   s.period_us = 1'000'000;
   s.uptime_us = 12'000'000;
-  s.version = "0.2.0";
+  s.version = "0.3.0";
   s.config_hash = "abc123";
   s.flags = 2 | 8;
   s.last_frame = 345;
@@ -31,6 +31,10 @@ TrackerStatus Sample() {
   s.jobs_failed = 1;
   s.executor_queue_depth = 2;
   s.kernel_drops = 5;
+  s.embeddings_used = 123'456;
+  s.embeddings_dropped = 78;
+  s.tracks_revived = 9;
+  s.gallery_bytes = 4'096'000;
   for (int i = 0; i < 3; ++i) {
     CameraStatus c;
     c.camera_id = 10 + i;
@@ -45,6 +49,7 @@ TrackerStatus Sample() {
     c.decode_errors = 4 * i;
     c.lost = 5 * i;
     c.clock_offset_us = i == 2 ? 250'000 : 0;
+    c.embeddings_dropped = 6 * i;
     c.queue_depth = i;
     c.queue_capacity = 8;
     s.cameras.push_back(c);
@@ -59,23 +64,28 @@ TEST_CASE("status round trip keeps every field", "[unit]") {
   REQUIRE(d.ok());
   const TrackerStatus& r = d.message;
   CHECK(r.utime == s.utime);
-  CHECK(r.version == "0.2.0");
+  CHECK(r.version == "0.3.0");
   CHECK(r.config_hash == "abc123");
   CHECK(r.flags == s.flags);
   CHECK(r.last_frame == 345);
   CHECK(r.kernel_drops == 5);
+  CHECK(r.embeddings_used == 123'456);
+  CHECK(r.embeddings_dropped == 78);
+  CHECK(r.tracks_revived == 9);
+  CHECK(r.gallery_bytes == 4'096'000);
   CHECK(r.executor_queue_depth == 2);
   REQUIRE(r.cameras.size() == 3);
   CHECK(r.cameras[2].camera_id == 12);
   CHECK(r.cameras[2].lost == 10);
   CHECK(r.cameras[2].clock_offset_us == 250'000);
+  CHECK(r.cameras[2].embeddings_dropped == 12);
   CHECK(r.cameras[2].queue_capacity == 8);
   CHECK(r.cameras[1].decode_errors == 4);
   CHECK(r.cameras[0].rate_hz == 29.5f);
-  // 96 bytes per camera (lcmtypes/README.md).
+  // 104 bytes per camera (lcmtypes/README.md).
   TrackerStatus one = s;
   one.cameras.resize(1);
-  CHECK(bytes.size() - EncodeTrackerStatus(one).size() == 2 * 96);
+  CHECK(bytes.size() - EncodeTrackerStatus(one).size() == 2 * 104);
 }
 
 TEST_CASE("status truncations, other types and hostile counts are rejected", "[unit]") {
@@ -93,7 +103,7 @@ TEST_CASE("status truncations, other types and hostile counts are rejected", "[u
   other[0] ^= 0xff;
   CHECK(DecodeTrackerStatus(other.data(), other.size()).status == DecodeStatus::kBadFingerprint);
   // num_cameras is the int16 just before the cameras: make it negative and huge.
-  const std::size_t count_at = bytes.size() - 3 * 96 - 2;
+  const std::size_t count_at = bytes.size() - 3 * 104 - 2;
   std::vector<std::uint8_t> negative = bytes;
   negative[count_at] = 0xff;
   negative[count_at + 1] = 0xff;
@@ -125,6 +135,7 @@ TEST_CASE("flag names spell the documented bits", "[unit]") {
   CHECK(CameraFlagNames(0).empty());
   CHECK(CameraFlagNames(1 | 64 | 128) ==
         std::vector<std::string>{"NO_DATA", "CLOCK_OFFSET", "LOSING"});
+  CHECK(CameraFlagNames(256) == std::vector<std::string>{"BAD_EMBEDDINGS"});
   CHECK(CameraFlagNames(std::int64_t{1} << 40) == std::vector<std::string>{"BIT40"});
   CHECK(TrackerFlagNames(2 | 16) == std::vector<std::string>{"INPUT_LOSS", "JOB_FAILURES"});
   CHECK(TrackerFlagNames(-1).size() == 64);

@@ -20,7 +20,7 @@ transport::TrackerStatus Healthy() {
   transport::TrackerStatus s;
   s.utime = 2'000'000;
   s.period_us = 1'000'000;
-  s.version = "0.2.0";
+  s.version = "0.3.0";
   s.num_latency_samples = 30;
   s.active_tracks = 5;
   s.confirmed_tracks = 4;
@@ -127,16 +127,28 @@ TEST_CASE("status event: health, flag names and every camera field", "[unit]") {
   s.cameras[0].flags = 128;
   s.cameras[0].lost = 4;
   s.kernel_drops = 12;
+  s.embeddings_used = 500;
+  s.embeddings_dropped = 7;
+  s.tracks_revived = 2;
+  s.gallery_bytes = 65'536;
+  s.cameras[2].embeddings_dropped = 7;
+  s.cameras[2].flags = 256;
   const json e = json::parse(StatusEventJson(s));
   CHECK(e["type"] == "status");
   CHECK(e["health"] == "WARNING");
-  CHECK(e["reasons"] == json::array({"camera 0 LOSING"}));
+  CHECK(e["reasons"] == json::array({"camera 0 LOSING", "camera 2 BAD_EMBEDDINGS"}));
   CHECK(e["fps"] == 30.0);
   CHECK(e["kernel_drops"] == 12);
+  CHECK(e["embeddings_used"] == 500);
+  CHECK(e["embeddings_dropped"] == 7);
+  CHECK(e["tracks_revived"] == 2);
+  CHECK(e["gallery_bytes"] == 65'536);
   CHECK(e["cameras_delivering"] == 3);
   REQUIRE(e["cameras"].size() == 3);
   CHECK(e["cameras"][0]["flags"] == json::array({"LOSING"}));
   CHECK(e["cameras"][0]["lost"] == 4);
+  CHECK(e["cameras"][2]["flags"] == json::array({"BAD_EMBEDDINGS"}));
+  CHECK(e["cameras"][2]["embeddings_dropped"] == 7);
   for (const char* key : {"camera_id",
                           "rate_hz",
                           "last_utime",
@@ -147,6 +159,7 @@ TEST_CASE("status event: health, flag names and every camera field", "[unit]") {
                           "rejected",
                           "decode_errors",
                           "clock_offset_us",
+                          "embeddings_dropped",
                           "queue_depth",
                           "queue_capacity"}) {
     CHECK(e["cameras"][1].contains(key));
@@ -187,6 +200,8 @@ TEST_CASE("metrics: Prometheus text of the status, per camera, and the web count
   s.cameras[2].flags = 64;
   s.cameras[2].clock_offset_us = 250000;
   s.latency_p99_us = 25000;
+  s.gallery_bytes = 2048;
+  s.cameras[1].embeddings_dropped = 3;
   const std::string text = PrometheusText(s, 0.5, w);
   CHECK_THAT(text, Catch::Contains("mvtrack_up 1\n"));
   CHECK_THAT(text, Catch::Contains("mvtrack_status_age_seconds 0.5\n"));
@@ -197,6 +212,8 @@ TEST_CASE("metrics: Prometheus text of the status, per camera, and the web count
   CHECK_THAT(text, Catch::Contains("mvtrack_camera_flag{camera=\"2\",flag=\"CLOCK_OFFSET\"} 1\n"));
   CHECK_THAT(text, Catch::Contains("mvtrack_camera_flag{camera=\"0\",flag=\"CLOCK_OFFSET\"} 0\n"));
   CHECK_THAT(text, Catch::Contains("mvtrack_web_clients_dropped_total 1\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_gallery_bytes 2048\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_camera_embeddings_dropped_total{camera=\"1\"} 3\n"));
   // Every sample line belongs to a family declared with HELP and TYPE before it.
   std::string family;
   std::size_t pos = 0;

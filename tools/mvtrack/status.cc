@@ -73,6 +73,23 @@ void Print(const transport::TrackerStatus& s, const service::HealthReport& h) {
               static_cast<long long>(s.jobs_failed),
               s.executor_queue_depth,
               s.kernel_drops < 0 ? "not measured" : std::to_string(s.kernel_drops).c_str());
+  if (s.embeddings_used + s.embeddings_dropped + s.tracks_revived + s.gallery_bytes > 0) {
+    std::string by_camera;
+    for (const transport::CameraStatus& c : s.cameras) {
+      if (c.embeddings_dropped == 0) continue;
+      by_camera += (by_camera.empty() ? " (camera " : ", camera ") + std::to_string(c.camera_id) +
+                   ": " + std::to_string(c.embeddings_dropped);
+    }
+    if (!by_camera.empty()) by_camera += ")";
+    std::printf(
+        "appearance: %lld embeddings used, %lld dropped as unusable%s; %lld track(s) "
+        "re-identified; galleries %.1f kB\n",
+        static_cast<long long>(s.embeddings_used),
+        static_cast<long long>(s.embeddings_dropped),
+        by_camera.c_str(),
+        static_cast<long long>(s.tracks_revived),
+        static_cast<double>(s.gallery_bytes) / 1000.0);
+  }
   std::printf("cameras: %d of %zu delivering\n", service::CamerasDelivering(s), s.cameras.size());
   std::printf("  %6s %8s %9s %10s %9s %8s %8s %8s %9s %8s %7s  %s\n",
               "camera",
