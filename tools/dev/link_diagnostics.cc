@@ -4,7 +4,8 @@
 // measurements of docs/DECISIONS.md "Window linking" were made with it.
 //
 //   mvtrack_link_diagnostics --cameras 4 --people 12 --frames 9000 --mode boxes --seed 11
-//                            --enter-leave [--options tracker.yaml] [--decisions out.tsv]
+//                            --enter-leave [--embedding-dim 128] [--options tracker.yaml]
+//                            [--decisions out.tsv]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -41,6 +42,7 @@ struct Args {
   std::uint64_t seed = 11;
   bool enter_leave = false;
   double mean_stay_s = 8.0;
+  int embedding_dim = 0;
   std::string options_file;
   std::string decisions_file;
 };
@@ -74,6 +76,8 @@ Args Parse(int argc, char** argv) {
       a.enter_leave = true;
     } else if (k == "--mean-stay") {
       a.mean_stay_s = std::stod(value());
+    } else if (k == "--embedding-dim") {
+      a.embedding_dim = std::stoi(value());
     } else if (k == "--options") {
       a.options_file = value();
     } else if (k == "--decisions") {
@@ -185,6 +189,7 @@ int main(int argc, char** argv) {
   o.num_frames = args.frames;
   o.enter_and_leave = args.enter_leave;
   o.mean_stay_s = args.mean_stay_s;
+  o.embedding_dim = args.embedding_dim;
   std::string why;
   if (!o.Validate(&why)) Usage(why.c_str());
   const std::vector<mvtrack::geometry::CameraModel> cameras = sim::MakeCameras(o);
