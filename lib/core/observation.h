@@ -4,6 +4,7 @@
 /// tracklets cropped by a sliding window, and 3D tracklets produced per window. Pure data.
 
 #include <algorithm>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -11,6 +12,12 @@
 #include "core/types.h"
 
 namespace mvtrack::core {
+
+/// Observation2D::cut_edges bits.
+inline constexpr std::uint8_t kCutLeft = 1;
+inline constexpr std::uint8_t kCutRight = 2;
+inline constexpr std::uint8_t kCutTop = 4;
+inline constexpr std::uint8_t kCutBottom = 8;
 
 /// One person seen by one camera at one frame, in *undistorted* pixel coordinates (the pinhole
 /// image of CameraModel::ProjectionMatrix). Box mode has one point (see TrackerOptions); pose
@@ -21,6 +28,14 @@ struct Observation2D {
   std::vector<double> confidence;
   /// |w + h| of the box that encloses the person, in pixels (the normaliser of Eq. 2). > 0.
   double scale_px = 1.0;
+  /// Box mode: the edges of the detector's box that touch the image border (kCutLeft | ...,
+  /// raw image directions): the person is cut off there, so the box's centre (and every point
+  /// taken from it) lies off the person's, towards the inside of the image: a reprojection
+  /// residual does not count the part of a deviation that points past a cut edge
+  /// (triangulation::ReprojectionResidual), and a window person that stands on such boxes is
+  /// merged into the person they show (tracker::ProcessWindowJob). 0: the whole person is in the
+  /// image.
+  std::uint8_t cut_edges = 0;
   /// The detection's appearance embedding, unit length (core::CheckEmbedding); null when it
   /// had none, it was unusable, or appearance is off. Shared: windows copy observations.
   EmbeddingPtr embedding;

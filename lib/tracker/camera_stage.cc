@@ -91,6 +91,12 @@ std::optional<core::Observation2D> CameraStage::MakeObservation(const core::Dete
   if (detection.score < options_.min_detection_score) return std::nullopt;
   core::Observation2D obs;
   if (options_.mode == InputMode::kBoxes) {
+    const core::BoxPx& box = detection.box;
+    obs.cut_edges = static_cast<std::uint8_t>(
+        (TouchesBorder(box.x_min, 0) ? core::kCutLeft : 0) |
+        (TouchesBorder(box.x_max, camera_.width_px) ? core::kCutRight : 0) |
+        (TouchesBorder(box.y_min, 0) ? core::kCutTop : 0) |
+        (TouchesBorder(box.y_max, camera_.height_px) ? core::kCutBottom : 0));
     if (options_.box_point == BoxPoint::kCenterEnds) {
       // Centre, bottom (feet), top (head); an edge that touches the image border cuts the
       // person off, so that end is unknown.

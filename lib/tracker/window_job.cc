@@ -338,6 +338,99 @@ void MergeDuplicates(const geometry::CameraRig& rig,
   persons->resize(kept);
 }
 
+// Box mode: whether `person` stands on cut boxes (core::Observation2D::cut_edges): in fewer
+// than half of its frames do two cameras of `cluster` see it uncut. Triangulated from the cut
+// boxes' displaced centres, such a person lies off the real one.
+bool StandsOnCutBoxes(const WindowJob& job,
+                      const std::vector<int>& cluster,
+                      const core::Tracklet3D& person) {
+  std::size_t supported = 0;
+  std::vector<CameraId> cams;
+  for (const FrameIndex frame : person.frames) {
+    cams.clear();
+    for (const int i : cluster) {
+      const core::Tracklet2D& t = job.tracklets[static_cast<std::size_t>(i)];
+      const int at = t.IndexOf(frame);
+      if (at >= 0 && t.observations[static_cast<std::size_t>(at)].cut_edges == 0) {
+        cams.push_back(t.camera_id);
+      }
+    }
+    std::sort(cams.begin(), cams.end());
+    if (std::unique(cams.begin(), cams.end()) - cams.begin() >= 2) ++supported;
+  }
+  return 2 * supported < person.frames.size();
+}
+
+// Box mode: a person that stands on cut boxes (StandsOnCutBoxes) is merged into the nearest
+// person (FootprintDistance at most kMaxCutMergeDistanceM over box_min_duplicate_frames
+// common frames) that does not and onto whom every one of its tracklets reprojects
+// (ReprojectionResidual, which forgives the displacement past a cut edge, at most
+// box_split_residual): the same person, seen whole by other cameras, that association could
+// not join because the cut boxes' centres lie off their epipolar lines. The merged person keeps
+// its own triangulation (its whole views put it where it is; re-triangulating with the cut
+// views pulls it off, measured in docs/DECISIONS.md) and takes the cut tracklets as sources
+// (members for linking, embeddings for appearance). Persons are examined in order; a person no
+// one explains stays (it may be somebody only cut boxes see).
+void MergeCutPersons(const geometry::CameraRig& rig,
+                     const TrackerOptions& options,
+                     const WindowJob& job,
+                     std::vector<std::vector<int>>* clusters,
+                     std::vector<core::Tracklet3D>* persons) {
+  // A cut box displaces its centre by half the cut-off part: on a ceiling grid up to about a
+  // body length on the floor.
+  constexpr double kMaxCutMergeDistanceM = 1.0;
+  const triangulation::RefinementOptions& ro = options.refinement;
+  if (ro.box_split_residual <= 0.0 || persons->size() < 2) return;
+  const std::size_t n = persons->size();
+  std::vector<char> on_cut(n, 0);
+  for (std::size_t p = 0; p < n; ++p) {
+    on_cut[p] = StandsOnCutBoxes(job, (*clusters)[p], (*persons)[p]) ? 1 : 0;
+  }
+  std::vector<char> alive(n, 1);
+  for (std::size_t p = 0; p < n; ++p) {
+    if (!on_cut[p]) continue;
+    std::size_t best = n;
+    double best_d = kMaxCutMergeDistanceM;
+    for (std::size_t q = 0; q < n; ++q) {
+      if (q == p || on_cut[q] || !alive[q]) continue;
+      std::int64_t frames = 0;
+      const double d = triangulation::FootprintDistance((*persons)[p], (*persons)[q], &frames);
+      if (frames < ro.box_min_duplicate_frames || !(d <= best_d)) continue;
+      const std::vector<int> out =
+          triangulation::InconsistentTracklets(rig,
+                                               job.tracklets,
+                                               (*clusters)[p],
+                                               (*persons)[q],
+                                               ro.box_split_residual,
+                                               options.association.min_confidence,
+                                               NumTriangulatedPoints(options));
+      if (!out.empty()) continue;
+      best = q;
+      best_d = d;
+    }
+    if (best == n) continue;
+    std::vector<int> merged = (*clusters)[best];
+    merged.insert(merged.end(), (*clusters)[p].begin(), (*clusters)[p].end());
+    std::sort(merged.begin(), merged.end());
+    // The person keeps its triangulation (from its whole views); the cut tracklets join its
+    // sources (members, appearance).
+    (*persons)[best].source_tracklets = merged;
+    (*clusters)[best] = std::move(merged);
+    alive[p] = 0;
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!alive[i]) continue;
+    if (kept != i) {
+      (*clusters)[kept] = std::move((*clusters)[i]);
+      (*persons)[kept] = std::move((*persons)[i]);
+    }
+    ++kept;
+  }
+  clusters->resize(kept);
+  persons->resize(kept);
+}
+
 // Fills person->members from its source tracklets (sorted by camera, then 2D track), each
 // with its observations inside the person's frame span.
 void SetMembers(const WindowJob& job, core::Tracklet3D* person) {
@@ -445,6 +538,9 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
     SplitInconsistent(rig, options, job, workspace, &person_clusters, &r.persons);
   }
   MergeDuplicates(rig, options, job, workspace, &person_clusters, &r.persons);
+  if (options.mode == InputMode::kBoxes) {
+    MergeCutPersons(rig, options, job, &person_clusters, &r.persons);
+  }
   if (options.mode == InputMode::kPoses) {
     // Fragments of a few joints are not people (RefinementOptions::min_person_point_fraction).
     const double min_points = options.refinement.min_person_point_fraction * num_points;

@@ -417,8 +417,18 @@ std::optional<double> ReprojectionResidual(const geometry::CameraRig& rig,
       const double c = obs.confidence[k];
       if (!row[k] || !(c > 0.0) || c < min_confidence) continue;
       const std::optional<Vec2> x = camera.ProjectUndistorted(*row[k]);
-      sum += x ? (*x - obs.points_px[k]).norm() / obs.scale_px
-               : std::numeric_limits<double>::infinity();
+      if (!x) {
+        sum += std::numeric_limits<double>::infinity();
+      } else {
+        Vec2 d = *x - obs.points_px[k];
+        // Past a cut edge the person goes on out of the image: the box's point moved inwards.
+        const std::uint8_t ce = obs.cut_edges;
+        if ((ce & core::kCutLeft) != 0) d.x() = std::max(d.x(), 0.0);
+        if ((ce & core::kCutRight) != 0) d.x() = std::min(d.x(), 0.0);
+        if ((ce & core::kCutTop) != 0) d.y() = std::max(d.y(), 0.0);
+        if ((ce & core::kCutBottom) != 0) d.y() = std::min(d.y(), 0.0);
+        sum += d.norm() / obs.scale_px;
+      }
       ++count;
     }
     if (count > 0) per_frame.push_back(sum / static_cast<double>(count));

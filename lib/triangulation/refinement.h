@@ -196,7 +196,9 @@ BoxEndsStats TriangulateBoxEnds(const geometry::CameraRig& rig,
 /// How far `tracklet`'s observations are from where `person` projects in its camera: per frame
 /// where both have points, the mean over points usable in the observation (confidence >=
 /// min_confidence and > 0) and present in the person of |projection - observed| / scale_px
-/// (undistorted pixels; a point behind the camera counts as +infinity); the median over those
+/// (undistorted pixels; a point behind the camera counts as +infinity; of an observation of a
+/// cut box, Observation2D::cut_edges, the deviation's component past a cut edge does not count:
+/// the person goes on out of the image there); the median over those
 /// frames (of an even count: the mean of the two middle values). nullopt when no frame
 /// compares. Only the first `max_points` points count (0: all). The tracklet's camera must be in
 /// `rig` (checked). Deterministic.

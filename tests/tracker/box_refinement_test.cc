@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -115,6 +116,57 @@ TEST_CASE("Box mode: two people 0.7 m apart are not merged", "[unit][tracker]") 
 
   options.refinement.box_merge_distance_m = 1.0;
   CHECK(tracker::ProcessWindowJob(rig, options, job).persons.size() == 1);
+}
+
+// One walker seen whole by all four cameras; cameras 3 and 5 also report a second box track
+// whose points lie where a walker 0.6 m to the side would be: what the displaced centres of
+// boxes cut by the image border give. Flagged cut on the edges the displacement points away
+// from (Observation2D::cut_edges), that person stands on cut boxes, and every one of its
+// tracklets reprojects onto the walker once the part past the cut edge is forgiven: it is
+// merged into the walker. Flagged on the other edges, or with the test off, it stays.
+TEST_CASE("Box mode: a person standing on cut boxes is merged into the person they show",
+          "[unit][tracker]") {
+  const auto cameras = RoomCameras();
+  const geometry::CameraRig rig = MakeRig(cameras);
+  const Walker walker;
+  Walker shifted = walker;
+  shifted.start += 0.6 * Vec3::UnitZ().cross(walker.velocity_mps.normalized());
+  const auto frames = FrameRange(0, 29);
+  const auto make_job = [&](bool right_edges) {
+    std::mt19937 rng(5);
+    const ViewSpec spec{true, 1.0};
+    tracker::WindowJob job = EmptyJob();
+    for (std::size_t c = 0; c < cameras.size(); ++c) {
+      job.tracklets.push_back(MakeTracklet(cameras[c], 1, walker, frames, spec, &rng));
+      if (c >= 2) continue;
+      const auto flag = [&, c](FrameIndex t, core::Observation2D* obs) {
+        const Vec2 d = *cameras[c].ProjectUndistorted(walker.Pelvis(t)) - obs->points_px[0];
+        const bool left = d.x() < 0.0;
+        const bool top = d.y() < 0.0;
+        obs->cut_edges =
+            static_cast<std::uint8_t>((left == right_edges ? core::kCutLeft : core::kCutRight) |
+                                      (top == right_edges ? core::kCutTop : core::kCutBottom));
+      };
+      job.tracklets.push_back(MakeTracklet(cameras[c], 2, shifted, frames, spec, &rng, flag));
+    }
+    return job;
+  };
+  tracker::TrackerOptions options = BoxOptions();
+  REQUIRE(options.refinement.box_merge_distance_m < 0.6);
+
+  const tracker::WindowResult merged = tracker::ProcessWindowJob(rig, options, make_job(true));
+  REQUIRE(merged.persons.size() == 1);
+  std::vector<int> sources = merged.persons.front().source_tracklets;
+  std::sort(sources.begin(), sources.end());
+  CHECK(sources == std::vector<int>{0, 1, 2, 3, 4, 5});
+  // The person keeps the triangulation of its whole views: where the walker is.
+  CHECK(WorstError(merged.persons.front(), walker) < 0.1);
+
+  // Cut on the other edges, the displacement is not explained: two persons.
+  CHECK(tracker::ProcessWindowJob(rig, options, make_job(false)).persons.size() == 2);
+  // The reprojection test off: no merge.
+  options.refinement.box_split_residual = 0.0;
+  CHECK(tracker::ProcessWindowJob(rig, options, make_job(true)).persons.size() == 2);
 }
 
 // A cluster whose box points triangulate below the floor (here a walker whose pelvis is 1 m

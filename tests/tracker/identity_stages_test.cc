@@ -213,6 +213,13 @@ TEST_CASE("Box ends: the feet and head on the vertical axis, unknown where the b
   // Cut at the top: the head is unknown.
   const core::Observation2D top = ObserveBox(level, options, {900.0, 0.0, 1000.0, 400.0});
   CHECK(top.confidence == std::vector<double>{1.0, 1.0, 0.0});
+  // The observation names the cut edges; a box inside the image has none.
+  CHECK(o.cut_edges == 0);
+  CHECK(cut.cut_edges == core::kCutBottom);
+  CHECK(top.cut_edges == core::kCutTop);
+  CHECK(ObserveBox(level, options, {0.0, 300.0, 100.0, 700.0}).cut_edges == core::kCutLeft);
+  CHECK(ObserveBox(level, options, {1850.0, 0.0, 1920.0, 700.0}).cut_edges ==
+        (core::kCutRight | core::kCutTop));
 
   // A camera high above, looking steeply down: no ends at all (box_ends_max_elevation_deg).
   const geometry::CameraModel steep =

@@ -232,6 +232,45 @@ TEST_CASE("ReprojectionResidual and InconsistentTracklets find another person's 
   CHECK(*triangulation::ReprojectionResidual(rig, mostly_a, person, 0.1) < 0.01);
 }
 
+TEST_CASE("ReprojectionResidual forgives a cut box's displacement past the cut edge only",
+          "[unit][triangulation]") {
+  // A's tracklet in camera 3 with every point moved 40 px: a cut box's centre moves inwards,
+  // away from the cut edge. The residual counts the displacement unless the observation says
+  // the box is cut on the edge the displacement points away from.
+  const auto cameras = testing::RoomCameras();
+  const geometry::CameraRig rig = testing::MakeRig(cameras);
+  const testing::Walker a;
+  const auto frames = testing::FrameRange(0, 29);
+  const core::Tracklet3D person =
+      MakeTracklet3D(frames, [&](FrameIndex t) { return std::vector<Vec3>{a.Pelvis(t)}; });
+  const testing::ViewSpec spec{true, 0.0};
+  std::mt19937 rng(3);
+  const core::Tracklet2D exact = testing::MakeTracklet(cameras[0], 1, a, frames, spec, &rng);
+  const double scale = 400.0;
+  const auto moved = [&](const Vec2& by, std::uint8_t cut) {
+    core::Tracklet2D t = exact;
+    for (core::Observation2D& obs : t.observations) {
+      obs.points_px[0] += by;
+      obs.scale_px = scale;
+      obs.cut_edges = cut;
+    }
+    return *triangulation::ReprojectionResidual(rig, t, person, 0.1);
+  };
+  // Moved right (projection - observed points left): forgiven when the box is cut on the left.
+  CHECK(moved(Vec2(40.0, 0.0), 0) == Approx(40.0 / scale).epsilon(1e-6));
+  CHECK(moved(Vec2(40.0, 0.0), core::kCutLeft) == Approx(0.0).margin(1e-9));
+  CHECK(moved(Vec2(40.0, 0.0), core::kCutRight) == Approx(40.0 / scale).epsilon(1e-6));
+  CHECK(moved(Vec2(-40.0, 0.0), core::kCutRight) == Approx(0.0).margin(1e-9));
+  // Moved down: forgiven for a box cut at the top, not at the bottom; only the cut axis is
+  // forgiven.
+  CHECK(moved(Vec2(0.0, 40.0), core::kCutTop) == Approx(0.0).margin(1e-9));
+  CHECK(moved(Vec2(0.0, 40.0), core::kCutBottom) == Approx(40.0 / scale).epsilon(1e-6));
+  CHECK(moved(Vec2(0.0, -40.0), core::kCutBottom) == Approx(0.0).margin(1e-9));
+  CHECK(moved(Vec2(30.0, 40.0), core::kCutLeft) == Approx(40.0 / scale).epsilon(1e-6));
+  CHECK(moved(Vec2(30.0, 40.0), static_cast<std::uint8_t>(core::kCutLeft | core::kCutTop)) ==
+        Approx(0.0).margin(1e-9));
+}
+
 TEST_CASE("MaxPointsPerFrame counts the best frame", "[unit][triangulation]") {
   core::Tracklet3D t = MakeTracklet3D(Range(0, 2), [](FrameIndex) {
     return std::vector<Vec3>{Vec3::Zero(), Vec3::Ones(), Vec3::UnitX()};

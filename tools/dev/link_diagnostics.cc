@@ -320,10 +320,11 @@ int main(int argc, char** argv) {
           track_label = label;
         }
       } else {
-        kind_name = kind == linking::LinkKind::kOverlap     ? "overlap"
-                    : kind == linking::LinkKind::kGap       ? "gap"
-                    : kind == linking::LinkKind::kDuplicate ? "duplicate"
-                                                            : "reid";
+        kind_name = kind == linking::LinkKind::kOverlap      ? "overlap"
+                    : kind == linking::LinkKind::kGap        ? "gap"
+                    : kind == linking::LinkKind::kDuplicate  ? "duplicate"
+                    : kind == linking::LinkKind::kAppearance ? "appearance"
+                                                             : "reid";
         const TrackInfo& info = tracks[id];
         track_label = info.label;
         shared = SharedMembers(info.members, person.members);
