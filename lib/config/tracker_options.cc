@@ -495,6 +495,10 @@ std::vector<Field> MakeFields() {
       "max_reid_s",
       [](auto& o) -> auto& { return o.appearance.max_reid_s; },
       DoubleRange::AtLeast(0.0)));
+  f.push_back(BoolField(
+      "appearance", "defer_weak_reid", [](auto& o) -> auto& {
+        return o.appearance.defer_weak_reid;
+      }));
   f.push_back(IntField(
       "appearance",
       "max_departed",

@@ -33,6 +33,12 @@ struct AppearanceOptions {
   /// Tracks that ended are remembered for re-identification this long, seconds of stream time
   /// since their last frame. Finite, >= 0.
   double max_reid_s = 120.0;
+  /// A tracklet that would be born tentative (window linking: fewer than strong_birth_cameras
+  /// cameras, next to somebody else) is not re-identified at birth but when its track is linked
+  /// again, on that window's evidence (it is not output before, so waiting costs no id): most
+  /// such births are fragments or misplaced copies of a person that last one window.
+  /// false: re-identified at birth.
+  bool defer_weak_reid = true;
   /// At most this many ended tracks are remembered (the oldest is forgotten first): bounds the
   /// galleries' memory to max_departed x gallery_size x dimension floats. >= 0.
   int max_departed = 256;

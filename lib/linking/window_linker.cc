@@ -406,12 +406,13 @@ std::size_t WindowLinker::gallery_bytes() const {
 }
 
 void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& tracklets,
-                                    const std::vector<bool>& birth_candidate,
+                                    const std::vector<bool>& column,
                                     std::vector<int>* tracklet_of_track,
                                     std::vector<int>* track_of_col,
                                     std::vector<int>* revive,
                                     std::vector<int>* same_as,
                                     std::vector<int>* forget,
+                                    std::vector<int>* absorbed,
                                     LinkResult* result) const {
   // Candidates: lost tracks left unmatched (rows 0..), then departed tracks.
   struct Candidate {
@@ -451,7 +452,7 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
   }
   std::vector<int> cols;
   for (std::size_t c = 0; c < tracklets.size(); ++c) {
-    if (birth_candidate[c] && !tracklets[c].appearance.empty()) cols.push_back(static_cast<int>(c));
+    if (column[c] && !tracklets[c].appearance.empty()) cols.push_back(static_cast<int>(c));
   }
   if (candidates.empty() || cols.empty()) return;
   const auto rows_n = static_cast<Eigen::Index>(candidates.size());
@@ -542,9 +543,11 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
     col_used[uj] = true;
     const int c = cols[uj];
     for (const int k : same_columns) {
-      if (col_used[static_cast<std::size_t>(k)]) continue;
+      const auto ck = static_cast<std::size_t>(cols[static_cast<std::size_t>(k)]);
+      // (A tentative track's continuation stays with it.)
+      if (col_used[static_cast<std::size_t>(k)] || (*track_of_col)[ck] >= 0) continue;
       col_used[static_cast<std::size_t>(k)] = true;
-      (*same_as)[static_cast<std::size_t>(cols[static_cast<std::size_t>(k)])] = c;
+      (*same_as)[ck] = c;
     }
     for (const int k : same_rows) {
       row_used[static_cast<std::size_t>(k)] = true;
@@ -552,6 +555,12 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
       if (other.departed >= 0) forget->push_back(other.departed);
     }
     const Candidate& cand = candidates[ui];
+    if (const int tentative = (*track_of_col)[static_cast<std::size_t>(c)]; tentative >= 0) {
+      // The continuation of a tentative track: the older track takes it, the tentative ends.
+      (*tracklet_of_track)[static_cast<std::size_t>(tentative)] = -1;
+      (*track_of_col)[static_cast<std::size_t>(c)] = -1;
+      absorbed->push_back(tentative);
+    }
     if (cand.track >= 0) {
       (*tracklet_of_track)[static_cast<std::size_t>(cand.track)] = c;
       (*track_of_col)[static_cast<std::size_t>(c)] = cand.track;
@@ -955,18 +964,45 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
   std::vector<int> revive(num_tracklets, -1);
   std::vector<int> same_as(num_tracklets, -1);  // a second tracklet of a re-identified person
   std::vector<int> forget;                      // departed fragments of re-identified people
+  // A birth confirmed at once: seen by strong_birth_cameras, or far from everybody else of the
+  // window (not a split-off duplicate of a person).
+  const auto strong_birth = [&](std::size_t c) {
+    if (static_cast<int>(tracklets[c].cameras.size()) >= options_.strong_birth_cameras) {
+      return true;
+    }
+    if (!(options_.isolated_birth_distance_m > 0.0)) return false;
+    for (std::size_t o = 0; o < num_tracklets; ++o) {
+      if (o == c) continue;
+      const std::optional<double> d =
+          ClosestApproach(tracklets[c], tracklets[o], context_.footprint_points);
+      if (d && *d <= options_.isolated_birth_distance_m) return false;
+    }
+    return true;
+  };
+  std::vector<int> absorbed;  // tentative tracks whose person was re-identified as an older one
   if (appearance_.enabled) {
-    std::vector<bool> birth_candidate(num_tracklets);
+    // Columns: the tracklets that would be born, and the continuations of tentative tracks
+    // born in an earlier window. A birth that would be tentative waits (defer_weak_reid): it
+    // is re-identified, if at all, when its track is linked again, on more evidence; until
+    // then it is not output, so the wait costs no id.
+    std::vector<bool> column(num_tracklets, false);
     for (std::size_t c = 0; c < num_tracklets; ++c) {
-      birth_candidate[c] = track_of_col[c] < 0 && duplicate_of[c] < 0;
+      const int r = track_of_col[c];
+      if (r < 0) {
+        column[c] = duplicate_of[c] < 0 && (!appearance_.defer_weak_reid || strong_birth(c));
+      } else {
+        const LinkedTrack& t = tracks_[static_cast<std::size_t>(r)];
+        column[c] = appearance_.defer_weak_reid && !t.confirmed && t.first_window < window_id;
+      }
     }
     LinkByAppearance(tracklets,
-                     birth_candidate,
+                     column,
                      &tracklet_of_track,
                      &track_of_col,
                      &revive,
                      &same_as,
                      &forget,
+                     &absorbed,
                      &result);
     for (const int d : forget) departed_[static_cast<std::size_t>(d)].gallery.clear();
   }
@@ -1016,21 +1052,20 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     track.first_window = window_id;
     track.last_seen_frame = kNoFrame;
     Absorb(&track, tracklets[c], window_id);
-    bool strong = static_cast<int>(tracklets[c].cameras.size()) >= options_.strong_birth_cameras;
-    if (!strong && options_.isolated_birth_distance_m > 0.0) {
-      // Nobody else of the window comes near: not a split-off duplicate of a person.
-      strong = true;
-      for (std::size_t o = 0; o < num_tracklets && strong; ++o) {
-        if (o == c) continue;
-        const std::optional<double> d =
-            ClosestApproach(tracklets[c], tracklets[o], context_.footprint_points);
-        if (d && *d <= options_.isolated_birth_distance_m) strong = false;
-      }
-    }
-    track.confirmed = track.confirmed || strong;
+    track.confirmed = track.confirmed || strong_birth(c);
     result.track_of_tracklet[c] = track.id;
     result.born.push_back(track.id);
     tracks_.push_back(std::move(track));  // fresh ids are the largest: tracks_ stays sorted
+  }
+  if (!absorbed.empty()) {
+    // Tentative tracks whose tracklet an older track took: they end (never output).
+    std::vector<TrackId3D> ids;
+    for (const int r : absorbed) ids.push_back(tracks_[static_cast<std::size_t>(r)].id);
+    std::sort(ids.begin(), ids.end());
+    std::erase_if(tracks_, [&](const LinkedTrack& t) {
+      return std::binary_search(ids.begin(), ids.end(), t.id);
+    });
+    for (const TrackId3D id : ids) ended.push_back({id, EndReason::kReidentified});
   }
   if (!revived.empty() || !forget.empty()) {
     std::erase_if(departed_, [](const DepartedTrack& d) { return d.gallery.empty(); });

@@ -104,10 +104,12 @@ enum class TrackState {
 
 /// Why a track ended.
 enum class EndReason {
-  kLostTooLong,  ///< no continuation within max_lost_s
-  kLeftView,     ///< none of its 2D tracks continues (every camera lost the person) and
-                 ///< re-identification cannot take it any more
-  kStreamEnd,    ///< WindowLinker::EndStream
+  kLostTooLong,   ///< no continuation within max_lost_s
+  kLeftView,      ///< none of its 2D tracks continues (every camera lost the person) and
+                  ///< re-identification cannot take it any more
+  kStreamEnd,     ///< WindowLinker::EndStream
+  kReidentified,  ///< tentative, its person re-identified by appearance as an older track,
+                  ///< which took its tracklet (core::AppearanceOptions::defer_weak_reid)
 };
 
 /// A (camera, 2D track) a long-term track was built from, and the last frame it was seen in.
@@ -246,7 +248,11 @@ inline constexpr int kMaxSamePerson = 16;
 /// duplicate of that person (its 2D tracks join the track's members, track_of_tracklet is that
 /// track's id, nothing is born). With appearance (core::AppearanceOptions::enabled and
 /// tracklets that carry one):
-///  5. Appearance: each remaining tracklet with an appearance descriptor against the confirmed
+///  5. Appearance: each remaining tracklet with an appearance descriptor (with
+///     AppearanceOptions::defer_weak_reid only one that would be a strong birth, plus the
+///     tracklets linked in stages 1-4 to tentative tracks born in an earlier window: a weak
+///     birth is re-identified, if at all, when its track is linked again, and the tentative
+///     track then ends, EndReason::kReidentified) against the confirmed
 ///     tracks left unmatched by stages 1-4 (lost before or in this window) and the departed
 ///     tracks (ended within max_reid_s): the gallery distance (core::GalleryDistance) must be
 ///     <= reid_max_distance and smaller by reid_margin than every other candidate of the track
@@ -332,12 +338,13 @@ class WindowLinker {
   // Stage 5 of Link (see the class comment): fills `revive` (departed index per tracklet, -1)
   // and links lost tracks into tracklet_of_track / track_of_col.
   void LinkByAppearance(const std::vector<core::Tracklet3D>& tracklets,
-                        const std::vector<bool>& birth_candidate,
+                        const std::vector<bool>& column,
                         std::vector<int>* tracklet_of_track,
                         std::vector<int>* track_of_col,
                         std::vector<int>* revive,
                         std::vector<int>* same_as,
                         std::vector<int>* forget,
+                        std::vector<int>* absorbed,
                         LinkResult* result) const;
 
   // Appearance on: records tracks of this window that are, on evidence, the same person

@@ -98,6 +98,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.appearance.reid_margin == b.appearance.reid_margin);
   REQUIRE(a.appearance.max_reid_s == b.appearance.max_reid_s);
   REQUIRE(a.appearance.max_departed == b.appearance.max_departed);
+  REQUIRE(a.appearance.defer_weak_reid == b.appearance.defer_weak_reid);
   REQUIRE(a.appearance.link_max_distance == b.appearance.link_max_distance);
   REQUIRE(a.appearance.association_weight == b.appearance.association_weight);
   REQUIRE(a.appearance.sort_weight == b.appearance.sort_weight);
@@ -186,6 +187,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.appearance.reid_margin = unit(*rng);
   o.appearance.max_reid_s = 600.0 * unit(*rng);
   o.appearance.max_departed = small(0, 1000);
+  o.appearance.defer_weak_reid = unit(*rng) < 0.5;
   o.appearance.link_max_distance = 2.0 * unit(*rng);
   o.appearance.association_weight = unit(*rng);
   o.appearance.sort_weight = unit(*rng);
@@ -425,8 +427,8 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
-  // + 11 (appearance)
-  CHECK(written.size() == 76);
+  // + 12 (appearance)
+  CHECK(written.size() == 77);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

@@ -685,6 +685,60 @@ TEST_CASE("Appearance: a person who left comes back with the old id", "[unit]") 
   CHECK(linker.departed().empty());
 }
 
+// A comes back as a weak birth (two cameras, 1.2 m from B who is seen by three): with
+// defer_weak_reid it is born tentative (not output) and re-identified when linked again; the
+// tentative track ends. Without, it is re-identified at birth.
+TEST_CASE("Appearance: a weak birth is re-identified when its track is linked again", "[unit]") {
+  const Vec3 at(1.0, 1.0, 1.0);
+  const Vec3 b_at(2.2, 1.0, 1.0);
+  for (const bool defer : {true, false}) {
+    core::AppearanceOptions a = AppearanceOn();
+    a.defer_weak_reid = defer;
+    REQUIRE(core::AppearanceOptions{}.defer_weak_reid);  // the default
+    WindowLinker linker({}, {}, a);
+    LinkWindow(&linker, 0, {Looking(ConstantTracklet(0, 29, at, {1, 2}), Look(0))});
+    LinkWindow(&linker, 1, {Looking(ConstantTracklet(20, 49, at, {1, 2}), Look(0))});
+    linker.Link(2, 40, kSpf, {}, {});
+    linker.Link(3, 60, kSpf, {}, {});
+    REQUIRE(linker.departed().size() == 1);
+    for (std::int64_t k = 4; k < 20; ++k) linker.Link(k, k * kDelta, kSpf, {}, {});
+    const auto window = [&](std::int64_t k) {
+      const FrameIndex first = k * kDelta;
+      return LinkWindow(
+          &linker,
+          k,
+          {Looking(ConstantTracklet(first, first + 29, at, {7, 8}), Look(0, 0.1)),
+           Looking(ConstantTracklet(first, first + 29, b_at, {11, 12, 13}), Look(4))});
+    };
+    LinkResult r = window(20);
+    CHECK(r.track_of_tracklet[1] == (defer ? 3 : 2));  // B: a strong birth, a new person
+    if (!defer) {
+      CHECK(r.track_of_tracklet[0] == 1);
+      CHECK(r.link_kind[0] == LinkKind::kAppearance);
+      CHECK(r.revived == std::vector<TrackId3D>{1});
+      continue;
+    }
+    CHECK(r.link_kind[0] == LinkKind::kBirth);
+    CHECK(r.track_of_tracklet[0] == 2);
+    CHECK(FindTrack(linker, 2)->state == TrackState::kTentative);
+    r = window(21);
+    CHECK(r.track_of_tracklet[0] == 1);
+    CHECK(r.link_kind[0] == LinkKind::kAppearance);
+    CHECK(r.revived == std::vector<TrackId3D>{1});
+    CHECK(r.track_of_tracklet[1] == 3);
+    CHECK(r.died == std::vector<TrackId3D>{2});
+    CHECK(r.died_reason == std::vector<EndReason>{EndReason::kReidentified});
+    CHECK(FindTrack(linker, 2) == nullptr);
+    REQUIRE(FindTrack(linker, 1) != nullptr);
+    CHECK(FindTrack(linker, 1)->confirmed);
+    CHECK(linker.departed().empty());
+    // The revived track goes on by its 2D tracks.
+    r = window(22);
+    CHECK(r.track_of_tracklet[0] == 1);
+    CHECK(r.link_kind[0] == LinkKind::kOverlap);
+  }
+}
+
 TEST_CASE("Appearance: ambiguous, too far, too fast or off means a new id", "[unit]") {
   const Vec3 at(1.0, 1.0, 1.0);
   // Two people leave who look alike; one comes back: ambiguous.
