@@ -238,6 +238,23 @@ void SplitAtJumps(const geometry::CameraRig& rig,
   }
 }
 
+// Drops the clusters and persons whose `alive` entry is 0, keeping the order of the rest.
+void KeepAlive(const std::vector<char>& alive,
+               std::vector<std::vector<int>>* clusters,
+               std::vector<core::Tracklet3D>* persons) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < alive.size(); ++i) {
+    if (!alive[i]) continue;
+    if (kept != i) {
+      (*clusters)[kept] = std::move((*clusters)[i]);
+      (*persons)[kept] = std::move((*persons)[i]);
+    }
+    ++kept;
+  }
+  clusters->resize(kept);
+  persons->resize(kept);
+}
+
 // Merges persons of one window that are one person split by association: in pose mode when their
 // common joints lie within refinement.merge_distance_m on average (PointDistance), in box mode
 // when their footprints lie within refinement.box_merge_distance_m (median, FootprintDistance),
@@ -325,17 +342,7 @@ void MergeDuplicates(const geometry::CameraRig& rig,
       dist[std::min(k, bi) * n + std::max(k, bi)] = d;
     }
   }
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!alive[i]) continue;
-    if (kept != i) {
-      (*clusters)[kept] = std::move((*clusters)[i]);
-      (*persons)[kept] = std::move((*persons)[i]);
-    }
-    ++kept;
-  }
-  clusters->resize(kept);
-  persons->resize(kept);
+  KeepAlive(alive, clusters, persons);
 }
 
 // Box mode: whether `person` stands on cut boxes (core::Observation2D::cut_edges): in fewer
@@ -418,17 +425,7 @@ void MergeCutPersons(const geometry::CameraRig& rig,
     (*clusters)[best] = std::move(merged);
     alive[p] = 0;
   }
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!alive[i]) continue;
-    if (kept != i) {
-      (*clusters)[kept] = std::move((*clusters)[i]);
-      (*persons)[kept] = std::move((*persons)[i]);
-    }
-    ++kept;
-  }
-  clusters->resize(kept);
-  persons->resize(kept);
+  KeepAlive(alive, clusters, persons);
 }
 
 // Fills person->members from its source tracklets (sorted by camera, then 2D track), each
