@@ -182,6 +182,8 @@ std::vector<Field> MakeFields() {
                                            {"center", "bottom_center", "center_ends"}));
   f.push_back(BoolField(
       "", "box_ends_in_association", [](auto& o) -> auto& { return o.box_ends_in_association; }));
+  f.push_back(BoolField(
+      "", "box_complete_cut", [](auto& o) -> auto& { return o.box_complete_cut; }));
   f.push_back(DoubleField(
       "",
       "box_ends_max_elevation_deg",

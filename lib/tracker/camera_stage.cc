@@ -22,6 +22,10 @@ namespace {
 // meets its edges.
 constexpr double kMaxEndsTilt = 0.577;
 
+// CameraStage::CompleteCutBox: a track's whole size is used this many frames after its last
+// uncut box (about 2 s at 30 fps; the size changes as the person walks).
+constexpr FrameIndex kMaxWholeSizeAgeFrames = 60;
+
 bool TouchesBorder(double edge_px, int border_px) {
   constexpr double kClipMarginPx = 1.5;
   const double b = static_cast<double>(border_px);
@@ -177,6 +181,32 @@ std::optional<core::Observation2D> CameraStage::MakeObservation(const core::Dete
   return obs;
 }
 
+void CameraStage::CompleteCutBox(TrackId2D track,
+                                 FrameIndex frame,
+                                 const core::BoxPx& box,
+                                 core::Observation2D* obs) {
+  const std::uint8_t cut = obs->cut_edges;
+  if (cut == 0) {
+    whole_size_[track] = WholeSize{box.width(), box.height(), frame};
+    return;
+  }
+  const auto it = whole_size_.find(track);
+  if (it == whole_size_.end() || frame - it->second.frame > kMaxWholeSizeAgeFrames) return;
+  core::BoxPx whole = box;
+  const double w = std::max(it->second.width, box.width());
+  const double h = std::max(it->second.height, box.height());
+  const bool left = (cut & core::kCutLeft) != 0;
+  const bool right = (cut & core::kCutRight) != 0;
+  const bool top = (cut & core::kCutTop) != 0;
+  const bool bottom = (cut & core::kCutBottom) != 0;
+  if (left && !right) whole.x_min = box.x_max - w;
+  if (right && !left) whole.x_max = box.x_min + w;
+  if (top && !bottom) whole.y_min = box.y_max - h;
+  if (bottom && !top) whole.y_max = box.y_min + h;
+  obs->points_px[0] = camera_.UndistortPixel(whole.center());
+  obs->scale_px = whole.width() + whole.height();
+}
+
 TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
                                         std::int64_t stream_epoch,
                                         CameraStageCounters* counters) {
@@ -186,6 +216,7 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
   if (stream_epoch != stream_epoch_) {
     // The stream ended (re-anchor or flush) since this camera's last frame: SORT restarts.
     sort_ = MakeSort(options_);
+    whole_size_.clear();  // the new SORT's track ids start again
     stream_epoch_ = stream_epoch;
     period_.Clear();
     sort_seconds_per_frame_ = 0.0;
@@ -267,8 +298,18 @@ TrackedCameraFrame CameraStage::Process(const core::CameraFrame& frame,
   out.observations.reserve(tracked.size());
   // Each detection belongs to at most one track, so its observation can be moved out.
   for (const tracking2d::TrackedDetection& td : tracked) {
-    out.observations.emplace_back(
-        td.track_id, std::move(observations[static_cast<std::size_t>(td.detection_index)]));
+    const auto i = static_cast<std::size_t>(td.detection_index);
+    if (options_.mode == InputMode::kBoxes && options_.box_complete_cut &&
+        options_.box_point != BoxPoint::kBottomCenter) {
+      CompleteCutBox(td.track_id, frame.frame, boxes[i], &observations[i]);
+    }
+    out.observations.emplace_back(td.track_id, std::move(observations[i]));
+  }
+  // Bounded: sizes of tracks without a whole box for kMaxWholeSizeAgeFrames are forgotten.
+  if (whole_size_.size() > 2 * tracked.size() + 64) {
+    std::erase_if(whole_size_, [&](const auto& e) {
+      return frame.frame - e.second.frame > kMaxWholeSizeAgeFrames;
+    });
   }
   if (options_.appearance.enabled) {
     counters->sort_gallery_bytes = static_cast<std::int64_t>(sort_.gallery_bytes());

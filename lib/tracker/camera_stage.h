@@ -114,6 +114,19 @@ class CameraStage {
   // observations of the usable detections (parallel).
   std::vector<core::BoxPx> boxes_;
   std::vector<core::Observation2D> observations_;
+  // Box mode: per 2D track, the size (w, h) of its latest box that the image border did not
+  // cut and that box's frame: completes the track's cut boxes (CompleteCutBox).
+  struct WholeSize {
+    double width = 0.0;
+    double height = 0.0;
+    FrameIndex frame = 0;
+  };
+  std::map<TrackId2D, WholeSize> whole_size_;
+  // Replaces a cut observation's centre by that of its box completed to the track's whole size.
+  void CompleteCutBox(TrackId2D track,
+                      FrameIndex frame,
+                      const core::BoxPx& box,
+                      core::Observation2D* obs);
 };
 
 }  // namespace mvtrack::tracker

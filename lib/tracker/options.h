@@ -59,6 +59,11 @@ struct TrackerOptions {
   /// Box mode with box_point center_ends: the box ends also take part in cross-view
   /// association (else only the centre does, as the paper's box centre).
   bool box_ends_in_association = true;
+  /// Box mode, box_point center or center_ends: a box cut by the image border whose 2D track
+  /// had a whole box within the last 60 frames is completed to that box's size (extended past
+  /// the cut edge, never shrunk) before its centre is taken: the person's centre, not the
+  /// visible part's. false: the cut box's own centre.
+  bool box_complete_cut = true;
   /// Box mode with box_point center_ends: the ends of a box are used only when the camera
   /// looks at it at most this steeply (the angle of the ray through the box centre below the
   /// horizontal, degrees). A camera looking down on a person sees the top of the head inside

@@ -35,6 +35,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.box_point == b.box_point);
   REQUIRE(a.box_ends_in_association == b.box_ends_in_association);
   REQUIRE(a.box_ends_max_elevation_deg == b.box_ends_max_elevation_deg);
+  REQUIRE(a.box_complete_cut == b.box_complete_cut);
   REQUIRE(a.ground_height_m == b.ground_height_m);
   REQUIRE(a.bridge_max_gap_s == b.bridge_max_gap_s);
   REQUIRE(a.min_detection_score == b.min_detection_score);
@@ -124,6 +125,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.box_point = static_cast<tracker::BoxPoint>(small(0, 2));
   o.box_ends_in_association = integer(0, 1) == 0;
   o.box_ends_max_elevation_deg = 90.0 * unit(*rng);
+  o.box_complete_cut = unit(*rng) < 0.5;
   o.ground_height_m = 6.0 * unit(*rng) - 3.0;
   o.bridge_max_gap_s = 10.0 * unit(*rng);
   o.min_detection_score = unit(*rng);
@@ -428,7 +430,7 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
   // + 12 (appearance)
-  CHECK(written.size() == 77);
+  CHECK(written.size() == 78);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

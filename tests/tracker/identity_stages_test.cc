@@ -189,6 +189,48 @@ core::Observation2D ObserveBox(const geometry::CameraModel& camera,
   return t.observations[0].second;
 }
 
+// A 2D track walks left into the image border: its box is cut there, and the observation's
+// centre is that of the box completed to the track's last whole width (box_complete_cut).
+TEST_CASE("A cut box is completed to its track's whole size", "[unit][tracker]") {
+  const geometry::CameraModel level =
+      testing::LookAtCamera(0, Vec3(0.0, -5.0, 1.0), Vec3(0.0, 0.0, 1.0), 1000.0, 1920, 1080);
+  const auto run = [&](bool complete, FrameIndex first_frame) {
+    tracker::TrackerOptions options;
+    options.mode = tracker::InputMode::kBoxes;
+    options.layout = core::KeypointLayoutId::kNone;
+    options.box_complete_cut = complete;
+    tracker::CameraStage stage(level, 0, options);
+    core::Observation2D last;
+    for (FrameIndex f = first_frame; f <= 4; ++f) {
+      core::CameraFrame cf;
+      cf.camera_id = 0;
+      cf.frame = f;
+      core::Detection2D d;
+      // Whole boxes 100 px wide moving left 20 px per frame; at frame 4 cut at x = 0.
+      d.box = f < 4 ? core::BoxPx{80.0 - 20.0 * static_cast<double>(f),
+                                  300.0,
+                                  180.0 - 20.0 * static_cast<double>(f),
+                                  700.0}
+                    : core::BoxPx{0.0, 300.0, 80.0, 700.0};
+      d.score = 0.9;
+      cf.detections.push_back(d);
+      tracker::CameraStageCounters counters;
+      const tracker::TrackedCameraFrame t = stage.Process(cf, 0, &counters);
+      REQUIRE(t.observations.size() == 1);
+      last = t.observations[0].second;
+    }
+    CHECK(last.cut_edges == core::kCutLeft);
+    return last;
+  };
+  const core::Observation2D completed = run(true, 0);
+  CHECK(completed.points_px[0].x() == Approx(30.0));  // (80 - 100 + 80) / 2
+  CHECK(completed.points_px[0].y() == Approx(500.0));
+  CHECK(completed.scale_px == Approx(500.0));
+  // Off, or a track that never had a whole box: the cut box's own centre.
+  CHECK(run(false, 0).points_px[0].x() == Approx(40.0));
+  CHECK(run(true, 4).points_px[0].x() == Approx(40.0));
+}
+
 TEST_CASE("Box ends: the feet and head on the vertical axis, unknown where the box is cut",
           "[unit][tracker]") {
   tracker::TrackerOptions options;
