@@ -32,9 +32,10 @@ struct Observation2D {
   /// raw image directions): the person is cut off there, so the box's centre (and every point
   /// taken from it) lies off the person's, towards the inside of the image: a reprojection
   /// residual does not count the part of a deviation that points past a cut edge
-  /// (triangulation::ReprojectionResidual), and a window person that stands on such boxes is
-  /// merged into the person they show (tracker::ProcessWindowJob). 0: the whole person is in the
-  /// image.
+  /// (triangulation::ReprojectionResidual), a window person that stands on such boxes is
+  /// merged into the person they show (tracker::ProcessWindowJob), and with
+  /// TrackerOptions::box_complete_cut the centre is that of the box completed to its 2D track's
+  /// whole size (tracker::CameraStage). 0: the whole person is in the image.
   std::uint8_t cut_edges = 0;
   /// The detection's appearance embedding, unit length (core::CheckEmbedding); null when it
   /// had none, it was unusable, or appearance is off. Shared: windows copy observations.

@@ -965,19 +965,25 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
   std::vector<int> same_as(num_tracklets, -1);  // a second tracklet of a re-identified person
   std::vector<int> forget;                      // departed fragments of re-identified people
   // A birth confirmed at once: seen by strong_birth_cameras, or far from everybody else of the
-  // window (not a split-off duplicate of a person).
+  // window (not a split-off duplicate of a person). Asked by stage 5 and again at birth: the
+  // answer depends on the window's tracklets only, so it is computed once per tracklet.
+  std::vector<signed char> strong_cache(num_tracklets, -1);
   const auto strong_birth = [&](std::size_t c) {
-    if (static_cast<int>(tracklets[c].cameras.size()) >= options_.strong_birth_cameras) {
-      return true;
+    signed char& known = strong_cache[c];
+    if (known < 0) {
+      bool strong = static_cast<int>(tracklets[c].cameras.size()) >= options_.strong_birth_cameras;
+      if (!strong && options_.isolated_birth_distance_m > 0.0) {
+        strong = true;
+        for (std::size_t o = 0; o < num_tracklets && strong; ++o) {
+          if (o == c) continue;
+          const std::optional<double> d =
+              ClosestApproach(tracklets[c], tracklets[o], context_.footprint_points);
+          if (d && *d <= options_.isolated_birth_distance_m) strong = false;
+        }
+      }
+      known = strong ? 1 : 0;
     }
-    if (!(options_.isolated_birth_distance_m > 0.0)) return false;
-    for (std::size_t o = 0; o < num_tracklets; ++o) {
-      if (o == c) continue;
-      const std::optional<double> d =
-          ClosestApproach(tracklets[c], tracklets[o], context_.footprint_points);
-      if (d && *d <= options_.isolated_birth_distance_m) return false;
-    }
-    return true;
+    return known == 1;
   };
   std::vector<int> absorbed;  // tentative tracks whose person was re-identified as an older one
   if (appearance_.enabled) {

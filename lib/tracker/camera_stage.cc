@@ -118,8 +118,8 @@ std::optional<core::Observation2D> CameraStage::MakeObservation(const core::Dete
       const auto on_axis = [&](double y) {
         return Vec2(center.x() + (y - center.y()) * axis.x() / axis.y(), y);
       };
-      const bool bottom_cut = !usable || TouchesBorder(b.y_max, camera_.height_px);
-      const bool top_cut = !usable || TouchesBorder(b.y_min, 0);
+      const bool bottom_cut = !usable || (obs.cut_edges & core::kCutBottom) != 0;
+      const bool top_cut = !usable || (obs.cut_edges & core::kCutTop) != 0;
       obs.points_px.reserve(3);
       obs.confidence.reserve(3);
       obs.points_px.push_back(center);
