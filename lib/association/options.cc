@@ -45,6 +45,9 @@ bool AssociationOptions::Validate(std::string* why) const {
   if (!std::isfinite(appearance_weight) || appearance_weight < 0.0) {
     return fail("appearance_weight must be finite and >= 0");
   }
+  if (!(appearance_gate >= 0.0 && appearance_gate <= 2.0)) {
+    return fail("appearance_gate must be in [0, 2]");
+  }
   if (!std::isfinite(empty_upper_bound) || empty_upper_bound < 0.0) {
     return fail("empty_upper_bound must be finite and >= 0");
   }

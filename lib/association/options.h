@@ -53,6 +53,13 @@ struct AssociationOptions {
   /// embeddings (when both have one); ∅ and ∞ are unchanged. 0 = epipolar only. Set by the
   /// tracker from core::AppearanceOptions; not a file option of this map. Finite, >= 0.
   double appearance_weight = 0.0;
+  /// Appearance gate (DeepSORT's gate, for cross-view association): a finite cross-camera
+  /// distance becomes ∞ (the two cannot be one person) when the cosine distance between the two
+  /// tracklets' mean embeddings is above this, provided the embeddings can tell: each tracklet's
+  /// own embeddings agree so well that the same person's two means would be expected within
+  /// half the gate (ExpectedLookDistance). >= 2: no gate. Set by the tracker from
+  /// core::AppearanceOptions; not a file option of this map. In [0, 2].
+  double appearance_gate = 2.0;
   /// Clustering strategy; kPdnc is the paper's method, the others exist for the ablation.
   ClusteringMethod method = ClusteringMethod::kPdnc;
   /// Value substituted for ∅ by kCompleteLinkageEmptyAsUpper and kSingleLinkageEmptyAsUpper

@@ -53,26 +53,41 @@ TrackletDistance MeanValue(double sum, int frames) {
       std::min(sum / static_cast<double>(frames), std::numeric_limits<double>::max()));
 }
 
-// The unit-length mean of a tracklet's embeddings (those of the first one's length); empty
-// when it has none.
-std::vector<float> MeanLook(const core::Tracklet2D& t) {
+// A tracklet's appearance: the unit-length mean of its embeddings (those of the first one's
+// length; empty when it has none), how many there were and the length of their sum.
+struct Look {
+  std::vector<float> unit;
+  int count = 0;
+  double length = 0.0;
+};
+
+Look MeanLook(const core::Tracklet2D& t) {
   core::EmbeddingMean mean;
   for (const core::Observation2D& o : t.observations) {
     if (o.embedding) mean.Add(*o.embedding);
   }
-  return mean.Unit();
+  return {mean.Unit(), mean.count(), mean.Length()};
 }
 
-// Appearance fusion of a cross-camera distance (AssociationOptions::appearance_weight).
+bool UsesAppearance(const AssociationOptions& options) {
+  return options.appearance_weight > 0.0 || options.appearance_gate < 2.0;
+}
+
+// Appearance fusion of a cross-camera distance (AssociationOptions::appearance_weight and
+// appearance_gate).
 TrackletDistance Fuse(TrackletDistance d,
-                      const std::vector<float>& look_a,
-                      const std::vector<float>& look_b,
-                      double weight) {
-  if (!d.is_value() || weight <= 0.0 || look_a.empty() || look_a.size() != look_b.size()) {
-    return d;
+                      const Look& a,
+                      const Look& b,
+                      const AssociationOptions& options) {
+  if (!d.is_value() || a.unit.empty() || a.unit.size() != b.unit.size()) return d;
+  const double look = core::CosineDistance(a.unit, b.unit);
+  if (look > options.appearance_gate &&
+      ExpectedLookDistance(a.count, a.length, b.count, b.length) <= 0.5 * options.appearance_gate) {
+    return TrackletDistance::Infinite();
   }
-  return TrackletDistance::Value(std::min(d.value + weight * core::CosineDistance(look_a, look_b),
-                                          std::numeric_limits<double>::max()));
+  if (options.appearance_weight <= 0.0) return d;
+  return TrackletDistance::Value(
+      std::min(d.value + options.appearance_weight * look, std::numeric_limits<double>::max()));
 }
 
 bool DisjointRanges(const core::Tracklet2D& a, const core::Tracklet2D& b) {
@@ -90,7 +105,7 @@ class AllPairs {
   AllPairs(const geometry::CameraRig& rig,
            const std::vector<core::Tracklet2D>& tracklets,
            const AssociationOptions& options)
-      : rig_(rig), n_(tracklets.size()), appearance_weight_(options.appearance_weight) {
+      : rig_(rig), n_(tracklets.size()), options_(options) {
     std::string why;
     MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
     // Group tracklets by camera (rig order), keeping input order inside a camera.
@@ -124,7 +139,7 @@ class AllPairs {
       frame_begin_[s + 1] = frame_begin_[s] + t.frames.size();
       point_begin_[s + 1] = point_begin_[s] + t.frames.size() * max_points;
     }
-    if (appearance_weight_ > 0.0) {
+    if (UsesAppearance(options_)) {
       looks_.resize(n_);
       for (std::size_t s = 0; s < n_; ++s) looks_[s] = MeanLook(tracklets[order_[s]]);
     }
@@ -180,7 +195,7 @@ class AllPairs {
         for (std::size_t a = group_begin_[g]; a < group_begin_[g + 1]; ++a) {
           for (std::size_t b = group_begin_[h]; b < group_begin_[h + 1]; ++b) {
             TrackletDistance d = CrossCamera(g, a, h, b, cutoff);
-            if (appearance_weight_ > 0.0) d = Fuse(d, looks_[a], looks_[b], appearance_weight_);
+            if (!looks_.empty()) d = Fuse(d, looks_[a], looks_[b], options_);
             if (!d.is_empty()) Set(&matrix, a, b, d);
           }
         }
@@ -302,12 +317,12 @@ class AllPairs {
 
   const geometry::CameraRig& rig_;
   std::size_t n_;
-  double appearance_weight_ = 0.0;
-  std::vector<std::vector<float>> looks_;  ///< appearance on: per flat tracklet, MeanLook
-  std::vector<std::size_t> order_;         ///< flat position -> input index
-  std::vector<std::size_t> frame_begin_;   ///< per flat tracklet (+1), into frames_/inv_scale_
-  std::vector<std::size_t> point_begin_;   ///< per flat tracklet (+1), into px_/py_
-  std::vector<std::size_t> num_points_;    ///< points per observation slot of a flat tracklet
+  AssociationOptions options_;
+  std::vector<Look> looks_;               ///< appearance on: per flat tracklet, MeanLook
+  std::vector<std::size_t> order_;        ///< flat position -> input index
+  std::vector<std::size_t> frame_begin_;  ///< per flat tracklet (+1), into frames_/inv_scale_
+  std::vector<std::size_t> point_begin_;  ///< per flat tracklet (+1), into px_/py_
+  std::vector<std::size_t> num_points_;   ///< points per observation slot of a flat tracklet
   std::vector<FrameIndex> frames_;
   std::vector<double> inv_scale_;
   std::vector<double> px_, py_;            ///< px_ is NaN for an unusable point
@@ -393,8 +408,20 @@ TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
   }
   if (used_frames == 0) return TrackletDistance::Empty();  // no common (usable) frame
   const TrackletDistance d = MeanValue(sum, used_frames);  // Eq. 4, mean(S)
-  if (options.appearance_weight <= 0.0) return d;
-  return Fuse(d, MeanLook(a), MeanLook(b), options.appearance_weight);
+  if (!UsesAppearance(options)) return d;
+  return Fuse(d, MeanLook(a), MeanLook(b), options);
+}
+
+double ExpectedLookDistance(int count_a, double length_a, int count_b, double length_b) {
+  if (count_a < 2 || count_b < 2 || !(length_a > 0.0) || !(length_b > 0.0)) return 2.0;
+  const auto self_cosine = [](int count, double length) {
+    const double n = static_cast<double>(count);
+    return std::clamp((length * length - n) / (n * (n - 1.0)), 0.0, 1.0);
+  };
+  const double s = std::sqrt(self_cosine(count_a, length_a) * self_cosine(count_b, length_b));
+  const double cosine =
+      static_cast<double>(count_a) * static_cast<double>(count_b) * s / (length_a * length_b);
+  return std::clamp(1.0 - cosine, 0.0, 2.0);
 }
 
 DistanceMatrix ComputeDistanceMatrix(const geometry::CameraRig& rig,

@@ -113,6 +113,17 @@ DistanceMatrix ComputeDistanceMatrixForClustering(const geometry::CameraRig& rig
                                                   const std::vector<core::Tracklet2D>& tracklets,
                                                   const AssociationOptions& options);
 
+/// The cosine distance expected between the mean embeddings of two tracklets of one person,
+/// from how well each tracklet's own embeddings agree: tracklet a has `count_a` unit embeddings
+/// whose sum has length `length_a` (likewise b). The mean pairwise cosine inside a tracklet is
+/// s = (length^2 - count) / (count (count - 1)); if every embedding of the person is its look
+/// plus independent noise, two of them, from the same tracklet or not, agree by s on average
+/// (the geometric mean of the two tracklets' s is taken), so the two sums' expected dot product
+/// is count_a count_b s and the expected cosine distance of the means is 1 - that / (length_a
+/// length_b). 2 (nothing can be expected) when a tracklet has fewer than two embeddings. A
+/// different look from another side of the person is not in it (the gate allows for that).
+double ExpectedLookDistance(int count_a, double length_a, int count_b, double length_b);
+
 namespace internal {
 /// Raw access to a DistanceMatrix's packed storage, for the clustering's in-place working copy.
 /// Not part of the public API.

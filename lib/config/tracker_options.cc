@@ -519,6 +519,11 @@ std::vector<Field> MakeFields() {
       DoubleRange::AtLeast(0.0)));
   f.push_back(DoubleField(
       "appearance",
+      "association_gate",
+      [](auto& o) -> auto& { return o.appearance.association_gate; },
+      DoubleRange::Closed(0.0, 2.0)));
+  f.push_back(DoubleField(
+      "appearance",
       "sort_weight",
       [](auto& o) -> auto& { return o.appearance.sort_weight; },
       unit));

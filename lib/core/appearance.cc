@@ -28,6 +28,9 @@ bool AppearanceOptions::Validate(std::string* why) const {
   if (!std::isfinite(association_weight) || association_weight < 0.0) {
     return fail("association_weight must be finite and >= 0");
   }
+  if (!std::isfinite(association_gate) || association_gate < 0.0 || association_gate > 2.0) {
+    return fail("association_gate must be in [0, 2]");
+  }
   if (!std::isfinite(sort_weight) || sort_weight < 0.0 || sort_weight > 1.0) {
     return fail("sort_weight must be in [0, 1]");
   }
@@ -80,10 +83,14 @@ void EmbeddingMean::Add(const std::vector<float>& embedding) {
   ++count_;
 }
 
-std::vector<float> EmbeddingMean::Unit() const {
+double EmbeddingMean::Length() const {
   double n2 = 0.0;
   for (const double v : sum_) n2 += v * v;
-  const double n = std::sqrt(n2);
+  return std::sqrt(n2);
+}
+
+std::vector<float> EmbeddingMean::Unit() const {
+  const double n = Length();
   if (!(n > 1e-9)) return {};  // nothing, or embeddings that cancel out: says nothing
   std::vector<float> unit(sum_.size());
   for (std::size_t k = 0; k < sum_.size(); ++k) unit[k] = static_cast<float>(sum_[k] / n);

@@ -50,6 +50,11 @@ struct AppearanceOptions {
   /// becomes d + association_weight x the cosine distance of their mean embeddings
   /// (association::AssociationOptions::appearance_weight; ∅ and ∞ unchanged). Finite, >= 0.
   double association_weight = 0.3;
+  /// Cross-view association: two cameras' 2D tracklets whose mean embeddings are farther apart
+  /// than this cannot be one person (∞, PDNC's cannot-link), where each tracklet's embeddings
+  /// agree well enough to tell (association::AssociationOptions::appearance_gate). In [0, 2];
+  /// 2 disables.
+  double association_gate = 0.5;
   /// SORT per camera (tracking2d::SortAppearance): weight of the appearance distance in the
   /// fused cost (1 - w) (1 - IoU) + w d. In [0, 1].
   double sort_weight = 0.3;
@@ -93,6 +98,9 @@ class EmbeddingMean {
   int count() const { return count_; }
   /// The mean direction, unit length; empty when nothing was added or the sum is (near) zero.
   std::vector<float> Unit() const;
+  /// |sum|: count() when every embedding added was the same, about sqrt(count()) when they are
+  /// unrelated.
+  double Length() const;
 
  private:
   std::vector<double> sum_;

@@ -504,7 +504,10 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
   // Cross-view association (Eq. 2-4, PDNC / Algorithm 1).
   association::AssociationOptions ao = options.association;
   if (options.mode == InputMode::kBoxes && !options.box_ends_in_association) ao.num_points = 1;
-  if (options.appearance.enabled) ao.appearance_weight = options.appearance.association_weight;
+  if (options.appearance.enabled) {
+    ao.appearance_weight = options.appearance.association_weight;
+    ao.appearance_gate = options.appearance.association_gate;
+  }
   r.clusters = association::AssociateTracklets(rig, job.tracklets, ao);
   // CMMT (Algorithm 2) per person seen by at least two cameras.
   const int num_points = NumPoints(options);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -406,6 +407,85 @@ TEST_CASE("the all-pairs computation equals the pairwise definition in pose mode
   CHECK(infinities > 10);
 }
 
+// A unit embedding along axis k of a 16-dimensional space.
+core::EmbeddingPtr Axis(int k) {
+  auto e = std::make_shared<std::vector<float>>(16, 0.0f);
+  (*e)[static_cast<std::size_t>(k)] = 1.0f;
+  return e;
+}
+
+TEST_CASE("ExpectedLookDistance: from how well each tracklet's embeddings agree", "[unit]") {
+  // Identical embeddings: the sum's length is the count, the means must coincide.
+  CHECK(ExpectedLookDistance(10, 10.0, 4, 4.0) == Approx(0.0).margin(1e-12));
+  // Mutually orthogonal embeddings (length sqrt(count)): nothing to expect, distance 1.
+  CHECK(ExpectedLookDistance(9, 3.0, 16, 4.0) == Approx(1.0).margin(1e-12));
+  // Pairwise cosine 0.5 inside both (length^2 = n + n (n - 1) 0.5): n = 3 gives length^2 = 6,
+  // and the means are expected at cosine 9 x 0.5 / 6 = 0.75.
+  CHECK(ExpectedLookDistance(3, std::sqrt(6.0), 3, std::sqrt(6.0)) == Approx(0.25));
+  // Fewer than two embeddings, or none: no expectation.
+  CHECK(ExpectedLookDistance(1, 1.0, 10, 10.0) == 2.0);
+  CHECK(ExpectedLookDistance(10, 10.0, 0, 0.0) == 2.0);
+}
+
+TEST_CASE(
+    "appearance in cross-view association: the weight adds, the gate cuts consistent strangers",
+    "[unit]") {
+  const std::vector<geometry::CameraModel> cameras = TwoCameras();
+  const geometry::CameraRig rig(cameras);
+  REQUIRE(rig.ok());
+  const BoxPerson person;
+  auto walk = [](FrameIndex f) { return Vec3(-1.0 + 0.1 * static_cast<double>(f), 5.0, 0.0); };
+  std::mt19937 rng(5);
+  core::Tracklet2D a =
+      testing::MakeBoxTracklet(cameras[0], 1, person, 0, 9, walk, Vec3::Zero(), 2.0, &rng);
+  core::Tracklet2D b =
+      testing::MakeBoxTracklet(cameras[1], 2, person, 0, 9, walk, Vec3::Zero(), 2.0, &rng);
+  const TrackletDistance geometric =
+      ComputeTrackletDistance(a, b, rig.fundamental(0, 1), AssociationOptions{});
+  REQUIRE(geometric.is_value());
+  const auto set_looks = [](core::Tracklet2D* t, auto look_of) {
+    for (std::size_t i = 0; i < t->observations.size(); ++i) {
+      t->observations[i].embedding = look_of(static_cast<int>(i));
+    }
+  };
+  const auto distance = [&](const AssociationOptions& o) {
+    const TrackletDistance pairwise = ComputeTrackletDistance(a, b, rig.fundamental(0, 1), o);
+    // The all-pairs computation agrees with the pairwise definition.
+    const TrackletDistance all = ComputeDistanceMatrix(rig, {a, b}, o).at(0, 1);
+    CHECK(all.kind == pairwise.kind);
+    if (pairwise.is_value()) CHECK(all.value == Approx(pairwise.value).epsilon(1e-9));
+    return pairwise;
+  };
+  AssociationOptions weighted;
+  weighted.appearance_weight = 0.3;
+  AssociationOptions gated = weighted;
+  gated.appearance_gate = 0.5;
+
+  // Both tracklets look the same: cosine distance 0, nothing changes.
+  set_looks(&a, [](int) { return Axis(0); });
+  set_looks(&b, [](int) { return Axis(0); });
+  CHECK(distance(gated).value == Approx(geometric.value).epsilon(1e-12));
+
+  // b looks like somebody else, consistently: + 0.3 x 1 without the gate, ∞ with it.
+  set_looks(&b, [](int) { return Axis(1); });
+  CHECK(distance(weighted).value == Approx(geometric.value + 0.3).epsilon(1e-9));
+  CHECK(distance(gated).is_infinite());
+  AssociationOptions gate_only;
+  gate_only.appearance_gate = 0.5;
+  CHECK(distance(gate_only).is_infinite());
+
+  // b's embeddings disagree with each other (an unreliable look): its mean says little, so the
+  // gate does not apply; the weight still does.
+  set_looks(&b, [](int i) { return Axis(1 + i); });
+  const TrackletDistance unreliable = distance(gated);
+  REQUIRE(unreliable.is_value());
+  CHECK(unreliable.value == Approx(geometric.value + 0.3).epsilon(1e-9));
+
+  // No embeddings on one side: the geometric distance.
+  for (core::Observation2D& o : b.observations) o.embedding.reset();
+  CHECK(distance(gated).value == Approx(geometric.value).epsilon(1e-12));
+}
+
 TEST_CASE("AssociationOptions validation and method names", "[unit]") {
   std::string why;
   CHECK(AssociationOptions{}.Validate(&why));
@@ -424,6 +504,12 @@ TEST_CASE("AssociationOptions validation and method names", "[unit]") {
   o.empty_upper_bound = -1.0;
   CHECK_FALSE(o.Validate(&why));
   CHECK_THAT(why, Catch::Contains("empty_upper_bound"));
+  o = AssociationOptions{};
+  o.appearance_gate = 2.5;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK_THAT(why, Catch::Contains("appearance_gate"));
+  o.appearance_gate = std::nan("");
+  CHECK_FALSE(o.Validate(&why));
   o = AssociationOptions{};
   o.method = static_cast<ClusteringMethod>(42);
   CHECK_FALSE(o.Validate(&why));

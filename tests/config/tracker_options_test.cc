@@ -102,6 +102,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.appearance.defer_weak_reid == b.appearance.defer_weak_reid);
   REQUIRE(a.appearance.link_max_distance == b.appearance.link_max_distance);
   REQUIRE(a.appearance.association_weight == b.appearance.association_weight);
+  REQUIRE(a.appearance.association_gate == b.appearance.association_gate);
   REQUIRE(a.appearance.sort_weight == b.appearance.sort_weight);
   REQUIRE(a.appearance.sort_gate == b.appearance.sort_gate);
   REQUIRE(a.appearance.sort_gallery_size == b.appearance.sort_gallery_size);
@@ -192,6 +193,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.appearance.defer_weak_reid = unit(*rng) < 0.5;
   o.appearance.link_max_distance = 2.0 * unit(*rng);
   o.appearance.association_weight = unit(*rng);
+  o.appearance.association_gate = 2.0 * unit(*rng);
   o.appearance.sort_weight = unit(*rng);
   o.appearance.sort_gate = 2.0 * unit(*rng);
   o.appearance.sort_gallery_size = small(1, 100);
@@ -226,9 +228,9 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
   CHECK(sizeof(linking::LinkerOptions) == 104);
   CHECK(sizeof(triangulation::RefinementOptions) == 136);
-  CHECK(sizeof(core::AppearanceOptions) == 80);
-  CHECK(sizeof(association::AssociationOptions) == 48);
-  CHECK(sizeof(TrackerOptions) == 528);
+  CHECK(sizeof(core::AppearanceOptions) == 88);
+  CHECK(sizeof(association::AssociationOptions) == 56);
+  CHECK(sizeof(TrackerOptions) == 544);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -430,7 +432,7 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
   // + 12 (appearance)
-  CHECK(written.size() == 78);
+  CHECK(written.size() == 79);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

@@ -5,7 +5,9 @@
 //
 //   mvtrack_link_diagnostics --cameras 4 --people 12 --frames 9000 --mode boxes --seed 11
 //                            --enter-leave [--embedding-dim 128] [--options tracker.yaml]
-//                            [--decisions out.tsv]
+//                            [--decisions out.tsv] [--coverage out.tsv]
+//
+// --coverage writes, per frame and ground-truth person, the number of cameras that detected it.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -45,6 +47,7 @@ struct Args {
   int embedding_dim = 0;
   std::string options_file;
   std::string decisions_file;
+  std::string coverage_file;
 };
 
 [[noreturn]] void Usage(const char* why) {
@@ -82,6 +85,8 @@ Args Parse(int argc, char** argv) {
       a.options_file = value();
     } else if (k == "--decisions") {
       a.decisions_file = value();
+    } else if (k == "--coverage") {
+      a.coverage_file = value();
     } else {
       Usage(("unknown argument " + k).c_str());
     }
@@ -384,9 +389,24 @@ int main(int argc, char** argv) {
     (void)0;
   };
 
+  std::ofstream coverage;
+  if (!args.coverage_file.empty()) {
+    coverage.open(args.coverage_file);
+    coverage << "frame\tid\tx\ty\tcameras\n";
+  }
   for (int f = 0; f < o.num_frames; ++f) {
     sim::FrameTruth t = crowd.Next();
     const sim::RenderedFrame r = sim::RenderFrame(o, cameras, t);
+    if (coverage.is_open()) {
+      for (const sim::PersonTruth& g : t.people) {
+        int seen = 0;
+        for (const std::vector<int>& ids : r.person_ids) {
+          seen += std::count(ids.begin(), ids.end(), g.id) > 0 ? 1 : 0;
+        }
+        coverage << t.frame << '\t' << g.id << '\t' << g.footprint_m.x() << '\t'
+                 << g.footprint_m.y() << '\t' << seen << '\n';
+      }
+    }
     for (std::size_t c = 0; c < r.cameras.size(); ++c) {
       auto& dets = rendered[{t.frame, r.cameras[c].camera_id}];
       for (std::size_t d = 0; d < r.cameras[c].detections.size(); ++d) {
