@@ -22,6 +22,7 @@ WORK=$3
 SRC=$4
 # shellcheck source=../support/shell_asserts.sh
 . "$SRC/tests/support/shell_asserts.sh"
+config=()  # extra replay options of the scene
 case $SCENE in
   store16x32)
     mode=boxes
@@ -32,7 +33,12 @@ case $SCENE in
   identity4x12poses)
     mode=poses
     sim_args=(--cameras 4 --people 12 --enter-leave --frames 3000 --seed 11) ;;
-  *) echo "unknown scene '$SCENE' (store16x32, identity4x12boxes, identity4x12poses)" >&2; exit 2 ;;
+  store32x100app)
+    mode=boxes
+    sim_args=(--cameras 32 --people 100 --frames 600 --seed 1 --embedding-dim 128)
+    config=(--config "$SRC/docs/examples/appearance.yaml") ;;
+  *) echo "unknown scene '$SCENE' (store16x32, identity4x12boxes, identity4x12poses," \
+       "store32x100app)" >&2; exit 2 ;;
 esac
 OUT=$WORK/$SCENE
 rm -rf "$OUT"
@@ -42,7 +48,7 @@ expect_exit 0 "$OUT/sim.log" \
   "$MVTRACK" sim "${sim_args[@]}" --mode "$mode" --out "$OUT/scene" --quiet
 for threads in 0 2; do
   expect_exit 0 "$OUT/replay$threads.log" \
-    "$MVTRACK" replay --calibration "$OUT/scene/calibration.yaml" --mode "$mode" \
+    "$MVTRACK" replay --calibration "$OUT/scene/calibration.yaml" --mode "$mode" "${config[@]}" \
     --threads "$threads" --jsonl "$OUT/tracks$threads.jsonl" --quiet "$OUT/scene/detections.lcmlog"
 done
 cmp "$OUT/tracks0.jsonl" "$OUT/tracks2.jsonl" ||
