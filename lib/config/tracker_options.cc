@@ -331,6 +331,10 @@ std::vector<Field> MakeFields() {
       "duplicate_distance_m",
       [](auto& o) -> auto& { return o.linking.duplicate_distance_m; },
       DoubleRange::AtLeast(0.0)));
+  f.push_back(BoolField(
+      "linking", "merge_linked_duplicates", [](auto& o) -> auto& {
+        return o.linking.merge_linked_duplicates;
+      }));
   f.push_back(DoubleField(
       "linking",
       "max_lost_s",

@@ -940,6 +940,49 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     }
   }
 
+  // One person linked twice (merge_linked_duplicates): the younger track lets its tracklet
+  // go to the duplicates below and ends. Nearest pairs first; a track gives up at most once.
+  std::vector<int> merged_away;  // tracks (rows) that end as duplicates of an older track
+  if (options_.merge_linked_duplicates && options_.duplicate_distance_m > 0.0) {
+    struct Twin {
+      double distance;
+      std::size_t a;
+      std::size_t b;
+    };
+    std::vector<Twin> twins;
+    for (std::size_t a = 0; a < num_tracklets; ++a) {
+      if (track_of_col[a] < 0) continue;
+      for (std::size_t b = a + 1; b < num_tracklets; ++b) {
+        if (track_of_col[b] < 0) continue;
+        const std::optional<double> d = MedianOverlapDistanceOfChecked(tracklets[a], tracklets[b]);
+        if (d && *d <= options_.duplicate_distance_m) twins.push_back({*d, a, b});
+      }
+    }
+    std::stable_sort(twins.begin(), twins.end(), [](const Twin& x, const Twin& y) {
+      return x.distance < y.distance;
+    });
+    for (const Twin& t : twins) {
+      const int ra = track_of_col[t.a];
+      const int rb = track_of_col[t.b];
+      if (ra < 0 || rb < 0) continue;  // one of them already gave up its tracklet
+      const LinkedTrack& ta = tracks_[static_cast<std::size_t>(ra)];
+      const LinkedTrack& tb = tracks_[static_cast<std::size_t>(rb)];
+      // The older track: born in an earlier window, or (same window) the smaller id.
+      const bool a_older =
+          ta.first_window != tb.first_window ? ta.first_window < tb.first_window : ta.id < tb.id;
+      const int older = a_older ? ra : rb;
+      const int younger = a_older ? rb : ra;
+      const std::size_t younger_col = a_older ? t.b : t.a;
+      if (vetoed(older, static_cast<int>(younger_col))) continue;
+      tracklet_of_track[static_cast<std::size_t>(younger)] = -1;
+      track_of_col[younger_col] = -1;
+      result.link_kind[younger_col] = LinkKind::kBirth;
+      result.link_distance_m[younger_col] = kNaN;
+      result.shared_members[younger_col] = 0;
+      merged_away.push_back(younger);
+    }
+  }
+
   // Duplicates: an unmatched tracklet of a matched track's person (before appearance, so a
   // person seen twice never revives an old id).
   std::vector<int> duplicate_of(num_tracklets, -1);
@@ -1063,6 +1106,14 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     result.born.push_back(track.id);
     tracks_.push_back(std::move(track));  // fresh ids are the largest: tracks_ stays sorted
   }
+  // Tracks that gave their tracklet up to an older track of the same person, unless the
+  // appearance stage linked them to another tracklet: they end.
+  std::vector<TrackId3D> duplicate_ids;
+  for (const int r : merged_away) {
+    if (tracklet_of_track[static_cast<std::size_t>(r)] < 0) {
+      duplicate_ids.push_back(tracks_[static_cast<std::size_t>(r)].id);
+    }
+  }
   if (!absorbed.empty()) {
     // Tentative tracks whose tracklet an older track took: they end (never output).
     std::vector<TrackId3D> ids;
@@ -1072,6 +1123,13 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
       return std::binary_search(ids.begin(), ids.end(), t.id);
     });
     for (const TrackId3D id : ids) ended.push_back({id, EndReason::kReidentified});
+  }
+  if (!duplicate_ids.empty()) {  // by id: the erase above moved the others
+    std::sort(duplicate_ids.begin(), duplicate_ids.end());
+    std::erase_if(tracks_, [&](const LinkedTrack& t) {
+      return std::binary_search(duplicate_ids.begin(), duplicate_ids.end(), t.id);
+    });
+    for (const TrackId3D id : duplicate_ids) ended.push_back({id, EndReason::kDuplicate});
   }
   if (!revived.empty() || !forget.empty()) {
     std::erase_if(departed_, [](const DepartedTrack& d) { return d.gallery.empty(); });

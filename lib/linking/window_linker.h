@@ -44,6 +44,13 @@ struct LinkerOptions {
   /// window that continues them links to the person's id. 0 disables. Finite, in
   /// [0, max_link_distance_m].
   double duplicate_distance_m = 0.4;
+  /// One person linked twice: two tracklets of a window, each linked to its own track, within
+  /// duplicate_distance_m of each other (the same median) are that person seen twice, and the
+  /// two tracks one person's: the younger track (born later) gives its tracklet up, which then
+  /// becomes a duplicate of the older track's person, and it ends (EndReason::kDuplicate).
+  /// Appearance on: not when the older track's gallery vetoes the tracklet
+  /// (core::AppearanceOptions::link_max_distance). Needs duplicate_distance_m > 0.
+  bool merge_linked_duplicates = true;
   /// Matched windows (the birth window counts as the first) before a track is confirmed (and
   /// output); once confirmed it stays confirmed. A birth from strong evidence (see
   /// strong_birth_cameras) is confirmed at once. Must be >= 1.
@@ -110,6 +117,8 @@ enum class EndReason {
   kStreamEnd,     ///< WindowLinker::EndStream
   kReidentified,  ///< tentative, its person re-identified by appearance as an older track,
                   ///< which took its tracklet (core::AppearanceOptions::defer_weak_reid)
+  kDuplicate,     ///< the same person as an older track, both linked in one window
+                  ///< (LinkerOptions::merge_linked_duplicates)
 };
 
 /// A (camera, 2D track) a long-term track was built from, and the last frame it was seen in.
@@ -244,10 +253,12 @@ inline constexpr int kMaxSamePerson = 16;
 ///  4. Re-identification: no overlap, no shared 2D track, a lost track, the gap <=
 ///     max_reid_gap_s, the motion distance <= reid_gate_chi2 and smaller by reid_margin_chi2
 ///     than every other candidate of the track and of the tracklet.
-/// Then an unmatched tracklet within duplicate_distance_m (Eq. 8) of a matched one is a
-/// duplicate of that person (its 2D tracks join the track's members, track_of_tracklet is that
-/// track's id, nothing is born). With appearance (core::AppearanceOptions::enabled and
-/// tracklets that carry one):
+/// Then two matched tracklets within duplicate_distance_m of each other are one person linked
+/// twice (merge_linked_duplicates): the younger track's tracklet is unmatched again, and that
+/// track ends (EndReason::kDuplicate). Then an unmatched tracklet within duplicate_distance_m
+/// (Eq. 8) of a matched one is a duplicate of that person (its 2D tracks join the track's members,
+/// track_of_tracklet is that track's id, nothing is born). With appearance
+/// (core::AppearanceOptions::enabled and tracklets that carry one):
 ///  5. Appearance: each remaining tracklet with an appearance descriptor (with
 ///     AppearanceOptions::defer_weak_reid only one that would be a strong birth, plus the
 ///     tracklets linked in stages 1-4 to tentative tracks born in an earlier window: a weak

@@ -62,6 +62,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.linking.max_link_distance_m == b.linking.max_link_distance_m);
   REQUIRE(a.linking.unshared_link_distance_m == b.linking.unshared_link_distance_m);
   REQUIRE(a.linking.duplicate_distance_m == b.linking.duplicate_distance_m);
+  REQUIRE(a.linking.merge_linked_duplicates == b.linking.merge_linked_duplicates);
   REQUIRE(a.linking.min_hits == b.linking.min_hits);
   REQUIRE(a.linking.strong_birth_cameras == b.linking.strong_birth_cameras);
   REQUIRE(a.linking.isolated_birth_distance_m == b.linking.isolated_birth_distance_m);
@@ -153,6 +154,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.linking.max_link_distance_m = 0.01 + 3.0 * unit(*rng);
   o.linking.unshared_link_distance_m = o.linking.max_link_distance_m * unit(*rng);
   o.linking.duplicate_distance_m = o.linking.max_link_distance_m * unit(*rng);
+  o.linking.merge_linked_duplicates = unit(*rng) < 0.5;
   o.linking.min_hits = small(1, 5);
   o.linking.strong_birth_cameras = small(2, 10);
   o.linking.isolated_birth_distance_m = 4.0 * unit(*rng);
@@ -226,11 +228,11 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   // docs/FORMATS.md, then update the sizes here (x86-64, g++).
   CHECK(sizeof(tracking2d::SortOptions) == 16);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
-  CHECK(sizeof(linking::LinkerOptions) == 104);
+  CHECK(sizeof(linking::LinkerOptions) == 112);
   CHECK(sizeof(triangulation::RefinementOptions) == 136);
   CHECK(sizeof(core::AppearanceOptions) == 88);
   CHECK(sizeof(association::AssociationOptions) == 56);
-  CHECK(sizeof(TrackerOptions) == 544);
+  CHECK(sizeof(TrackerOptions) == 552);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -432,7 +434,7 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
   // + 12 (appearance)
-  CHECK(written.size() == 79);
+  CHECK(written.size() == 80);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

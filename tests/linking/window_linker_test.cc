@@ -820,5 +820,53 @@ TEST_CASE("Appearance: departed tracks are bounded in number and in time", "[uni
   CHECK(linker.gallery_bytes() == 0);
 }
 
+// Window 1 gives a second person 0.45 m from track 1 (born: beyond the duplicate gate); in
+// window 2 that track's tracklet comes within 0.3 m of track 1's: one person linked twice.
+TEST_CASE("One person linked twice: the younger track ends, its tracklet a duplicate", "[unit]") {
+  const auto run =
+      [](WindowLinker* linker, const std::vector<float>& look_1, const std::vector<float>& look_2) {
+        const Vec3 at(0.0, 0.0, 1.0);
+        LinkWindow(linker, 0, {Looking(ConstantTracklet(0, 29, at, {1, 2}), look_1)});
+        const LinkResult r1 =
+            LinkWindow(linker,
+                       1,
+                       {Looking(ConstantTracklet(20, 49, at, {1, 2}), look_1),
+                        Looking(ConstantTracklet(35, 49, Vec3(0.45, 0.0, 1.0), {5, 6}), look_2)});
+        REQUIRE(r1.born == std::vector<TrackId3D>{2});
+        return LinkWindow(linker,
+                          2,
+                          {Looking(ConstantTracklet(40, 69, at, {1, 2}), look_1),
+                           Looking(ConstantTracklet(40, 69, Vec3(0.3, 0.0, 1.0), {5, 6}), look_2)});
+      };
+  REQUIRE(LinkerOptions{}.merge_linked_duplicates);  // the default
+  WindowLinker linker;
+  const LinkResult r = run(&linker, {}, {});
+  CHECK(r.track_of_tracklet == std::vector<TrackId3D>{1, 1});
+  CHECK(r.link_kind[0] == LinkKind::kOverlap);
+  CHECK(r.link_kind[1] == LinkKind::kDuplicate);
+  CHECK(r.link_distance_m[1] == Approx(0.3));
+  CHECK(r.died == std::vector<TrackId3D>{2});
+  CHECK(r.died_reason == std::vector<EndReason>{EndReason::kDuplicate});
+  REQUIRE(FindTrack(linker, 1) != nullptr);
+  CHECK(FindTrack(linker, 1)->members.size() == 4);
+  CHECK(FindTrack(linker, 2) == nullptr);
+  // Off: each track keeps its tracklet.
+  LinkerOptions off;
+  off.merge_linked_duplicates = false;
+  WindowLinker plain(off);
+  const LinkResult p = run(&plain, {}, {});
+  CHECK(p.track_of_tracklet == std::vector<TrackId3D>{1, 2});
+  CHECK(p.died.empty());
+  // Appearance on: two people who look different stay two, two who look alike are merged.
+  WindowLinker strangers({}, {}, AppearanceOn());
+  const LinkResult s = run(&strangers, Look(0), Look(3));
+  CHECK(s.track_of_tracklet == std::vector<TrackId3D>{1, 2});
+  CHECK(s.died.empty());
+  WindowLinker same({}, {}, AppearanceOn());
+  const LinkResult m = run(&same, Look(0), Look(0, 0.1));
+  CHECK(m.track_of_tracklet == std::vector<TrackId3D>{1, 1});
+  CHECK(m.died == std::vector<TrackId3D>{2});
+}
+
 }  // namespace
 }  // namespace mvtrack::linking
