@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <iterator>
 #include <limits>
 #include <utility>
 
@@ -1106,30 +1107,31 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     result.born.push_back(track.id);
     tracks_.push_back(std::move(track));  // fresh ids are the largest: tracks_ stays sorted
   }
-  // Tracks that gave their tracklet up to an older track of the same person, unless the
-  // appearance stage linked them to another tracklet: they end.
-  std::vector<TrackId3D> duplicate_ids;
+  // Tracks that end in this window, their tracklet taken by an older track of their person:
+  // tentative ones re-identified by appearance (never output), and those that gave their
+  // tracklet up as one person linked twice, unless the appearance stage linked them again.
+  std::vector<TrackId3D> reidentified;
+  std::vector<TrackId3D> duplicates;
+  for (const int r : absorbed) reidentified.push_back(tracks_[static_cast<std::size_t>(r)].id);
   for (const int r : merged_away) {
     if (tracklet_of_track[static_cast<std::size_t>(r)] < 0) {
-      duplicate_ids.push_back(tracks_[static_cast<std::size_t>(r)].id);
+      duplicates.push_back(tracks_[static_cast<std::size_t>(r)].id);
     }
   }
-  if (!absorbed.empty()) {
-    // Tentative tracks whose tracklet an older track took: they end (never output).
-    std::vector<TrackId3D> ids;
-    for (const int r : absorbed) ids.push_back(tracks_[static_cast<std::size_t>(r)].id);
-    std::sort(ids.begin(), ids.end());
+  std::sort(reidentified.begin(), reidentified.end());
+  std::sort(duplicates.begin(), duplicates.end());
+  for (const TrackId3D id : reidentified) ended.push_back({id, EndReason::kReidentified});
+  for (const TrackId3D id : duplicates) ended.push_back({id, EndReason::kDuplicate});
+  if (!reidentified.empty() || !duplicates.empty()) {
+    std::vector<TrackId3D> gone;
+    std::merge(reidentified.begin(),
+               reidentified.end(),
+               duplicates.begin(),
+               duplicates.end(),
+               std::back_inserter(gone));
     std::erase_if(tracks_, [&](const LinkedTrack& t) {
-      return std::binary_search(ids.begin(), ids.end(), t.id);
+      return std::binary_search(gone.begin(), gone.end(), t.id);
     });
-    for (const TrackId3D id : ids) ended.push_back({id, EndReason::kReidentified});
-  }
-  if (!duplicate_ids.empty()) {  // by id: the erase above moved the others
-    std::sort(duplicate_ids.begin(), duplicate_ids.end());
-    std::erase_if(tracks_, [&](const LinkedTrack& t) {
-      return std::binary_search(duplicate_ids.begin(), duplicate_ids.end(), t.id);
-    });
-    for (const TrackId3D id : duplicate_ids) ended.push_back({id, EndReason::kDuplicate});
   }
   if (!revived.empty() || !forget.empty()) {
     std::erase_if(departed_, [](const DepartedTrack& d) { return d.gallery.empty(); });
