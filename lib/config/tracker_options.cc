@@ -316,6 +316,10 @@ std::vector<Field> MakeFields() {
       [](auto& o) -> auto& { return o.linking.strong_birth_cameras; },
       2,
       kIntMax));
+  f.push_back(BoolField(
+      "linking", "fragment_births_wait", [](auto& o) -> auto& {
+        return o.linking.fragment_births_wait;
+      }));
   f.push_back(DoubleField(
       "linking",
       "isolated_birth_distance_m",

@@ -1015,7 +1015,11 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
   const auto strong_birth = [&](std::size_t c) {
     signed char& known = strong_cache[c];
     if (known < 0) {
-      bool strong = static_cast<int>(tracklets[c].cameras.size()) >= options_.strong_birth_cameras;
+      // A piece of a tracked person (it carries a 2D track an alive track holds) is not
+      // strong on its cameras (fragment_births_wait).
+      const bool fragment = options_.fragment_births_wait && col_shares[c] != 0;
+      bool strong = !fragment &&
+                    static_cast<int>(tracklets[c].cameras.size()) >= options_.strong_birth_cameras;
       if (!strong && options_.isolated_birth_distance_m > 0.0) {
         strong = true;
         for (std::size_t o = 0; o < num_tracklets && strong; ++o) {

@@ -60,6 +60,14 @@ struct LinkerOptions {
   /// cluster or the crossing rays of two people (docs/DECISIONS.md "Window linking"). Must
   /// be >= 2.
   int strong_birth_cameras = 3;
+  /// A birth whose tracklet carries a 2D track that an alive track (matched or lost) holds (a
+  /// camera tracks the person under that track: the tracklet is a piece of a tracked person
+  /// that association split off, or the person seen twice) is not confirmed on its
+  /// cameras (strong_birth_cameras): it waits for a second window, unless it is isolated
+  /// (isolated_birth_distance_m). Of the short-lived births on a 32 x 100 store, most were
+  /// such pieces (docs/DECISIONS.md "Window linking"). false: the camera rule alone. The
+  /// tracker applies it in box mode only (tracker::WindowFinalizer).
+  bool fragment_births_wait = true;
   /// A birth whose footprint stays farther than this (metres) from every other tracklet of the
   /// window is confirmed at birth too: a duplicate split off a person lies next to that person
   /// (of the ghost births on a simulated 6 x 16 enter/leave floor, 56 of 62 were within 2 m

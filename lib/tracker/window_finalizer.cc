@@ -25,13 +25,22 @@ linking::LinkerContext MakeLinkerContext(const TrackerOptions& options) {
   return context;
 }
 
+// The linker's options: the wait of fragment births is a box-mode rule (LinkerOptions::
+// fragment_births_wait; in pose mode it costs Campus at the hard corruption level a person's
+// frames, docs/DECISIONS.md "Window linking").
+linking::LinkerOptions MakeLinkerOptions(const TrackerOptions& options) {
+  linking::LinkerOptions o = options.linking;
+  if (options.mode != InputMode::kBoxes) o.fragment_births_wait = false;
+  return o;
+}
+
 }  // namespace
 
 WindowFinalizer::WindowFinalizer(const TrackerOptions& options)
     : mode_(options.mode),
       ground_height_m_(options.ground_height_m),
       num_points_(NumPoints(options)),
-      linker_(options.linking, MakeLinkerContext(options), options.appearance),
+      linker_(MakeLinkerOptions(options), MakeLinkerContext(options), options.appearance),
       bridge_max_gap_s_(options.bridge_max_gap_s) {}
 
 void WindowFinalizer::AddClosedFrame(const ClosedFrame& frame) {

@@ -66,6 +66,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.linking.min_hits == b.linking.min_hits);
   REQUIRE(a.linking.strong_birth_cameras == b.linking.strong_birth_cameras);
   REQUIRE(a.linking.isolated_birth_distance_m == b.linking.isolated_birth_distance_m);
+  REQUIRE(a.linking.fragment_births_wait == b.linking.fragment_births_wait);
   REQUIRE(a.linking.max_lost_s == b.linking.max_lost_s);
   REQUIRE(a.linking.motion.measurement_sigma_m == b.linking.motion.measurement_sigma_m);
   REQUIRE(a.linking.motion.acceleration_sigma_mps2 == b.linking.motion.acceleration_sigma_mps2);
@@ -158,6 +159,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.linking.min_hits = small(1, 5);
   o.linking.strong_birth_cameras = small(2, 10);
   o.linking.isolated_birth_distance_m = 4.0 * unit(*rng);
+  o.linking.fragment_births_wait = unit(*rng) < 0.5;
   o.linking.max_lost_s = 10.0 * unit(*rng);
   o.linking.motion.measurement_sigma_m = 0.01 + unit(*rng);
   o.linking.motion.acceleration_sigma_mps2 = 0.01 + 3.0 * unit(*rng);
@@ -434,7 +436,7 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
   // + 12 (appearance)
-  CHECK(written.size() == 80);
+  CHECK(written.size() == 81);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

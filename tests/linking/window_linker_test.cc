@@ -551,6 +551,30 @@ TEST_CASE("Weak births wait for a second window; strong ones are confirmed at on
   CHECK(eager.tracks().front().state == TrackState::kConfirmed);
 }
 
+TEST_CASE("A birth that carries a 2D track of an alive track waits unless isolated", "[unit]") {
+  // Track 1: three cameras (camera c, 2D track tracks[c]). In window 1 its person continues on
+  // two of its 2D tracks; a three-camera tracklet 1 m away carries its third (camera 0,
+  // track 1): a piece of a tracked person, born tentative. 5 m away it is isolated: confirmed.
+  const core::Tracklet3D first = ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2, 3});
+  const core::Tracklet3D next = ConstantTracklet(20, 49, Vec3(0.0, 0.0, 1.0), {5, 2, 3});
+  const core::Tracklet3D piece = ConstantTracklet(40, 49, Vec3(1.0, 0.0, 1.0), {1, 8, 9});
+  const core::Tracklet3D far = ConstantTracklet(40, 49, Vec3(5.0, 0.0, 1.0), {1, 8, 9});
+  const auto born_state = [&](const LinkerOptions& o, const core::Tracklet3D& other) {
+    WindowLinker linker(o);
+    LinkWindow(&linker, 0, {first});
+    const LinkResult r = LinkWindow(&linker, 1, {next, other});
+    REQUIRE(r.track_of_tracklet[0] == 1);
+    REQUIRE(r.link_kind[1] == LinkKind::kBirth);
+    REQUIRE(r.shared_members[0] == 2);
+    return FindTrack(linker, r.track_of_tracklet[1])->state;
+  };
+  LinkerOptions o;
+  CHECK(born_state(o, piece) == TrackState::kTentative);
+  CHECK(born_state(o, far) == TrackState::kConfirmed);
+  o.fragment_births_wait = false;  // the camera rule alone
+  CHECK(born_state(o, piece) == TrackState::kConfirmed);
+}
+
 TEST_CASE("Re-identification by motion alone is off by default; when on, only unambiguous",
           "[unit]") {
   // Track 1 walks at 1.2 m/s and vanishes (every 2D track lost) after frame 29; a tracklet with
