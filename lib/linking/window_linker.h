@@ -49,7 +49,8 @@ struct LinkerOptions {
   /// two tracks one person's: the younger track (born later) gives its tracklet up, which then
   /// becomes a duplicate of the older track's person, and it ends (EndReason::kDuplicate).
   /// Appearance on: not when the older track's gallery vetoes the tracklet
-  /// (core::AppearanceOptions::link_max_distance). Needs duplicate_distance_m > 0.
+  /// (core::AppearanceOptions::link_max_distance). Needs duplicate_distance_m > 0. The tracker
+  /// applies it in box mode only (tracker::WindowFinalizer).
   bool merge_linked_duplicates = true;
   /// Matched windows (the birth window counts as the first) before a track is confirmed (and
   /// output); once confirmed it stays confirmed. A birth from strong evidence (see

@@ -25,12 +25,16 @@ linking::LinkerContext MakeLinkerContext(const TrackerOptions& options) {
   return context;
 }
 
-// The linker's options: the wait of fragment births is a box-mode rule (LinkerOptions::
-// fragment_births_wait; in pose mode it costs Campus at the hard corruption level a person's
-// frames, docs/DECISIONS.md "Window linking").
+// The linker's options: the wait of fragment births and the merge of one person linked twice
+// are box-mode rules (LinkerOptions::fragment_births_wait, merge_linked_duplicates; in pose
+// mode each costs Campus at the hard corruption level a person's frames and gains nothing,
+// docs/DECISIONS.md "Window linking").
 linking::LinkerOptions MakeLinkerOptions(const TrackerOptions& options) {
   linking::LinkerOptions o = options.linking;
-  if (options.mode != InputMode::kBoxes) o.fragment_births_wait = false;
+  if (options.mode != InputMode::kBoxes) {
+    o.fragment_births_wait = false;
+    o.merge_linked_duplicates = false;
+  }
   return o;
 }
 

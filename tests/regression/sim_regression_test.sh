@@ -10,8 +10,9 @@
 #   identity4x12boxes  4 cameras, 12 people entering and leaving, 3000 frames, boxes: ids that
 #                      must not pass from a person who leaves to the next who enters
 #   identity4x12poses  the same scene in pose mode
-# Box scenes store16x32 and the pose scene identity4x12poses are also replayed with
-# linking.fragment_births_wait off: the pose tracks must not change, the box tracks must.
+# The box scene store16x32 and the pose scene identity4x12poses are also replayed with
+# linking.fragment_births_wait and merge_linked_duplicates off: the pose tracks must not
+# change, the box tracks must.
 # Usage: sim_regression_test.sh SCENE MVTRACK WORK_DIR SOURCE_DIR
 set -euo pipefail
 if [ $# -ne 4 ]; then
@@ -56,19 +57,20 @@ done
 cmp "$OUT/tracks0.jsonl" "$OUT/tracks2.jsonl" ||
   fail "two replays of $SCENE (--threads 0 and 2) wrote different JSONL"
 [ -s "$OUT/tracks0.jsonl" ] || fail "the replay of $SCENE wrote no tracks"
-# LinkerOptions::fragment_births_wait is a box-mode rule: off, pose mode writes the same
-# tracks, and on the 16-camera store (pieces of tracked people born at once) other tracks.
+# LinkerOptions::fragment_births_wait and merge_linked_duplicates are box-mode rules: off,
+# pose mode writes the same tracks, and the 16-camera store other tracks.
 if [ "$SCENE" = identity4x12poses ] || [ "$SCENE" = store16x32 ]; then
-  printf 'tracker:\n  linking:\n    fragment_births_wait: false\n' > "$OUT/no_fragment_wait.yaml"
+  printf 'tracker:\n  linking:\n    fragment_births_wait: false\n    merge_linked_duplicates: false\n' \
+    > "$OUT/no_fragment_wait.yaml"
   expect_exit 0 "$OUT/replay_no_fragment_wait.log" \
     "$MVTRACK" replay --calibration "$OUT/scene/calibration.yaml" --mode "$mode" \
     --config "$OUT/no_fragment_wait.yaml" --jsonl "$OUT/tracks_no_fragment_wait.jsonl" --quiet \
     "$OUT/scene/detections.lcmlog"
   if [ "$mode" = poses ]; then
     cmp "$OUT/tracks0.jsonl" "$OUT/tracks_no_fragment_wait.jsonl" ||
-      fail "pose mode: linking.fragment_births_wait changed the tracks of $SCENE"
+      fail "pose mode: linking.fragment_births_wait or merge_linked_duplicates changed the tracks of $SCENE"
   elif cmp -s "$OUT/tracks0.jsonl" "$OUT/tracks_no_fragment_wait.jsonl"; then
-    fail "box mode: linking.fragment_births_wait: false left the tracks of $SCENE unchanged"
+    fail "box mode: linking.fragment_births_wait and merge_linked_duplicates off left the tracks of $SCENE unchanged"
   fi
 fi
 expect_exit 0 "$OUT/eval.txt" \
