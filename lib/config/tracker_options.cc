@@ -320,6 +320,12 @@ std::vector<Field> MakeFields() {
       "linking", "fragment_births_wait", [](auto& o) -> auto& {
         return o.linking.fragment_births_wait;
       }));
+  f.push_back(IntField(
+      "linking",
+      "fragment_min_hits",
+      [](auto& o) -> auto& { return o.linking.fragment_min_hits; },
+      1,
+      kIntMax));
   f.push_back(DoubleField(
       "linking",
       "isolated_birth_distance_m",

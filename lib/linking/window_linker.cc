@@ -193,6 +193,7 @@ bool LinkerOptions::Validate(std::string* why) const {
     return fail("duplicate_distance_m must be finite and in [0, max_link_distance_m]");
   }
   if (min_hits < 1) return fail("min_hits must be >= 1");
+  if (fragment_min_hits < 1) return fail("fragment_min_hits must be >= 1");
   if (strong_birth_cameras < 2) return fail("strong_birth_cameras must be >= 2");
   if (!std::isfinite(isolated_birth_distance_m) || isolated_birth_distance_m < 0.0) {
     return fail("isolated_birth_distance_m must be finite and >= 0");
@@ -592,7 +593,8 @@ void WindowLinker::Absorb(LinkedTrack* track,
                           const core::Tracklet3D& tracklet,
                           std::int64_t window_id) {
   ++track->hits;
-  if (track->hits >= options_.min_hits) track->confirmed = true;
+  const int needed = track->required_hits > 0 ? track->required_hits : options_.min_hits;
+  if (track->hits >= needed) track->confirmed = true;
   track->missed_windows = 0;
   track->last_window = window_id;
   // Motion: every footprint after the last one already used, in frame order.
@@ -1105,6 +1107,12 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     track.id = next_id_++;
     track.first_window = window_id;
     track.last_seen_frame = kNoFrame;
+    // With appearance on and a descriptor, a tentative piece can still be re-identified as
+    // its person's own track (defer_weak_reid): it waits fragment_min_hits windows for that.
+    if (options_.fragment_births_wait && appearance_.enabled && !tracklets[c].appearance.empty() &&
+        col_shares[c] != 0) {
+      track.required_hits = options_.fragment_min_hits;
+    }
     Absorb(&track, tracklets[c], window_id);
     track.confirmed = track.confirmed || strong_birth(c);
     result.track_of_tracklet[c] = track.id;

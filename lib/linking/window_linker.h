@@ -69,6 +69,12 @@ struct LinkerOptions {
   /// such pieces (docs/DECISIONS.md "Window linking"). false: the camera rule alone. The
   /// tracker applies it in box mode only (tracker::WindowFinalizer).
   bool fragment_births_wait = true;
+  /// Appearance on (core::AppearanceOptions::enabled) and the birth's tracklet has a
+  /// descriptor (Tracklet3D::appearance): matched windows (the birth window counts as the
+  /// first) before such a birth is confirmed; in them it can still be re-identified as its
+  /// person's own track (defer_weak_reid). Otherwise min_hits (waiting longer only delays the
+  /// person). Must be >= 1.
+  int fragment_min_hits = 3;
   /// A birth whose footprint stays farther than this (metres) from every other tracklet of the
   /// window is confirmed at birth too: a duplicate split off a person lies next to that person
   /// (of the ghost births on a simulated 6 x 16 enter/leave floor, 56 of 62 were within 2 m
@@ -148,6 +154,9 @@ struct LinkedTrack {
   int hits = 0;
   /// Confirmed: output (min_hits windows linked, or a strong birth); stays confirmed.
   bool confirmed = false;
+  /// Matched windows it needs to be confirmed: fragment_min_hits for a birth that was a piece
+  /// of a tracked person (LinkerOptions::fragment_births_wait); 0: min_hits.
+  int required_hits = 0;
   /// Consecutive windows (skipped window ids included, saturating) without a linked tracklet.
   int missed_windows = 0;
   /// Window of birth.

@@ -67,6 +67,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.linking.strong_birth_cameras == b.linking.strong_birth_cameras);
   REQUIRE(a.linking.isolated_birth_distance_m == b.linking.isolated_birth_distance_m);
   REQUIRE(a.linking.fragment_births_wait == b.linking.fragment_births_wait);
+  REQUIRE(a.linking.fragment_min_hits == b.linking.fragment_min_hits);
   REQUIRE(a.linking.max_lost_s == b.linking.max_lost_s);
   REQUIRE(a.linking.motion.measurement_sigma_m == b.linking.motion.measurement_sigma_m);
   REQUIRE(a.linking.motion.acceleration_sigma_mps2 == b.linking.motion.acceleration_sigma_mps2);
@@ -160,6 +161,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.linking.strong_birth_cameras = small(2, 10);
   o.linking.isolated_birth_distance_m = 4.0 * unit(*rng);
   o.linking.fragment_births_wait = unit(*rng) < 0.5;
+  o.linking.fragment_min_hits = small(1, 10);
   o.linking.max_lost_s = 10.0 * unit(*rng);
   o.linking.motion.measurement_sigma_m = 0.01 + unit(*rng);
   o.linking.motion.acceleration_sigma_mps2 = 0.01 + 3.0 * unit(*rng);
@@ -230,11 +232,11 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   // docs/FORMATS.md, then update the sizes here (x86-64, g++).
   CHECK(sizeof(tracking2d::SortOptions) == 16);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
-  CHECK(sizeof(linking::LinkerOptions) == 112);
+  CHECK(sizeof(linking::LinkerOptions) == 120);
   CHECK(sizeof(triangulation::RefinementOptions) == 136);
   CHECK(sizeof(core::AppearanceOptions) == 88);
   CHECK(sizeof(association::AssociationOptions) == 56);
-  CHECK(sizeof(TrackerOptions) == 552);
+  CHECK(sizeof(TrackerOptions) == 560);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -436,7 +438,7 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
   // + 12 (appearance)
-  CHECK(written.size() == 81);
+  CHECK(written.size() == 82);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

@@ -266,6 +266,7 @@ TEST_CASE("LinkerOptions::Validate rejects out-of-range settings", "[unit]") {
   rejects([](LinkerOptions* o) { o->duplicate_distance_m = -1.0; }, "duplicate_distance_m");
   rejects([](LinkerOptions* o) { o->min_hits = 0; }, "min_hits");
   rejects([](LinkerOptions* o) { o->strong_birth_cameras = 1; }, "strong_birth_cameras");
+  rejects([](LinkerOptions* o) { o->fragment_min_hits = 0; }, "fragment_min_hits");
   rejects([](LinkerOptions* o) { o->isolated_birth_distance_m = -1.0; },
           "isolated_birth_distance_m");
   rejects([](LinkerOptions* o) { o->max_lost_s = NAN; }, "max_lost_s");
@@ -555,6 +556,7 @@ TEST_CASE("A birth that carries a 2D track of an alive track waits unless isolat
   // Track 1: three cameras (camera c, 2D track tracks[c]). In window 1 its person continues on
   // two of its 2D tracks; a three-camera tracklet 1 m away carries its third (camera 0,
   // track 1): a piece of a tracked person, born tentative. 5 m away it is isolated: confirmed.
+  // (Window k starts at frame 20 k.)
   const core::Tracklet3D first = ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2, 3});
   const core::Tracklet3D next = ConstantTracklet(20, 49, Vec3(0.0, 0.0, 1.0), {5, 2, 3});
   const core::Tracklet3D piece = ConstantTracklet(40, 49, Vec3(1.0, 0.0, 1.0), {1, 8, 9});
@@ -573,6 +575,41 @@ TEST_CASE("A birth that carries a 2D track of an alive track waits unless isolat
   CHECK(born_state(o, far) == TrackState::kConfirmed);
   o.fragment_births_wait = false;  // the camera rule alone
   CHECK(born_state(o, piece) == TrackState::kConfirmed);
+
+  // Appearance on and a descriptor, the piece linked again is confirmed in its
+  // fragment_min_hits-th (3rd) window (it may still be re-identified meanwhile); appearance off
+  // or no descriptor, in its min_hits-th (2nd).
+  const auto looking = [](core::Tracklet3D t, int axis) {
+    t.appearance.assign(8, 0.0f);
+    t.appearance[static_cast<std::size_t>(axis)] = 1.0f;
+    t.appearance_count = 40;
+    return t;
+  };
+  for (const auto& [appearance, descriptors] :
+       {std::pair{true, true}, std::pair{true, false}, std::pair{false, true}}) {
+    core::AppearanceOptions ao;
+    ao.enabled = appearance;
+    const auto seen = [&](const core::Tracklet3D& t, int axis) {
+      return descriptors ? looking(t, axis) : t;
+    };
+    WindowLinker linker(LinkerOptions{}, LinkerContext{}, ao);
+    LinkWindow(&linker, 0, {seen(first, 0)});
+    const LinkResult born = LinkWindow(&linker, 1, {seen(next, 0), seen(piece, 1)});
+    const TrackId3D id = born.track_of_tracklet[1];
+    for (std::int64_t k = 2; k <= 3; ++k) {
+      const FrameIndex from = 20 * k;
+      const LinkResult r =
+          LinkWindow(&linker,
+                     k,
+                     {seen(ConstantTracklet(from, from + 29, Vec3(0.0, 0.0, 1.0), {5, 2, 3}), 0),
+                      seen(ConstantTracklet(from, from + 29, Vec3(1.0, 0.0, 1.0), {1, 8, 9}), 1)});
+      REQUIRE(r.track_of_tracklet[1] == id);
+      CHECK(FindTrack(linker, id)->hits == k);
+      const int needed = appearance && descriptors ? 3 : 2;
+      CHECK(FindTrack(linker, id)->state ==
+            (k < needed ? TrackState::kTentative : TrackState::kConfirmed));
+    }
+  }
 }
 
 TEST_CASE("Re-identification by motion alone is off by default; when on, only unambiguous",
