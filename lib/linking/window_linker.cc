@@ -1014,13 +1014,15 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
   // window (not a split-off duplicate of a person). Asked by stage 5 and again at birth: the
   // answer depends on the window's tracklets only, so it is computed once per tracklet.
   std::vector<signed char> strong_cache(num_tracklets, -1);
+  // A piece of a tracked person: it carries a 2D track an alive track holds
+  // (fragment_births_wait). It is not strong on its cameras.
+  const auto fragment = [&](std::size_t c) {
+    return options_.fragment_births_wait && col_shares[c] != 0;
+  };
   const auto strong_birth = [&](std::size_t c) {
     signed char& known = strong_cache[c];
     if (known < 0) {
-      // A piece of a tracked person (it carries a 2D track an alive track holds) is not
-      // strong on its cameras (fragment_births_wait).
-      const bool fragment = options_.fragment_births_wait && col_shares[c] != 0;
-      bool strong = !fragment &&
+      bool strong = !fragment(c) &&
                     static_cast<int>(tracklets[c].cameras.size()) >= options_.strong_birth_cameras;
       if (!strong && options_.isolated_birth_distance_m > 0.0) {
         strong = true;
@@ -1109,8 +1111,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     track.last_seen_frame = kNoFrame;
     // With appearance on and a descriptor, a tentative piece can still be re-identified as
     // its person's own track (defer_weak_reid): it waits fragment_min_hits windows for that.
-    if (options_.fragment_births_wait && appearance_.enabled && !tracklets[c].appearance.empty() &&
-        col_shares[c] != 0) {
+    if (fragment(c) && appearance_.enabled && !tracklets[c].appearance.empty()) {
       track.required_hits = options_.fragment_min_hits;
     }
     Absorb(&track, tracklets[c], window_id);

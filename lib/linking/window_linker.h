@@ -64,10 +64,10 @@ struct LinkerOptions {
   /// A birth whose tracklet carries a 2D track that an alive track (matched or lost) holds (a
   /// camera tracks the person under that track: the tracklet is a piece of a tracked person
   /// that association split off, or the person seen twice) is not confirmed on its
-  /// cameras (strong_birth_cameras): it waits for a second window, unless it is isolated
-  /// (isolated_birth_distance_m). Of the short-lived births on a 32 x 100 store, most were
-  /// such pieces (docs/DECISIONS.md "Window linking"). false: the camera rule alone. The
-  /// tracker applies it in box mode only (tracker::WindowFinalizer).
+  /// cameras (strong_birth_cameras): it waits min_hits windows (fragment_min_hits with
+  /// appearance), unless it is isolated (isolated_birth_distance_m). Of the short-lived births on a
+  /// 32 x 100 store, most were such pieces (docs/DECISIONS.md "Window linking"). false: the camera
+  /// rule alone. The tracker applies it in box mode only (tracker::WindowFinalizer).
   bool fragment_births_wait = true;
   /// Appearance on (core::AppearanceOptions::enabled) and the birth's tracklet has a
   /// descriptor (Tracklet3D::appearance): matched windows (the birth window counts as the
