@@ -196,6 +196,11 @@ std::vector<Field> MakeFields() {
       DoubleRange::Any()));
   f.push_back(DoubleField(
       "",
+      "monocular_min_elevation_deg",
+      [](auto& o) -> auto& { return o.monocular_min_elevation_deg; },
+      DoubleRange::Closed(0.0, 90.0)));
+  f.push_back(DoubleField(
+      "",
       "bridge_max_gap_s",
       [](auto& o) -> auto& { return o.bridge_max_gap_s; },
       DoubleRange::Closed(0.0, 10.0)));
@@ -349,6 +354,11 @@ std::vector<Field> MakeFields() {
       "linking",
       "max_lost_s",
       [](auto& o) -> auto& { return o.linking.max_lost_s; },
+      DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "monocular_max_s",
+      [](auto& o) -> auto& { return o.linking.monocular_max_s; },
       DoubleRange::AtLeast(0.0)));
   f.push_back(DoubleField(
       "linking",
@@ -506,6 +516,10 @@ std::vector<Field> MakeFields() {
       "reid_margin",
       [](auto& o) -> auto& { return o.appearance.reid_margin; },
       DoubleRange::Closed(0.0, 2.0)));
+  f.push_back(BoolField(
+      "appearance", "reid_disjoint_same_person", [](auto& o) -> auto& {
+        return o.appearance.reid_disjoint_same_person;
+      }));
   f.push_back(DoubleField(
       "appearance",
       "max_reid_s",

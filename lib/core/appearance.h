@@ -30,6 +30,12 @@ struct AppearanceOptions {
   /// tracklets, the tracklet's other candidate tracks) is farther by at least this: an ambiguous
   /// match starts a new id. In [0, 2].
   double reid_margin = 0.05;
+  /// A rival within reid_margin does not make a re-identification ambiguous when it and the
+  /// chosen track were never seen at the same time (one's last frame before the other's first)
+  /// and their galleries are within reid_margin of each other: the person's earlier and later
+  /// fragments (look-alike twins are farther apart than that). false: only the evidence of
+  /// linking::LinkedTrack::same_person counts.
+  bool reid_disjoint_same_person = true;
   /// Tracks that ended are remembered for re-identification this long, seconds of stream time
   /// since their last frame. Finite, >= 0.
   double max_reid_s = 120.0;

@@ -121,6 +121,17 @@ bool CameraModel::InImage(const Vec2& raw_px, double margin_px) const {
          raw_px.x() <= width_px + margin_px && raw_px.y() <= height_px + margin_px;
 }
 
+std::optional<Vec3> CameraModel::PointOnRayAtHeight(const Vec2& undistorted_px, double z) const {
+  const Vec3 direction = cam_from_world.rotation.transpose() *
+                         (K.inverse() * Vec3(undistorted_px.x(), undistorted_px.y(), 1.0));
+  const Vec3 center = CenterInWorld();
+  // A ray within about 0.06 degrees of the horizontal meets the plane too far away to matter.
+  if (!(std::abs(direction.z()) > 1e-3 * direction.norm())) return std::nullopt;
+  const double s = (z - center.z()) / direction.z();
+  if (!(s > 0.0)) return std::nullopt;
+  return center + s * direction;
+}
+
 Mat3 RotationFromRodrigues(const Vec3& rvec) {
   const double angle = rvec.norm();
   if (angle == 0.0) return Mat3::Identity();

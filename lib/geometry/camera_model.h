@@ -60,6 +60,11 @@ struct CameraModel {
 
   /// Whether a raw pixel lies inside the image enlarged by `margin_px` on every side.
   bool InImage(const Vec2& raw_px, double margin_px = 0.0) const;
+
+  /// The world point at height `z` (world frame, z up) on the viewing ray through an
+  /// undistorted pixel: where a person's image point lies when its height is known. nullopt
+  /// when the ray is (nearly) horizontal, or the point would be behind the camera.
+  std::optional<Vec3> PointOnRayAtHeight(const Vec2& undistorted_px, double z) const;
 };
 
 /// Whether `camera` sees `point_in_world`: in front of it, and its distorted projection inside

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <iterator>
 #include <limits>
+#include <numeric>
 #include <utility>
 
 #include "core/check.h"
@@ -154,12 +155,13 @@ std::optional<FootprintSpan> SpanOf(const core::Tracklet3D& tracklet,
   return span;
 }
 
-// The smallest footprint distance between `a` and `b` over their common frames, nullopt
-// without a common frame with footprints on both sides.
-std::optional<double> ClosestApproach(const core::Tracklet3D& a,
-                                      const core::Tracklet3D& b,
-                                      const std::vector<int>& footprint_points) {
-  std::optional<double> closest;
+// Calls f(d) with the footprint distance d of every common frame of `a` and `b` that has
+// footprints on both sides.
+template <typename F>
+void ForEachCommonFootprintDistance(const core::Tracklet3D& a,
+                                    const core::Tracklet3D& b,
+                                    const std::vector<int>& footprint_points,
+                                    F&& f) {
   std::size_t j = 0;
   for (std::size_t i = 0; i < a.frames.size(); ++i) {
     while (j < b.frames.size() && b.frames[j] < a.frames[i]) ++j;
@@ -167,11 +169,31 @@ std::optional<double> ClosestApproach(const core::Tracklet3D& a,
     if (b.frames[j] != a.frames[i]) continue;
     const std::optional<Vec2> pa = FrameFootprint(a.points[i], footprint_points);
     const std::optional<Vec2> pb = FrameFootprint(b.points[j], footprint_points);
-    if (!pa || !pb) continue;
-    const double d = (*pa - *pb).norm();
-    if (!closest || d < *closest) closest = d;
+    if (pa && pb) f((*pa - *pb).norm());
   }
+}
+
+// The smallest footprint distance between `a` and `b` over their common frames, nullopt
+// without a common frame with footprints on both sides.
+std::optional<double> ClosestApproach(const core::Tracklet3D& a,
+                                      const core::Tracklet3D& b,
+                                      const std::vector<int>& footprint_points) {
+  std::optional<double> closest;
+  ForEachCommonFootprintDistance(a, b, footprint_points, [&](double d) {
+    if (!closest || d < *closest) closest = d;
+  });
   return closest;
+}
+
+// The median footprint distance between `a` and `b` over their common frames, nullopt
+// without a common frame with footprints on both sides.
+std::optional<double> MedianFootprintDistance(const core::Tracklet3D& a,
+                                              const core::Tracklet3D& b,
+                                              const std::vector<int>& footprint_points) {
+  std::vector<double> d;
+  ForEachCommonFootprintDistance(a, b, footprint_points, [&](double x) { d.push_back(x); });
+  if (d.empty()) return std::nullopt;
+  return core::MedianInPlace(&d);
 }
 
 }  // namespace
@@ -200,6 +222,9 @@ bool LinkerOptions::Validate(std::string* why) const {
   }
   if (!std::isfinite(max_lost_s) || max_lost_s < 0.0) {
     return fail("max_lost_s must be finite and >= 0");
+  }
+  if (!std::isfinite(monocular_max_s) || monocular_max_s < 0.0) {
+    return fail("monocular_max_s must be finite and >= 0");
   }
   if (!motion.Validate(why)) return false;
   if (!std::isfinite(gap_gate_chi2) || gap_gate_chi2 <= 0.0) {
@@ -422,6 +447,7 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
     int departed = -1;  // index into departed_
     const std::vector<std::vector<float>>* gallery = nullptr;
     FrameIndex last_seen_frame = 0;
+    FrameIndex first_seen_frame = 0;
     Vec2 last_position = Vec2::Zero();
     TrackId3D id = 0;
     const std::vector<TrackId3D>* same_person = nullptr;
@@ -438,6 +464,7 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
                           -1,
                           &t.gallery,
                           t.last_seen_frame,
+                          t.first_seen_frame,
                           t.motion.position(),
                           t.id,
                           &t.same_person});
@@ -448,6 +475,7 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
                           static_cast<int>(d),
                           &dt.gallery,
                           dt.last_seen_frame,
+                          dt.first_seen_frame,
                           dt.last_position,
                           dt.id,
                           &dt.same_person});
@@ -532,9 +560,19 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
       // person, or its next fragment): two look-alikes are two people.
       const Candidate& a = candidates[ui];
       const Candidate& b = candidates[static_cast<std::size_t>(k)];
-      if ((std::binary_search(a.same_person->begin(), a.same_person->end(), b.id) ||
-           std::binary_search(b.same_person->begin(), b.same_person->end(), a.id)) &&
-          GalleriesDistance(*a.gallery, *b.gallery) <= appearance_.reid_max_distance) {
+      // Or two tracks never seen at the same time (one ended before the other began: the
+      // person's earlier and later fragments) that look as alike as the margin asks a rival
+      // to differ (reid_disjoint_same_person): look-alike twins are told apart by the margin
+      // itself (docs/DECISIONS.md "Appearance").
+      const bool disjoint =
+          appearance_.reid_disjoint_same_person &&
+          (a.last_seen_frame < b.first_seen_frame || b.last_seen_frame < a.first_seen_frame);
+      const bool evidence =
+          std::binary_search(a.same_person->begin(), a.same_person->end(), b.id) ||
+          std::binary_search(b.same_person->begin(), b.same_person->end(), a.id);
+      const double apart = GalleriesDistance(*a.gallery, *b.gallery);
+      if ((evidence && apart <= appearance_.reid_max_distance) ||
+          (disjoint && apart <= appearance_.reid_margin)) {
         same_rows.push_back(static_cast<int>(k));
       } else {
         unambiguous = false;
@@ -551,12 +589,29 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
       col_used[static_cast<std::size_t>(k)] = true;
       (*same_as)[ck] = c;
     }
+    // Of one person's tracks, the one with the most matched windows takes the tracklet: its id
+    // holds most of the person's history (ties: the nearest look); the others are forgotten.
+    std::size_t winner = ui;
+    const auto hits_of = [&](std::size_t k) {
+      const Candidate& x = candidates[k];
+      return x.track >= 0 ? tracks_[static_cast<std::size_t>(x.track)].hits
+                          : departed_[static_cast<std::size_t>(x.departed)].hits;
+    };
     for (const int k : same_rows) {
+      if (!row_used[static_cast<std::size_t>(k)] &&
+          hits_of(static_cast<std::size_t>(k)) > hits_of(winner)) {
+        winner = static_cast<std::size_t>(k);
+      }
+    }
+    if (winner != ui) same_rows.push_back(static_cast<int>(ui));
+    for (const int k : same_rows) {
+      if (static_cast<std::size_t>(k) == winner) continue;
       row_used[static_cast<std::size_t>(k)] = true;
       const Candidate& other = candidates[static_cast<std::size_t>(k)];
       if (other.departed >= 0) forget->push_back(other.departed);
     }
-    const Candidate& cand = candidates[ui];
+    row_used[winner] = true;
+    const Candidate& cand = candidates[winner];
     if (const int tentative = (*track_of_col)[static_cast<std::size_t>(c)]; tentative >= 0) {
       // The continuation of a tentative track: the older track takes it, the tentative ends.
       (*tracklet_of_track)[static_cast<std::size_t>(tentative)] = -1;
@@ -597,21 +652,10 @@ void WindowLinker::Absorb(LinkedTrack* track,
   if (track->hits >= needed) track->confirmed = true;
   track->missed_windows = 0;
   track->last_window = window_id;
-  // Motion: every footprint after the last one already used, in frame order.
-  for (std::size_t f = 0; f < tracklet.frames.size(); ++f) {
-    const FrameIndex frame = tracklet.frames[f];
-    const bool started = track->last_seen_frame != kNoFrame;
-    if (started && frame <= track->last_seen_frame) continue;
-    const std::optional<Vec2> xy = FrameFootprint(tracklet.points[f], context_.footprint_points);
-    if (!xy) continue;
-    if (!started) {
-      track->motion = FloorMotion::Start(*xy, options_.motion);
-    } else {
-      track->motion.Predict(Seconds(track->last_seen_frame, frame), options_.motion);
-      track->motion.Update(*xy, options_.motion);
-    }
-    track->last_seen_frame = frame;
+  if (tracklet.cameras.size() >= 2 && !tracklet.frames.empty()) {
+    track->last_multiview_frame = std::max(track->last_multiview_frame, tracklet.frames.back());
   }
+  UpdateMotion(track, tracklet);
   MergeMembers(track, tracklet);
   track->last_tracklet = tracklet;
   if (!tracklet.appearance.empty()) {
@@ -622,6 +666,117 @@ void WindowLinker::Absorb(LinkedTrack* track,
                                        appearance_.gallery_size + 1));
     }
     gallery.push_back(tracklet.appearance);
+  }
+}
+
+void WindowLinker::UpdateMotion(LinkedTrack* track, const core::Tracklet3D& tracklet) const {
+  // Every footprint after the last one already used, in frame order.
+  for (std::size_t f = 0; f < tracklet.frames.size(); ++f) {
+    const FrameIndex frame = tracklet.frames[f];
+    const bool started = track->last_seen_frame != kNoFrame;
+    if (started && frame <= track->last_seen_frame) continue;
+    const std::optional<Vec2> xy = FrameFootprint(tracklet.points[f], context_.footprint_points);
+    if (!xy) continue;
+    if (!started) {
+      track->motion = FloorMotion::Start(*xy, options_.motion);
+      if (track->first_seen_frame == kNoFrame) track->first_seen_frame = frame;
+    } else {
+      track->motion.Predict(Seconds(track->last_seen_frame, frame), options_.motion);
+      track->motion.Update(*xy, options_.motion);
+    }
+    track->last_seen_frame = frame;
+  }
+}
+
+void WindowLinker::LinkMonocular(std::int64_t window_id,
+                                 const std::vector<core::Tracklet3D>& monocular,
+                                 LinkResult* result) {
+  result->track_of_monocular.assign(monocular.size(), 0);
+  if (options_.monocular_max_s <= 0.0 || monocular.empty()) return;
+  // Longer tracklets first (ties: input order): a lost track continues on its best view, and
+  // its other single views of the window then only add frames.
+  std::vector<std::size_t> order(monocular.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return monocular[a].frames.size() > monocular[b].frames.size();
+  });
+  for (const std::size_t m : order) {
+    const core::Tracklet3D& tracklet = monocular[m];
+    const std::optional<FootprintSpan> span = SpanOf(tracklet, context_.footprint_points);
+    if (!span) continue;
+
+    // The holder of its 2D track seen most recently (ties: the lowest id).
+    LinkedTrack* holder = nullptr;
+    FrameIndex held_until = kNoFrame;
+    for (LinkedTrack& t : tracks_) {
+      if (!t.confirmed) continue;
+      for (const core::TrackletMember& want : tracklet.members) {
+        const auto it = std::lower_bound(
+            t.members.begin(), t.members.end(), want, [](const TrackMember& a, const auto& b) {
+              return MemberLess(a.camera_id, a.track_id, b.camera_id, b.track_id);
+            });
+        if (it == t.members.end() || it->camera_id != want.camera_id ||
+            it->track_id != want.track_id) {
+          continue;
+        }
+        if (holder == nullptr || it->last_frame > held_until) {
+          holder = &t;
+          held_until = it->last_frame;
+        }
+      }
+    }
+    if (holder == nullptr) continue;
+    LinkedTrack& track = *holder;
+    if (Seconds(track.last_multiview_frame, span->first) > options_.monocular_max_s) continue;
+    if (appearance_.enabled && !track.gallery.empty() && !tracklet.appearance.empty() &&
+        core::GalleryDistance(track.gallery, tracklet.appearance) > appearance_.link_max_distance) {
+      continue;
+    }
+    const bool matched = track.last_window == window_id;
+    const core::Tracklet3D& latest = track.last_tracklet;
+    bool pass = false;
+    if (const std::optional<double> d =
+            MedianFootprintDistance(latest, tracklet, context_.footprint_points)) {
+      pass = *d <= options_.max_link_distance_m;
+    } else if (span->first > track.last_seen_frame) {
+      if (Seconds(track.last_seen_frame, span->first) <= options_.max_lost_s) {
+        const std::optional<FloorMotion> initial =
+            InitialMotion(tracklet, context_, options_.motion, seconds_per_frame_);
+        pass = initial && StateDistanceSquared(PredictedMotion(track, span->first), *initial) <=
+                              options_.gap_gate_chi2;
+      }
+    } else if (const std::optional<FootprintSpan> next = SpanOf(latest, context_.footprint_points);
+               matched && next && span->last < next->first) {
+      const std::vector<std::pair<FrameIndex, Vec2>> a =
+          Footprints(tracklet, context_.footprint_points);
+      const std::vector<std::pair<FrameIndex, Vec2>> b =
+          Footprints(latest, context_.footprint_points);
+      const double apart = (a.back().second - b.front().second).norm();
+      pass = apart <= kSamePersonApartM + kMaxReidSpeedMps * Seconds(span->last, next->first);
+    }
+    if (!pass) continue;
+    result->track_of_monocular[m] = track.id;
+    MergeMembers(&track, tracklet);
+    if (matched) continue;
+    // A lost track continues on the one camera that still sees the person, at the height its
+    // points had (Eq. 8 with the next window's tracklet compares them). (Shifting the floor
+    // points too, by the median offset from the latest tracklet over common frames, was
+    // measured and not adopted: docs/DECISIONS.md "Monocular continuation".)
+    track.missed_windows = 0;
+    track.last_window = window_id;
+    UpdateMotion(&track, tracklet);
+    core::Tracklet3D continued = tracklet;
+    std::vector<double> z;
+    for (const auto& points : latest.points) {
+      if (!points.empty() && points[0] && points[0]->allFinite()) z.push_back(points[0]->z());
+    }
+    if (!z.empty()) {
+      const double height = core::MedianInPlace(&z);
+      for (auto& points : continued.points) {
+        if (!points.empty() && points[0]) points[0]->z() = height;
+      }
+    }
+    track.last_tracklet = std::move(continued);
   }
 }
 
@@ -674,13 +829,15 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
                               FrameIndex window_begin,
                               double seconds_per_frame,
                               const std::vector<core::Tracklet3D>& tracklets,
-                              const std::vector<core::TrackletMember>& live_tracks) {
+                              const std::vector<core::TrackletMember>& live_tracks,
+                              const std::vector<core::Tracklet3D>& monocular) {
   MVTRACK_CHECK_MSG(!last_window_.has_value() || window_id > *last_window_,
                     "WindowLinker::Link: window ids must be strictly increasing");
   MVTRACK_CHECK_MSG(std::isfinite(seconds_per_frame) && seconds_per_frame > 0.0,
                     "WindowLinker::Link: seconds_per_frame must be finite and > 0");
   seconds_per_frame_ = seconds_per_frame;
   for (const core::Tracklet3D& tracklet : tracklets) CheckWellFormed(tracklet);
+  for (const core::Tracklet3D& tracklet : monocular) CheckWellFormed(tracklet);
 
   LinkResult result;
   result.window_id = window_id;
@@ -755,6 +912,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
                                                   t.first_window,
                                                   t.last_window,
                                                   t.last_seen_frame,
+                                                  t.first_seen_frame,
                                                   t.motion.position(),
                                                   std::move(t.gallery),
                                                   std::move(t.same_person)});
@@ -1097,6 +1255,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
       track.confirmed = true;
       track.first_window = d.first_window;
       track.last_seen_frame = kNoFrame;
+      track.first_seen_frame = d.first_seen_frame;
       track.gallery = std::move(d.gallery);
       track.same_person = std::move(d.same_person);
       Absorb(&track, tracklets[c], window_id);
@@ -1109,6 +1268,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     track.id = next_id_++;
     track.first_window = window_id;
     track.last_seen_frame = kNoFrame;
+    track.first_seen_frame = kNoFrame;
     // With appearance on and a descriptor, a tentative piece can still be re-identified as
     // its person's own track (defer_weak_reid): it waits fragment_min_hits windows for that.
     if (fragment(c) && appearance_.enabled && !tracklets[c].appearance.empty()) {
@@ -1169,6 +1329,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     result.link_distance_m[c] = result.link_distance_m[static_cast<std::size_t>(same_as[c])];
   }
   if (appearance_.enabled) RecordSamePerson(tracklets, result);
+  LinkMonocular(window_id, monocular, &result);
   for (LinkedTrack& track : tracks_) track.state = StateOf(track);
   for (const EndedTrack& e : ended) {
     result.died.push_back(e.id);

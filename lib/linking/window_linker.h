@@ -84,6 +84,13 @@ struct LinkerOptions {
   /// stream time since its last triangulated frame, for a continuation; then it is removed and
   /// its id is never given out again. Finite, >= 0.
   double max_lost_s = 3.0;
+  /// Box mode, monocular continuation: a confirmed track that holds the 2D track of a tracklet
+  /// no camera pair placed (Link's `monocular` tracklets: one camera's floor positions) takes
+  /// that tracklet's frames, for at most this long (seconds of stream time) after its last
+  /// frame placed by two or more cameras: while only one camera sees the person the track
+  /// goes on instead of being lost. Only continuations of a 2D track the track already holds,
+  /// within the overlap or motion gates; never a birth. 0 disables. Finite, >= 0.
+  double monocular_max_s = 5.0;
   /// The motion model's noise (the gates below are chi-square values of its 4-D state test).
   MotionOptions motion;
   /// Gap links supported by a shared 2D track (one camera kept tracking the person while the
@@ -165,6 +172,10 @@ struct LinkedTrack {
   std::int64_t last_window = 0;
   /// Last frame with a footprint (valid point) among its linked tracklets.
   FrameIndex last_seen_frame = 0;
+  /// First frame with a footprint under its id (kept when a departed track is revived).
+  FrameIndex first_seen_frame = 0;
+  /// Last frame of a linked tracklet that two or more cameras placed (monocular_max_s).
+  FrameIndex last_multiview_frame = 0;
   /// The most recent short-term tracklet linked to it.
   core::Tracklet3D last_tracklet;
   /// Its 2D tracks, sorted by (camera, track); those not seen for longer than max_lost_s plus
@@ -223,6 +234,9 @@ struct LinkResult {
   std::vector<LinkKind> link_kind;
   /// Parallel to the input: 2D tracks shared with the linked track (0 for births).
   std::vector<int> shared_members;
+  /// Parallel to Link's `monocular` tracklets: the track that took each (0: none; such a
+  /// tracklet is dropped, never born).
+  std::vector<TrackId3D> track_of_monocular;
 };
 
 /// Eq. 8 distance between two 3D tracklets: per overlapping frame the mean over points valid
@@ -316,12 +330,23 @@ class WindowLinker {
   /// lost track none of whose 2D tracks is among them can only come back by re-identification.
   /// Window ids must be strictly increasing (checked); a skipped id counts as a window with no
   /// tracklets. Tracklets must be well formed (checked); a tracklet without any valid point cannot
-  /// be linked and is born.
+  /// be linked and is born. `monocular` are the window's tracklets of one camera each
+  /// (LinkerOptions::monocular_max_s; well formed, checked): after the stages above, each goes
+  /// to the confirmed track that holds its 2D track (the most recently seen holder; ties: the
+  /// lowest id), when the track was placed by two or more cameras within monocular_max_s and
+  /// the tracklet passes the gate: over common frames with the track's latest tracklet the
+  /// median footprint distance <= max_link_distance_m; without common frames, after the track's
+  /// last footprint, the gap motion test (gap_gate_chi2, max_lost_s); before the tracklet a
+  /// track took in this window, its footprint within kSamePersonApartM plus kMaxReidSpeedMps
+  /// times the time between them; with appearance, not vetoed by the gallery. A track matched in
+  /// this window only takes the frames; a lost one continues on them (it is matched, its hits do
+  /// not change). Longer tracklets first.
   LinkResult Link(std::int64_t window_id,
                   FrameIndex window_begin,
                   double seconds_per_frame,
                   const std::vector<core::Tracklet3D>& tracklets,
-                  const std::vector<core::TrackletMember>& live_tracks);
+                  const std::vector<core::TrackletMember>& live_tracks,
+                  const std::vector<core::Tracklet3D>& monocular = {});
 
   /// The stream ended: every track ends (kStreamEnd), returned sorted by id; the departed
   /// tracks are forgotten.
@@ -335,6 +360,7 @@ class WindowLinker {
     std::int64_t first_window = 0;
     std::int64_t last_window = 0;
     FrameIndex last_seen_frame = 0;
+    FrameIndex first_seen_frame = 0;  ///< see LinkedTrack::first_seen_frame
     Vec2 last_position = Vec2::Zero();
     std::vector<std::vector<float>> gallery;
     std::vector<TrackId3D> same_person;  ///< see LinkedTrack::same_person
@@ -364,6 +390,12 @@ class WindowLinker {
   double Seconds(FrameIndex from, FrameIndex to) const;
   void Absorb(LinkedTrack* track, const core::Tracklet3D& tracklet, std::int64_t window_id);
   void MergeMembers(LinkedTrack* track, const core::Tracklet3D& tracklet) const;
+  // The motion update of Absorb: every footprint of `tracklet` after the track's last one.
+  void UpdateMotion(LinkedTrack* track, const core::Tracklet3D& tracklet) const;
+  // Monocular continuation (see Link): fills result->track_of_monocular.
+  void LinkMonocular(std::int64_t window_id,
+                     const std::vector<core::Tracklet3D>& monocular,
+                     LinkResult* result);
   // Stage 5 of Link (see the class comment): fills `revive` (departed index per tracklet, -1)
   // and links lost tracks into tracklet_of_track / track_of_col.
   void LinkByAppearance(const std::vector<core::Tracklet3D>& tracklets,

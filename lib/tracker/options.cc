@@ -21,6 +21,9 @@ bool TrackerOptions::Validate(std::string* why) const {
     return fail("pose mode needs a keypoint layout");
   }
   if (!std::isfinite(ground_height_m)) return fail("ground_height_m must be finite");
+  if (!(monocular_min_elevation_deg >= 0.0 && monocular_min_elevation_deg <= 90.0)) {
+    return fail("monocular_min_elevation_deg must be in [0, 90]");
+  }
   if (!(bridge_max_gap_s >= 0.0 && bridge_max_gap_s <= 10.0)) {
     return fail("bridge_max_gap_s must be in [0, 10]");
   }

@@ -72,6 +72,11 @@ struct TrackerOptions {
   double box_ends_max_elevation_deg = 40.0;
   /// Height of the floor plane z = ground_height_m in the world frame (z up): footprints lie on it.
   double ground_height_m = 0.0;
+  /// Box mode, monocular continuation (LinkerOptions::monocular_max_s): a frame one camera alone
+  /// places counts only where the ray through the feet descends at least this steeply below the
+  /// horizontal (degrees): a pixel's error moves the floor point by the camera height / sin^2
+  /// of that angle, 13 times more at 15 degrees than at 60. In [0, 90].
+  double monocular_min_elevation_deg = 20.0;
   /// A confirmed track at least 0.5 s old that is missing for at most this long (seconds of
   /// stream time) and then continues under the same id gets the frames in between, when they
   /// are not output yet, interpolated point by point between its frames on both sides (cameras

@@ -83,8 +83,12 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
                                               std::vector<Frame3D>* out) {
   MVTRACK_CHECK(out != nullptr);
   // Link to long-term tracks (Eq. 8-9).
-  linking::LinkResult link = linker_.Link(
-      result.window_id, result.begin, result.seconds_per_frame, result.persons, result.live_tracks);
+  linking::LinkResult link = linker_.Link(result.window_id,
+                                          result.begin,
+                                          result.seconds_per_frame,
+                                          result.persons,
+                                          result.live_tracks,
+                                          result.monocular);
   counters_.windows_processed += 1;
   counters_.tracks_born += static_cast<std::int64_t>(link.born.size());
   counters_.tracks_revived += static_cast<std::int64_t>(link.revived.size());
@@ -112,17 +116,16 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
     std::vector<Placed> frames;
   };
   std::map<TrackId3D, TrackFrames> placed;
-  for (const std::size_t i : order) {
-    const bool duplicate = link.link_kind[i] == linking::LinkKind::kDuplicate;
-    const core::Tracklet3D& person = result.persons[i];
-    const TrackId3D id = link.track_of_tracklet[i];
+  // Places `person`'s frames of this window under track `id`; `fill` (a duplicate or a single
+  // camera's view): only frames the track does not have yet.
+  const auto place = [&](const core::Tracklet3D& person, TrackId3D id, bool fill) {
     auto first = first_frame_of_track_.try_emplace(id, person.frames.front()).first;
     first->second = std::min(first->second, person.frames.front());
     const auto it = std::lower_bound(
         alive.begin(), alive.end(), id, [](const linking::LinkedTrack& t, TrackId3D wanted) {
           return t.id < wanted;
         });
-    if (it == alive.end() || it->id != id || it->state == linking::TrackState::kTentative) continue;
+    if (it == alive.end() || it->id != id || it->state == linking::TrackState::kTentative) return;
     TrackFrames& mine = placed[id];
     mine.state = it->state;
     for (std::size_t f = 0; f < person.frames.size(); ++f) {
@@ -130,9 +133,9 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
       if (frame < result.finalize_from || frame >= result.finalize_to) continue;
       auto pending = pending_.find(frame);
       if (pending == pending_.end() || pending->second.final) continue;
-      if (duplicate && std::any_of(pending->second.tracks.begin(),
-                                   pending->second.tracks.end(),
-                                   [&](const Track3D& t) { return t.id == id; })) {
+      if (fill && std::any_of(pending->second.tracks.begin(),
+                              pending->second.tracks.end(),
+                              [&](const Track3D& t) { return t.id == id; })) {
         continue;
       }
       const auto& points = person.points[f];
@@ -146,6 +149,17 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
       if (pending->second.tracks.empty()) pending->second.tracks.reserve(result.persons.size());
       pending->second.tracks.push_back(std::move(track));
       mine.frames.push_back(Placed{frame, &points});
+    }
+  };
+  for (const std::size_t i : order) {
+    place(result.persons[i],
+          link.track_of_tracklet[i],
+          link.link_kind[i] == linking::LinkKind::kDuplicate);
+  }
+  // Frames only one camera saw, after every person (LinkerOptions::monocular_max_s).
+  for (std::size_t i = 0; i < result.monocular.size(); ++i) {
+    if (link.track_of_monocular[i] != 0) {
+      place(result.monocular[i], link.track_of_monocular[i], true);
     }
   }
   // Short gaps of a track (no camera pair could place the person, e.g. a camera dark and two

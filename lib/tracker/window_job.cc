@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include "association/association.h"
@@ -452,6 +453,64 @@ void SetMembers(const WindowJob& job, core::Tracklet3D* person) {
             });
 }
 
+// The height given to a monocular tracklet's box centre (the linker replaces it with the
+// track's own when the track continues on it): the middle of a standing adult.
+constexpr double kMonocularCenterHeightM = 0.9;
+
+// Box mode, monocular continuation: every tracklet of the job that no person in `persons` was
+// triangulated from, placed by its camera alone (WindowResult::monocular).
+std::vector<core::Tracklet3D> MonocularTracklets(const geometry::CameraRig& rig,
+                                                 const TrackerOptions& options,
+                                                 const WindowJob& job,
+                                                 const std::vector<core::Tracklet3D>& persons) {
+  std::vector<char> used(job.tracklets.size(), 0);
+  for (const core::Tracklet3D& person : persons) {
+    for (const int i : person.source_tracklets) used[static_cast<std::size_t>(i)] = 1;
+  }
+  // The box's bottom among an observation's points (BoxPoint::kCenter has none).
+  std::size_t bottom = 0;
+  if (options.box_point == BoxPoint::kCenterEnds) {
+    bottom = static_cast<std::size_t>(kBoxBottomPoint);
+  } else if (options.box_point != BoxPoint::kBottomCenter) {
+    return {};
+  }
+  const int num_points = NumPoints(options);
+  const double height = options.ground_height_m + kMonocularCenterHeightM;
+  const double min_sine = std::sin(options.monocular_min_elevation_deg * std::numbers::pi / 180.0);
+  std::vector<core::Tracklet3D> out;
+  for (std::size_t i = 0; i < job.tracklets.size(); ++i) {
+    if (used[i] != 0) continue;
+    const core::Tracklet2D& t = job.tracklets[i];
+    const std::optional<int> camera = rig.IndexOf(t.camera_id);
+    if (!camera) continue;
+    const geometry::CameraModel& model = rig.camera(*camera);
+    core::Tracklet3D mono;
+    for (std::size_t f = 0; f < t.frames.size(); ++f) {
+      const core::Observation2D& obs = t.observations[f];
+      // The feet: the bottom of the box on the person's vertical axis (CameraStage), on the
+      // floor; unknown when the box is cut there.
+      if (obs.points_px.size() <= bottom || (obs.cut_edges & core::kCutBottom) != 0) continue;
+      std::optional<Vec3> p =
+          model.PointOnRayAtHeight(obs.points_px[bottom], options.ground_height_m);
+      if (!p || !p->allFinite()) continue;
+      // A flat ray puts a pixel's error far along the floor (the error grows as 1 / sin^2 of
+      // the angle below the horizontal).
+      const Vec3 ray = *p - model.CenterInWorld();
+      if (-ray.z() < min_sine * ray.norm()) continue;
+      p->z() = height;
+      mono.frames.push_back(t.frames[f]);
+      mono.points.emplace_back(static_cast<std::size_t>(num_points));
+      mono.points.back()[0] = *p;
+    }
+    if (mono.frames.empty()) continue;
+    mono.cameras = {t.camera_id};
+    mono.source_tracklets = {static_cast<int>(i)};
+    SetMembers(job, &mono);
+    out.push_back(std::move(mono));
+  }
+  return out;
+}
+
 }  // namespace
 
 // Sets person->appearance: the normalised mean of its observations' embeddings (those of the
@@ -564,6 +623,12 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
   for (core::Tracklet3D& person : r.persons) {
     SetMembers(job, &person);
     if (options.appearance.enabled) SetAppearance(job, &person);
+  }
+  if (options.mode == InputMode::kBoxes && options.linking.monocular_max_s > 0.0) {
+    r.monocular = MonocularTracklets(rig, options, job, r.persons);
+    if (options.appearance.enabled) {
+      for (core::Tracklet3D& mono : r.monocular) SetAppearance(job, &mono);
+    }
   }
   return r;
 }

@@ -56,6 +56,13 @@ struct WindowResult {
   /// points at implausible heights (box_min_height_m, box_max_height_m; a person left without
   /// points is dropped) and merges duplicates by footprint distance (box_merge_distance_m).
   std::vector<core::Tracklet3D> persons;
+  /// Box mode with LinkerOptions::monocular_max_s > 0: one tracklet per 2D tracklet that no
+  /// person was triangulated from, its frames placed by that camera alone: where the ray through
+  /// the bottom of the box (the feet, on the person's vertical axis) meets the floor, as point 0
+  /// at 0.9 m above it (the other points missing; frames whose box is cut at the bottom left
+  /// out), members, cameras and appearance set: what the linker may continue a track on
+  /// (linking::WindowLinker::Link). Empty otherwise.
+  std::vector<core::Tracklet3D> monocular;
   /// Copied from the job.
   std::vector<core::TrackletMember> live_tracks;
 };

@@ -37,6 +37,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.box_ends_max_elevation_deg == b.box_ends_max_elevation_deg);
   REQUIRE(a.box_complete_cut == b.box_complete_cut);
   REQUIRE(a.ground_height_m == b.ground_height_m);
+  REQUIRE(a.monocular_min_elevation_deg == b.monocular_min_elevation_deg);
   REQUIRE(a.bridge_max_gap_s == b.bridge_max_gap_s);
   REQUIRE(a.min_detection_score == b.min_detection_score);
   REQUIRE(a.min_keypoint_confidence == b.min_keypoint_confidence);
@@ -68,6 +69,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.linking.isolated_birth_distance_m == b.linking.isolated_birth_distance_m);
   REQUIRE(a.linking.fragment_births_wait == b.linking.fragment_births_wait);
   REQUIRE(a.linking.fragment_min_hits == b.linking.fragment_min_hits);
+  REQUIRE(a.linking.monocular_max_s == b.linking.monocular_max_s);
   REQUIRE(a.linking.max_lost_s == b.linking.max_lost_s);
   REQUIRE(a.linking.motion.measurement_sigma_m == b.linking.motion.measurement_sigma_m);
   REQUIRE(a.linking.motion.acceleration_sigma_mps2 == b.linking.motion.acceleration_sigma_mps2);
@@ -100,6 +102,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.appearance.gallery_size == b.appearance.gallery_size);
   REQUIRE(a.appearance.reid_max_distance == b.appearance.reid_max_distance);
   REQUIRE(a.appearance.reid_margin == b.appearance.reid_margin);
+  REQUIRE(a.appearance.reid_disjoint_same_person == b.appearance.reid_disjoint_same_person);
   REQUIRE(a.appearance.max_reid_s == b.appearance.max_reid_s);
   REQUIRE(a.appearance.max_departed == b.appearance.max_departed);
   REQUIRE(a.appearance.defer_weak_reid == b.appearance.defer_weak_reid);
@@ -131,6 +134,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.box_ends_max_elevation_deg = 90.0 * unit(*rng);
   o.box_complete_cut = unit(*rng) < 0.5;
   o.ground_height_m = 6.0 * unit(*rng) - 3.0;
+  o.monocular_min_elevation_deg = 90.0 * unit(*rng);
   o.bridge_max_gap_s = 10.0 * unit(*rng);
   o.min_detection_score = unit(*rng);
   o.min_keypoint_confidence = unit(*rng);
@@ -162,6 +166,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.linking.isolated_birth_distance_m = 4.0 * unit(*rng);
   o.linking.fragment_births_wait = unit(*rng) < 0.5;
   o.linking.fragment_min_hits = small(1, 10);
+  o.linking.monocular_max_s = 10.0 * unit(*rng);
   o.linking.max_lost_s = 10.0 * unit(*rng);
   o.linking.motion.measurement_sigma_m = 0.01 + unit(*rng);
   o.linking.motion.acceleration_sigma_mps2 = 0.01 + 3.0 * unit(*rng);
@@ -194,6 +199,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.appearance.gallery_size = small(1, 64);
   o.appearance.reid_max_distance = 2.0 * unit(*rng);
   o.appearance.reid_margin = unit(*rng);
+  o.appearance.reid_disjoint_same_person = unit(*rng) < 0.5;
   o.appearance.max_reid_s = 600.0 * unit(*rng);
   o.appearance.max_departed = small(0, 1000);
   o.appearance.defer_weak_reid = unit(*rng) < 0.5;
@@ -232,11 +238,11 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   // docs/FORMATS.md, then update the sizes here (x86-64, g++).
   CHECK(sizeof(tracking2d::SortOptions) == 16);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
-  CHECK(sizeof(linking::LinkerOptions) == 120);
+  CHECK(sizeof(linking::LinkerOptions) == 128);
   CHECK(sizeof(triangulation::RefinementOptions) == 136);
-  CHECK(sizeof(core::AppearanceOptions) == 88);
+  CHECK(sizeof(core::AppearanceOptions) == 96);
   CHECK(sizeof(association::AssociationOptions) == 56);
-  CHECK(sizeof(TrackerOptions) == 560);
+  CHECK(sizeof(TrackerOptions) == 584);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -438,7 +444,7 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
   // + 12 (appearance)
-  CHECK(written.size() == 82);
+  CHECK(written.size() == 85);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);

@@ -219,6 +219,24 @@ TEST_CASE("ProjectionMatrix, CenterInWorld and Depth agree with the pose", "[uni
   }
 }
 
+TEST_CASE("PointOnRayAtHeight inverts the projection at a known height", "[unit]") {
+  const CameraModel camera =
+      testing::LookAtCamera(1, Vec3(-3.0, 2.0, 3.0), Vec3(0.5, -0.5, 1.0), 1200.0, 1280, 720);
+  std::mt19937 rng(107);
+  for (const Vec3& point : RandomPointsInView(camera, 50, &rng)) {
+    const std::optional<Vec2> px = camera.ProjectUndistorted(point);
+    REQUIRE(px.has_value());
+    const std::optional<Vec3> back = camera.PointOnRayAtHeight(*px, point.z());
+    REQUIRE(back.has_value());
+    REQUIRE_THAT(*back, IsApproxVec(point, 1e-6));
+  }
+  // Above the camera along a ray that looks down: behind it. A horizontal ray: never.
+  REQUIRE_FALSE(camera.PointOnRayAtHeight(Vec2(640.0, 360.0), 4.0).has_value());
+  const CameraModel level =
+      testing::LookAtCamera(2, Vec3(0.0, 0.0, 1.0), Vec3(5.0, 0.0, 1.0), 1000.0, 1280, 720);
+  REQUIRE_FALSE(level.PointOnRayAtHeight(Vec2(640.0, 360.0), 0.0).has_value());
+}
+
 TEST_CASE("Projection returns nullopt for points not in front of the camera", "[unit]") {
   const CameraModel camera = PanopticLikeCamera();
   const Vec2 centre(960.0, 540.0);

@@ -929,5 +929,121 @@ TEST_CASE("One person linked twice: the younger track ends, its tracklet a dupli
   CHECK(m.died == std::vector<TrackId3D>{2});
 }
 
+// The tracklet of one camera (camera 0, 2D track `track`) along `centre` over [first, last]:
+// what a window holds for a person no camera pair places (WindowResult::monocular).
+core::Tracklet3D Monocular(FrameIndex first,
+                           FrameIndex last,
+                           const Trajectory& centre,
+                           TrackId2D track) {
+  core::Tracklet3D t = MovingTracklet(first, last, centre, {track});
+  REQUIRE(t.cameras == std::vector<CameraId>{0});
+  return t;
+}
+
+TEST_CASE("Monocular continuation: a lost track goes on where one camera still sees the person",
+          "[unit]") {
+  // A person walks at 1.2 m/s; in windows 1 and 2 only camera 0 (2D track 1) sees them.
+  const Trajectory walk = Straight(Vec3(0.0, 0.0, 1.0), Vec3(0.04, 0.0, 0.0));
+  const Trajectory elsewhere = Straight(Vec3(0.0, 3.0, 1.0), Vec3(0.04, 0.0, 0.0));
+  const std::vector<core::TrackletMember> alive = {{0, 1, 20, 49, 30}};
+  REQUIRE(LinkerOptions{}.monocular_max_s == 5.0);
+  {
+    WindowLinker linker;
+    LinkWindow(&linker, 0, {MovingTracklet(0, 29, walk, {1, 2})});
+    REQUIRE(FindTrack(linker, 1)->confirmed);  // isolated: confirmed at birth
+    // Its own 2D track: taken; another 2D track of the camera (nobody's): dropped, not born.
+    LinkResult r = linker.Link(
+        1, 20, kSpf, {}, alive, {Monocular(20, 49, walk, 1), Monocular(20, 49, elsewhere, 9)});
+    CHECK(r.track_of_monocular == std::vector<TrackId3D>{1, 0});
+    CHECK(r.born.empty());
+    CHECK(linker.tracks().size() == 1);
+    CHECK(FindTrack(linker, 1)->state == TrackState::kConfirmed);
+    CHECK(FindTrack(linker, 1)->last_seen_frame == 49);
+    r = linker.Link(2, 40, kSpf, {}, alive, {Monocular(40, 69, walk, 1)});
+    CHECK(r.track_of_monocular == std::vector<TrackId3D>{1});
+    // Both cameras again: linked on the overlap with the monocular tracklet.
+    r = LinkWindow(&linker, 3, {MovingTracklet(60, 89, walk, {1, 5})});
+    CHECK(r.track_of_tracklet[0] == 1);
+    CHECK(r.link_kind[0] == LinkKind::kOverlap);
+  }
+  // The 2D track jumped to somebody 3 m away: not taken, the track is lost.
+  {
+    WindowLinker linker;
+    LinkWindow(&linker, 0, {MovingTracklet(0, 29, walk, {1, 2})});
+    const LinkResult r = linker.Link(1, 20, kSpf, {}, alive, {Monocular(20, 49, elsewhere, 1)});
+    CHECK(r.track_of_monocular == std::vector<TrackId3D>{0});
+    CHECK(FindTrack(linker, 1)->state == TrackState::kLost);
+  }
+  // At most monocular_max_s after the last frame two cameras placed (29); 0: off.
+  for (const double max_s : {1.0, 0.0}) {
+    LinkerOptions o;
+    o.monocular_max_s = max_s;
+    WindowLinker linker(o);
+    LinkWindow(&linker, 0, {MovingTracklet(0, 29, walk, {1, 2})});
+    LinkResult r = linker.Link(1, 20, kSpf, {}, alive, {Monocular(20, 49, walk, 1)});
+    CHECK(r.track_of_monocular == std::vector<TrackId3D>{max_s > 0.0 ? 1 : 0});
+    // Window 3 starts 1.03 s after frame 29.
+    linker.Link(2, 40, kSpf, {}, alive, {Monocular(40, 69, walk, 1)});
+    r = linker.Link(3, 60, kSpf, {}, alive, {Monocular(60, 89, walk, 1)});
+    CHECK(r.track_of_monocular == std::vector<TrackId3D>{0});
+  }
+  // A tentative track does not continue on one camera.
+  {
+    WindowLinker linker;
+    LinkWindow(
+        &linker,
+        0,
+        {MovingTracklet(0, 29, walk, {1, 2}),
+         MovingTracklet(0, 29, Straight(Vec3(0.0, 1.0, 1.0), Vec3(0.04, 0.0, 0.0)), {3, 4})});
+    REQUIRE(!FindTrack(linker, 1)->confirmed);
+    const LinkResult r = linker.Link(1, 20, kSpf, {}, alive, {Monocular(20, 49, walk, 1)});
+    CHECK(r.track_of_monocular == std::vector<TrackId3D>{0});
+  }
+  LinkerOptions bad;
+  bad.monocular_max_s = -1.0;
+  CHECK(!bad.Validate(nullptr));
+}
+
+TEST_CASE("Appearance: a person's fragments never seen together do not make a return ambiguous",
+          "[unit]") {
+  const Vec3 at(1.0, 1.0, 1.0);
+  for (const bool disjoint : {true, false}) {
+    core::AppearanceOptions a = AppearanceOn();
+    REQUIRE(a.reid_disjoint_same_person);  // the default
+    a.reid_disjoint_same_person = disjoint;
+    WindowLinker linker({}, {}, a);
+    // Fragment 1 (track 1) leaves every view and departs.
+    LinkWindow(&linker, 0, {Looking(ConstantTracklet(0, 29, at, {1, 2}), Look(0))});
+    LinkWindow(&linker, 1, {Looking(ConstantTracklet(20, 49, at, {1, 2}), Look(0))});
+    linker.Link(2, 40, kSpf, {}, {});
+    linker.Link(3, 60, kSpf, {}, {});
+    // Fragment 2 (track 2): the person again, 30 m away 1 s later (faster than a person
+    // walks: not re-identified), then gone too.
+    const Vec3 far(31.0, 1.0, 1.0);
+    LinkResult r =
+        LinkWindow(&linker, 4, {Looking(ConstantTracklet(80, 109, far, {3, 4}), Look(0, 0.05))});
+    REQUIRE(r.track_of_tracklet[0] == 2);
+    LinkWindow(&linker, 5, {Looking(ConstantTracklet(100, 129, far, {3, 4}), Look(0, 0.05))});
+    LinkWindow(&linker, 6, {Looking(ConstantTracklet(120, 149, far, {3, 4}), Look(0, 0.05))});
+    linker.Link(7, 140, kSpf, {}, {});
+    linker.Link(8, 160, kSpf, {}, {});
+    REQUIRE(linker.departed().size() == 2);
+    // Back after 10 s, between both places, looking more like fragment 1: both fragments
+    // are within reid_margin of the look and of each other.
+    r = LinkWindow(
+        &linker,
+        20,
+        {Looking(ConstantTracklet(400, 429, Vec3(16.0, 1.0, 1.0), {7, 8}), Look(0, 0.01))});
+    if (disjoint) {
+      CHECK(r.link_kind[0] == LinkKind::kAppearance);
+      CHECK(r.track_of_tracklet[0] == 2);  // the fragment of more windows (3 against 2)
+      CHECK(linker.departed().empty());    // the other fragment is forgotten
+    } else {
+      CHECK(r.link_kind[0] == LinkKind::kBirth);
+      CHECK(r.track_of_tracklet[0] == 3);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mvtrack::linking

@@ -202,5 +202,64 @@ TEST_CASE("Box mode: points at implausible heights are removed", "[unit][tracker
   CHECK(WorstError(lowered.persons.front(), under) < 0.1);
 }
 
+// One camera's box of a person standing at `feet` (1.7 m tall, 0.5 m wide), as the camera
+// stage makes it with box_point center_ends: centre, bottom, top; the bottom cut when `cut`.
+core::Observation2D BoxObservation(const geometry::CameraModel& camera,
+                                   const Vec3& feet,
+                                   bool cut = false) {
+  const Vec2 bottom = *camera.ProjectUndistorted(feet);
+  const Vec2 top = *camera.ProjectUndistorted(feet + Vec3(0.0, 0.0, 1.7));
+  core::Observation2D obs;
+  obs.points_px = {0.5 * (bottom + top), bottom, top};
+  obs.confidence = {1.0, cut ? 0.0 : 1.0, 1.0};
+  obs.cut_edges = cut ? core::kCutBottom : 0;
+  obs.scale_px = 2.0 * (bottom - top).norm();
+  return obs;
+}
+
+TEST_CASE("Box mode: a 2D tracklet no person was triangulated from is placed by its camera",
+          "[unit][tracker]") {
+  const auto cameras = RoomCameras();  // 2.6 m high in the corners of a 6 x 6 m room
+  const geometry::CameraRig rig = MakeRig(cameras);
+  const Vec3 feet(0.5, -0.2, 0.0);
+  const auto job_of = [&](bool cut_from_frame_10) {
+    tracker::WindowJob job = EmptyJob();
+    core::Tracklet2D t;
+    t.camera_id = cameras[0].id;
+    t.track_id = 7;
+    for (FrameIndex f = 0; f < 30; ++f) {
+      t.frames.push_back(f);
+      t.observations.push_back(BoxObservation(cameras[0], feet, cut_from_frame_10 && f >= 10));
+    }
+    job.tracklets.push_back(t);
+    return job;
+  };
+  tracker::TrackerOptions options = BoxOptions();
+  REQUIRE(options.box_point == tracker::BoxPoint::kCenterEnds);
+  tracker::WindowResult r = tracker::ProcessWindowJob(rig, options, job_of(false));
+  CHECK(r.persons.empty());
+  REQUIRE(r.monocular.size() == 1);
+  const core::Tracklet3D& mono = r.monocular.front();
+  CHECK(mono.frames.size() == 30);
+  CHECK(mono.cameras == std::vector<CameraId>{cameras[0].id});
+  REQUIRE(mono.members.size() == 1);
+  CHECK(mono.members.front().track_id == 7);
+  REQUIRE(mono.points.front()[0].has_value());
+  CHECK((mono.points.front()[0]->head<2>() - feet.head<2>()).norm() < 1e-6);
+  CHECK(!mono.points.front()[1].has_value());
+  // Frames whose box is cut at the bottom are left out.
+  r = tracker::ProcessWindowJob(rig, options, job_of(true));
+  REQUIRE(r.monocular.size() == 1);
+  CHECK(r.monocular.front().frames.size() == 10);
+  // The ray to these feet descends about 33 degrees (2.6 m over 4.1 m): a steeper minimum
+  // leaves nothing; monocular_max_s 0 makes none.
+  options.monocular_min_elevation_deg = 45.0;
+  CHECK(tracker::ProcessWindowJob(rig, options, job_of(false)).monocular.empty());
+  options.monocular_min_elevation_deg = 30.0;
+  CHECK(tracker::ProcessWindowJob(rig, options, job_of(false)).monocular.size() == 1);
+  options.linking.monocular_max_s = 0.0;
+  CHECK(tracker::ProcessWindowJob(rig, options, job_of(false)).monocular.empty());
+}
+
 }  // namespace
 }  // namespace mvtrack
