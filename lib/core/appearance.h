@@ -29,7 +29,7 @@ struct AppearanceOptions {
   /// ... and the second-nearest candidate (on both sides: the track's other candidate
   /// tracklets, the tracklet's other candidate tracks) is farther by at least this: an ambiguous
   /// match starts a new id. In [0, 2].
-  double reid_margin = 0.05;
+  double reid_margin = 0.03;
   /// A rival within reid_margin does not make a re-identification ambiguous when it and the
   /// chosen track were never seen at the same time (one's last frame before the other's first)
   /// and their galleries are within reid_margin of each other: the person's earlier and later
