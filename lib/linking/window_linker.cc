@@ -747,12 +747,15 @@ void WindowLinker::LinkMonocular(std::int64_t window_id,
       }
     } else if (const std::optional<FootprintSpan> next = SpanOf(latest, context_.footprint_points);
                matched && next && span->last < next->first) {
-      const std::vector<std::pair<FrameIndex, Vec2>> a =
-          Footprints(tracklet, context_.footprint_points);
-      const std::vector<std::pair<FrameIndex, Vec2>> b =
-          Footprints(latest, context_.footprint_points);
-      const double apart = (a.back().second - b.front().second).norm();
-      pass = apart <= kSamePersonApartM + kMaxReidSpeedMps * Seconds(span->last, next->first);
+      // The footprints at the two spans' facing ends (both exist: the spans are made of them).
+      const std::optional<Vec2> a =
+          FrameFootprint(tracklet.points[static_cast<std::size_t>(tracklet.IndexOf(span->last))],
+                         context_.footprint_points);
+      const std::optional<Vec2> b =
+          FrameFootprint(latest.points[static_cast<std::size_t>(latest.IndexOf(next->first))],
+                         context_.footprint_points);
+      pass = (*a - *b).norm() <=
+             kSamePersonApartM + kMaxReidSpeedMps * Seconds(span->last, next->first);
     }
     if (!pass) continue;
     result->track_of_monocular[m] = track.id;

@@ -484,6 +484,7 @@ std::vector<core::Tracklet3D> MonocularTracklets(const geometry::CameraRig& rig,
     const std::optional<int> camera = rig.IndexOf(t.camera_id);
     if (!camera) continue;
     const geometry::CameraModel& model = rig.camera(*camera);
+    const Vec3 center = model.CenterInWorld();
     core::Tracklet3D mono;
     for (std::size_t f = 0; f < t.frames.size(); ++f) {
       const core::Observation2D& obs = t.observations[f];
@@ -495,7 +496,7 @@ std::vector<core::Tracklet3D> MonocularTracklets(const geometry::CameraRig& rig,
       if (!p || !p->allFinite()) continue;
       // A flat ray puts a pixel's error far along the floor (the error grows as 1 / sin^2 of
       // the angle below the horizontal).
-      const Vec3 ray = *p - model.CenterInWorld();
+      const Vec3 ray = *p - center;
       if (-ray.z() < min_sine * ray.norm()) continue;
       p->z() = height;
       mono.frames.push_back(t.frames[f]);
