@@ -562,8 +562,8 @@ void WindowLinker::LinkByAppearance(const std::vector<core::Tracklet3D>& trackle
       const Candidate& b = candidates[static_cast<std::size_t>(k)];
       // Or two tracks never seen at the same time (one ended before the other began: the
       // person's earlier and later fragments) that look as alike as the margin asks a rival
-      // to differ (reid_disjoint_same_person): look-alike twins are told apart by the margin
-      // itself (docs/DECISIONS.md "Appearance").
+      // to differ (reid_disjoint_same_person; measured on look-alike twins in
+      // docs/DECISIONS.md "Appearance").
       const bool disjoint =
           appearance_.reid_disjoint_same_person &&
           (a.last_seen_frame < b.first_seen_frame || b.last_seen_frame < a.first_seen_frame);
