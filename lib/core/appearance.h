@@ -33,7 +33,7 @@ struct AppearanceOptions {
   /// A rival within reid_margin does not make a re-identification ambiguous when it and the
   /// chosen track were never seen at the same time (one's last frame before the other's first)
   /// and their galleries are within reid_margin of each other: the person's earlier and later
-  /// fragments (on the simulator's look-alike scenes no twin was given the other's id so,
+  /// fragments (on the simulator's look-alike 0.5 scenes no twin was given the other's id so,
   /// docs/DECISIONS.md "Appearance"). false: only the evidence of
   /// linking::LinkedTrack::same_person counts.
   bool reid_disjoint_same_person = true;
