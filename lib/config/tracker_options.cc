@@ -346,6 +346,11 @@ std::vector<Field> MakeFields() {
       "duplicate_distance_m",
       [](auto& o) -> auto& { return o.linking.duplicate_distance_m; },
       DoubleRange::AtLeast(0.0)));
+  f.push_back(DoubleField(
+      "linking",
+      "duplicate_max_gap_s",
+      [](auto& o) -> auto& { return o.linking.duplicate_max_gap_s; },
+      DoubleRange::AtLeast(0.0)));
   f.push_back(BoolField(
       "linking", "merge_linked_duplicates", [](auto& o) -> auto& {
         return o.linking.merge_linked_duplicates;

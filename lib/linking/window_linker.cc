@@ -214,6 +214,9 @@ bool LinkerOptions::Validate(std::string* why) const {
       duplicate_distance_m > max_link_distance_m) {
     return fail("duplicate_distance_m must be finite and in [0, max_link_distance_m]");
   }
+  if (!std::isfinite(duplicate_max_gap_s) || duplicate_max_gap_s < 0.0) {
+    return fail("duplicate_max_gap_s must be finite and >= 0");
+  }
   if (min_hits < 1) return fail("min_hits must be >= 1");
   if (fragment_min_hits < 1) return fail("fragment_min_hits must be >= 1");
   if (strong_birth_cameras < 2) return fail("strong_birth_cameras must be >= 2");
@@ -1151,21 +1154,67 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
   // person seen twice never revives an old id).
   std::vector<int> duplicate_of(num_tracklets, -1);
   std::vector<double> duplicate_distance(num_tracklets, kNaN);
-  if (options_.duplicate_distance_m > 0.0) {
-    for (std::size_t c = 0; c < num_tracklets; ++c) {
-      if (track_of_col[c] >= 0) continue;
-      // The person of a linked tracklet seen a second time: the nearest such tracklet.
-      double nearest = options_.duplicate_distance_m;
+  // The person of linked tracklet o goes on in tracklet c of the same window (or came from
+  // it): c begins at most duplicate_max_gap_s after o ends, or ends that long before o
+  // begins, within walking reach. The distance of the facing footprints, else nullopt.
+  const auto continues_in_window = [&](std::size_t o, std::size_t c) -> std::optional<double> {
+    if (!spans[o] || !spans[c]) return std::nullopt;
+    const bool after = spans[c]->first > spans[o]->last;
+    if (!after && !(spans[c]->last < spans[o]->first)) return std::nullopt;
+    const FrameIndex from = after ? spans[o]->last : spans[c]->last;
+    const FrameIndex to = after ? spans[c]->first : spans[o]->first;
+    const double gap_s = Seconds(from, to);
+    if (gap_s > options_.duplicate_max_gap_s) return std::nullopt;
+    const core::Tracklet3D& early = after ? tracklets[o] : tracklets[c];
+    const core::Tracklet3D& late = after ? tracklets[c] : tracklets[o];
+    // Both exist: the spans are made of frames with a footprint.
+    const std::optional<Vec2> a = FrameFootprint(
+        early.points[static_cast<std::size_t>(early.IndexOf(from))], context_.footprint_points);
+    const std::optional<Vec2> b = FrameFootprint(
+        late.points[static_cast<std::size_t>(late.IndexOf(to))], context_.footprint_points);
+    const double apart = (*a - *b).norm();
+    if (apart > kSamePersonApartM + kMaxReidSpeedMps * gap_s) return std::nullopt;
+    return apart;
+  };
+  // No 2D track ties such a piece to the track, and walking reach alone also joins a
+  // newcomer to whoever just left by the same door: only the look of a re-identification
+  // (reid_max_distance) vouches for it, so the rule needs appearance and both descriptors.
+  const auto looks_alike = [&](int r, std::size_t c) {
+    const auto& gallery = tracks_[static_cast<std::size_t>(r)].gallery;
+    const auto& look = tracklets[c].appearance;
+    return !gallery.empty() && !look.empty() &&
+           core::GalleryDistance(gallery, look) <= appearance_.reid_max_distance;
+  };
+  // The duplicate of unmatched tracklet c among the linked tracklets o with use(o): the
+  // nearest coincident one (duplicate_distance_m), else the nearest the person continues in.
+  const auto find_duplicate = [&](std::size_t c, const auto& use) {
+    double nearest = options_.duplicate_distance_m;
+    if (options_.duplicate_distance_m > 0.0) {
       for (std::size_t o = 0; o < num_tracklets; ++o) {
-        if (track_of_col[o] < 0) continue;
+        if (track_of_col[o] < 0 || !use(o)) continue;
         const std::optional<double> d = MedianOverlapDistanceOfChecked(tracklets[o], tracklets[c]);
         if (d && *d <= nearest) {
           nearest = *d;
           duplicate_of[c] = track_of_col[o];
         }
       }
-      duplicate_distance[c] = nearest;
     }
+    if (duplicate_of[c] < 0 && appearance_.enabled && options_.duplicate_max_gap_s > 0.0) {
+      double nearest_gap = std::numeric_limits<double>::infinity();
+      for (std::size_t o = 0; o < num_tracklets; ++o) {
+        if (track_of_col[o] < 0 || !use(o) || !looks_alike(track_of_col[o], c)) continue;
+        const std::optional<double> d = continues_in_window(o, c);
+        if (d && *d < nearest_gap) {
+          nearest_gap = *d;
+          duplicate_of[c] = track_of_col[o];
+        }
+      }
+      if (duplicate_of[c] >= 0) nearest = nearest_gap;
+    }
+    duplicate_distance[c] = duplicate_of[c] >= 0 ? nearest : kNaN;
+  };
+  for (std::size_t c = 0; c < num_tracklets; ++c) {
+    if (track_of_col[c] < 0) find_duplicate(c, [](std::size_t) { return true; });
   }
   // Stage 5, appearance.
   std::vector<int> revive(num_tracklets, -1);
@@ -1224,6 +1273,14 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
                      &absorbed,
                      &result);
     for (const int d : forget) departed_[static_cast<std::size_t>(d)].gallery.clear();
+    // The same person seen twice beside a tracklet this stage gave an alive track.
+    for (std::size_t c = 0; c < num_tracklets; ++c) {
+      if (track_of_col[c] >= 0 || same_as[c] >= 0 || revive[c] >= 0 || duplicate_of[c] >= 0) {
+        continue;
+      }
+      find_duplicate(c,
+                     [&](std::size_t o) { return result.link_kind[o] == LinkKind::kAppearance; });
+    }
   }
 
   // Track management: update the matched, age the unmatched, then give birth.

@@ -44,6 +44,18 @@ struct LinkerOptions {
   /// window that continues them links to the person's id. 0 disables. Finite, in
   /// [0, max_link_distance_m].
   double duplicate_distance_m = 0.4;
+  /// A tracklet left unmatched that begins at most this long (seconds) after a tracklet of
+  /// the same window linked to an existing track ends, or ends at most this long before it
+  /// begins, with the facing footprints within walking reach (kSamePersonApartM +
+  /// kMaxReidSpeedMps x the gap), is that person too, the window's cluster of them split in
+  /// time (the cameras that saw them changed within the window): a duplicate as above, taken
+  /// only where no tracklet qualifies by duplicate_distance_m, and only with appearance on
+  /// and the track's gallery within core::AppearanceOptions::reid_max_distance of the
+  /// tracklet's descriptor (no 2D track ties the piece to the track, and walking reach alone
+  /// also joins a newcomer to whoever just left by the same door). It also applies to the
+  /// tracklets the appearance stage linked to alive tracks. 0 disables.
+  /// Finite, >= 0. docs/DECISIONS.md "Window linking".
+  double duplicate_max_gap_s = 0.5;
   /// One person linked twice: two tracklets of a window, each linked to its own track, within
   /// duplicate_distance_m of each other (the same median) are that person seen twice, and the
   /// two tracks one person's: the younger track (born later) gives its tracklet up, which then

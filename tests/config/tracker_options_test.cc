@@ -63,6 +63,7 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.linking.max_link_distance_m == b.linking.max_link_distance_m);
   REQUIRE(a.linking.unshared_link_distance_m == b.linking.unshared_link_distance_m);
   REQUIRE(a.linking.duplicate_distance_m == b.linking.duplicate_distance_m);
+  REQUIRE(a.linking.duplicate_max_gap_s == b.linking.duplicate_max_gap_s);
   REQUIRE(a.linking.merge_linked_duplicates == b.linking.merge_linked_duplicates);
   REQUIRE(a.linking.min_hits == b.linking.min_hits);
   REQUIRE(a.linking.strong_birth_cameras == b.linking.strong_birth_cameras);
@@ -160,6 +161,7 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.linking.max_link_distance_m = 0.01 + 3.0 * unit(*rng);
   o.linking.unshared_link_distance_m = o.linking.max_link_distance_m * unit(*rng);
   o.linking.duplicate_distance_m = o.linking.max_link_distance_m * unit(*rng);
+  o.linking.duplicate_max_gap_s = 2.0 * unit(*rng);
   o.linking.merge_linked_duplicates = unit(*rng) < 0.5;
   o.linking.min_hits = small(1, 5);
   o.linking.strong_birth_cameras = small(2, 10);
@@ -238,11 +240,11 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   // docs/FORMATS.md, then update the sizes here (x86-64, g++).
   CHECK(sizeof(tracking2d::SortOptions) == 16);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
-  CHECK(sizeof(linking::LinkerOptions) == 128);
+  CHECK(sizeof(linking::LinkerOptions) == 136);
   CHECK(sizeof(triangulation::RefinementOptions) == 136);
   CHECK(sizeof(core::AppearanceOptions) == 96);
   CHECK(sizeof(association::AssociationOptions) == 56);
-  CHECK(sizeof(TrackerOptions) == 584);
+  CHECK(sizeof(TrackerOptions) == 592);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -444,7 +446,7 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
   // + 12 (appearance)
-  CHECK(written.size() == 85);
+  CHECK(written.size() == 86);
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);
@@ -838,6 +840,14 @@ TEST_CASE("Config ranges agree with Validate at every boundary", "[unit]") {
        "tracker.linking.duplicate_distance_m",
        false,
        [](O& o) { o.linking.duplicate_distance_m = -0.1; }},
+      {"linking: {duplicate_max_gap_s: 0}",
+       "",
+       true,
+       [](O& o) { o.linking.duplicate_max_gap_s = 0.0; }},
+      {"linking: {duplicate_max_gap_s: -0.1}",
+       "tracker.linking.duplicate_max_gap_s",
+       false,
+       [](O& o) { o.linking.duplicate_max_gap_s = -0.1; }},
       {"linking: {strong_birth_cameras: 1}",
        "tracker.linking.strong_birth_cameras",
        false,

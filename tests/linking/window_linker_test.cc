@@ -881,6 +881,71 @@ TEST_CASE("Appearance: departed tracks are bounded in number and in time", "[uni
   CHECK(linker.gallery_bytes() == 0);
 }
 
+TEST_CASE("A person whose cluster splits in time within a window keeps one id", "[unit]") {
+  // Window 1: the track continues in {1, 2} until frame 34; from frame 39 (5 frames = 0.17 s
+  // later) the person is seen by 2D tracks {5, 6} only, 0.3 m on (within 0.5 m + 3 m/s x the
+  // gap) and looking alike: the same person, a duplicate, not a birth.
+  const auto alike = Look(0, 0.1);
+  const auto at = [](FrameIndex first,
+                     FrameIndex last,
+                     double x,
+                     std::vector<TrackId2D> tracks,
+                     const std::vector<float>& look) {
+    return Looking(ConstantTracklet(first, last, Vec3(x, 0.0, 1.0), std::move(tracks)), look);
+  };
+  const core::Tracklet3D head = at(20, 34, 0.0, {1, 2}, Look(0));
+  const auto run = [&](WindowLinker* linker, const core::Tracklet3D& piece) {
+    LinkWindow(linker, 0, {at(0, 29, 0.0, {1, 2}, Look(0))});
+    return LinkWindow(linker, 1, {head, piece});
+  };
+  REQUIRE(LinkerOptions{}.duplicate_max_gap_s == 0.5);  // the default
+  WindowLinker linker({}, {}, AppearanceOn());
+  const LinkResult r = run(&linker, at(39, 49, 0.3, {5, 6}, alike));
+  CHECK(r.link_kind[1] == LinkKind::kDuplicate);
+  CHECK(r.track_of_tracklet[1] == 1);
+  CHECK(r.link_distance_m[1] == Approx(0.3));
+  CHECK(r.born.empty());
+  REQUIRE(FindTrack(linker, 1) != nullptr);
+  CHECK(FindTrack(linker, 1)->members.size() == 4);
+  // Window 2: only {5, 6} continue: the person keeps id 1 (the gap stage, a shared 2D track).
+  const LinkResult r2 = LinkWindow(&linker, 2, {at(40, 69, 0.3, {5, 6}, alike)});
+  CHECK(r2.track_of_tracklet[0] == 1);
+  // The piece may also come first: it ends before the linked tracklet begins.
+  WindowLinker before({}, {}, AppearanceOn());
+  LinkWindow(&before, 0, {at(0, 29, 0.0, {1, 2}, Look(0))});
+  const LinkResult b =
+      LinkWindow(&before, 1, {at(38, 49, 0.0, {1, 2}, Look(0)), at(30, 34, 0.3, {5, 6}, alike)});
+  CHECK(b.link_kind[1] == LinkKind::kDuplicate);
+  CHECK(b.track_of_tracklet[1] == 1);
+  // Born: a piece 0.6 s after the end (beyond 0.5 s), one out of walking reach (1.5 m in
+  // 0.17 s), one that overlaps the linked tracklet farther than duplicate_distance_m.
+  WindowLinker late({}, {}, AppearanceOn());
+  CHECK(run(&late, at(53, 60, 0.3, {5, 6}, alike)).born.size() == 1);
+  WindowLinker far({}, {}, AppearanceOn());
+  CHECK(run(&far, at(39, 49, 1.5, {5, 6}, alike)).born.size() == 1);
+  WindowLinker beside({}, {}, AppearanceOn());
+  CHECK(run(&beside, at(30, 49, 0.6, {5, 6}, alike)).born.size() == 1);
+  // Off.
+  LinkerOptions off;
+  off.duplicate_max_gap_s = 0.0;
+  WindowLinker plain(off, {}, AppearanceOn());
+  CHECK(run(&plain, at(39, 49, 0.3, {5, 6}, alike)).born.size() == 1);
+  // Only the look can vouch for a piece no 2D track ties to the track: appearance off, or a
+  // piece without a descriptor, is born.
+  WindowLinker blind;
+  CHECK(run(&blind, at(39, 49, 0.3, {5, 6}, alike)).born.size() == 1);
+  WindowLinker faceless({}, {}, AppearanceOn());
+  CHECK(run(&faceless, ConstantTracklet(39, 49, Vec3(0.3, 0.0, 1.0), {5, 6})).born.size() == 1);
+  // A piece that looks like somebody else is born.
+  WindowLinker stranger({}, {}, AppearanceOn());
+  CHECK(run(&stranger, at(39, 49, 0.3, {5, 6}, Look(3))).born.size() == 1);
+  // Cosine distance 1 - cos(0.8) = 0.30: no veto (link_max_distance 0.4), but not the look of
+  // a re-identification (reid_max_distance 0.2) either.
+  REQUIRE(core::CosineDistance(Look(0), Look(0, 0.8)) == Approx(0.3033).epsilon(1e-3));
+  WindowLinker unsure({}, {}, AppearanceOn());
+  CHECK(run(&unsure, at(39, 49, 0.3, {5, 6}, Look(0, 0.8))).born.size() == 1);
+}
+
 // Window 1 gives a second person 0.45 m from track 1 (born: beyond the duplicate gate); in
 // window 2 that track's tracklet comes within 0.3 m of track 1's: one person linked twice.
 TEST_CASE("One person linked twice: the younger track ends, its tracklet a duplicate", "[unit]") {

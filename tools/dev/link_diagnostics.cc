@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "config/tracker_options.h"
+#include "core/appearance.h"
 #include "sim/cameras.h"
 #include "sim/crowd.h"
 #include "sim/render.h"
@@ -184,6 +185,7 @@ struct TrackInfo {
   std::vector<core::TrackletMember> members;
   core::Tracklet3D last;
   FrameIndex last_frame = 0;
+  std::vector<std::vector<float>> gallery;  // the last 16 tracklet descriptors
 };
 
 }  // namespace
@@ -216,9 +218,10 @@ int main(int argc, char** argv) {
   std::ofstream decisions;
   if (!args.decisions_file.empty()) {
     decisions.open(args.decisions_file);
-    decisions << "window\tbegin\tperson\tlabel\tkind\ttrack\ttrack_label\tverdict\tdistance\t"
-                 "shared\tmembers\ttrack_members\tmotion_d2\tgap_frames\tx\ty\tz\tgt_"
-                 "distance\tframes\tcameras\tz0\tz1\tz2\tmember_list\n";
+    decisions
+        << "window\tbegin\tperson\tlabel\tkind\ttrack\ttrack_label\tverdict\tdistance\t"
+           "shared\tmembers\ttrack_members\tmotion_d2\tgap_frames\tx\ty\tz\tgt_"
+           "distance\tframes\tcameras\tz0\tz1\tz2\tapp_gallery\tapp_same_label\tmember_list\n";
   }
 
   std::map<FrameIndex, sim::FrameTruth> truth;
@@ -280,6 +283,7 @@ int main(int argc, char** argv) {
       int track_label = -1;
       std::int64_t gap = 0;
       double motion_d2 = std::nan("");
+      double overlap_d = std::nan("");  // a fragment's Eq. 8 distance to its person's track
       if (kind == linking::LinkKind::kBirth) {
         kind_name = "birth";
         if (label < 0) {
@@ -302,6 +306,9 @@ int main(int argc, char** argv) {
             gap = person.frames.front() - last_seen_of_label[label];
           } else {
             verdict = "fragment_alive";
+            if (const auto ov = linking::MeanOverlapDistance(old->last_tracklet, person)) {
+              overlap_d = *ov;
+            }
             shared = linking::SharedMembers(old->members, person);
             track_members = static_cast<int>(old->members.size());
             gap = person.frames.front() - old->last_seen_frame;
@@ -348,8 +355,9 @@ int main(int argc, char** argv) {
       if (decisions.is_open()) {
         decisions << w.window_id << '\t' << w.begin << '\t' << i << '\t' << label << '\t'
                   << kind_name << '\t' << id << '\t' << track_label << '\t' << verdict << '\t'
-                  << link.link_distance_m[i] << '\t' << shared << '\t' << person.members.size()
-                  << '\t' << track_members << '\t'
+                  << (kind == linking::LinkKind::kBirth ? overlap_d : link.link_distance_m[i])
+                  << '\t' << shared << '\t' << person.members.size() << '\t' << track_members
+                  << '\t'
                   << (kind == linking::LinkKind::kGap || kind == linking::LinkKind::kReidentified
                           ? link.link_distance_m[i]
                           : motion_d2)
@@ -368,6 +376,24 @@ int main(int argc, char** argv) {
           std::sort(z.begin(), z.end());
           decisions << '\t' << (z.empty() ? std::nan("") : z[z.size() / 2]);
         }
+        // Appearance distance to the track's previous tracklet (NaN without descriptors).
+        const auto prev = tracks.find(id);
+        const bool has_prev = kind != linking::LinkKind::kBirth && prev != tracks.end() &&
+                              !prev->second.gallery.empty() && !person.appearance.empty();
+        decisions << '\t'
+                  << (has_prev ? core::GalleryDistance(prev->second.gallery, person.appearance)
+                               : std::nan(""));
+        // The nearest gallery of another track whose last label is this person's.
+        double right = std::nan("");
+        for (const auto& [tid, ti] : tracks) {
+          if (tid == id || ti.label != label || label < 0 || ti.gallery.empty() ||
+              person.appearance.empty()) {
+            continue;
+          }
+          const double d = core::GalleryDistance(ti.gallery, person.appearance);
+          if (!(d >= right)) right = d;
+        }
+        decisions << '\t' << right;
         decisions << '\t';
         for (int ti : person.source_tracklets) {
           const core::Tracklet2D& t = w.tracklets[static_cast<std::size_t>(ti)];
@@ -385,6 +411,10 @@ int main(int argc, char** argv) {
       info.members = person.members;
       info.last = person;
       info.last_frame = person.frames.back();
+      if (!person.appearance.empty()) {
+        if (info.gallery.size() >= 16) info.gallery.erase(info.gallery.begin());
+        info.gallery.push_back(person.appearance);
+      }
     }
     (void)0;
   };
