@@ -59,6 +59,31 @@ double TailScale(Random* tail, int dof) {
   return std::sqrt(static_cast<double>(dof) / std::max(chi2, 1e-12));
 }
 
+// Step 2 for a box-only detection (a person detector's box): each of the four edges moves by
+// the keypoint noise scaled to the box, pixel_noise_px * height / kReferenceHeightPx (the
+// corruption levels were set for people kReferenceHeightPx tall, Campus's median, so a level
+// means the same relative error at any resolution), with the same tails; the box is clipped to
+// the image. Draws exactly 4 normals from `noise` and 4 * noise_tail_dof from `tail`. Returns
+// false when less than 2 px of width or height is left (the person is lost: a miss).
+bool PerturbBox(core::Detection2D* d,
+                Random* noise,
+                Random* tail,
+                int width,
+                int height,
+                const CorruptionOptions& options) {
+  const double sigma = options.pixel_noise_px * d->box.height() / kReferenceHeightPx;
+  double* const edges[4] = {&d->box.x_min, &d->box.y_min, &d->box.x_max, &d->box.y_max};
+  for (double* edge : edges) {
+    const double z = noise->Normal();
+    *edge += sigma * TailScale(tail, options.noise_tail_dof) * z;
+  }
+  d->box.x_min = std::clamp(d->box.x_min, 0.0, static_cast<double>(width));
+  d->box.x_max = std::clamp(d->box.x_max, 0.0, static_cast<double>(width));
+  d->box.y_min = std::clamp(d->box.y_min, 0.0, static_cast<double>(height));
+  d->box.y_max = std::clamp(d->box.y_max, 0.0, static_cast<double>(height));
+  return d->box.width() >= 2.0 && d->box.height() >= 2.0;
+}
+
 // Steps 2-3 of the model on one detection. Draws exactly 2 normals from `noise`, noise_tail_dof
 // normals from `tail` and one uniform from `dropout` per keypoint, whatever the keypoint's
 // state. Returns false when the detection is lost (a pose left with fewer than 2 detected
@@ -81,7 +106,7 @@ bool PerturbPose(core::Detection2D* d,
       kp.confidence = 0.0;
     }
   }
-  if (d->keypoints.empty()) return true;  // box-only detection: nothing to perturb
+  if (d->keypoints.empty()) return PerturbBox(d, noise, tail, width, height, options);
   const std::optional<core::BoxPx> box = BoxFromKeypoints(d->keypoints);
   if (!box.has_value()) return false;
   d->box = *box;

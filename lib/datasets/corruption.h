@@ -14,6 +14,10 @@
 ///     of freedom and scale pixel_noise_px (the Gaussian offset times sqrt(n / chi2_n), one
 ///     chi-square draw per keypoint: heavy tails, a few keypoints far off); a keypoint that
 ///     leaves the image [0, W] x [0, H] gets confidence 0;
+///     box noise (box-only detections, a person detector's output): each of the four box edges
+///     moves by the same noise with the scale pixel_noise_px * box height / kReferenceHeightPx
+///     (the same relative error at any resolution), the box is clipped to the image, and a box
+///     left narrower or lower than 2 px is dropped (counted as a miss);
 ///  3. joint dropout: every detected keypoint gets confidence 0 with probability
 ///     `joint_dropout`;
 ///     a person left with fewer than 2 detected keypoints is dropped (counted as a miss);
@@ -45,6 +49,10 @@
 #include "core/types.h"
 
 namespace mvtrack::datasets {
+
+/// The person height (pixels) at which pixel_noise_px is meant: Campus's median (360x288). Box
+/// noise scales pixel_noise_px by box height / kReferenceHeightPx.
+inline constexpr double kReferenceHeightPx = 95.0;
 
 /// Parameters of the corruption model. The defaults model a modern top-down 2D pose estimator
 /// at Campus's resolution (360x288, people 65-167 px tall, median 95 px): keypoint noise
@@ -129,8 +137,8 @@ struct CorruptedFrame {
   std::vector<std::int64_t> source_ids;
 };
 
-/// Applies the model to one camera-frame of clean pose detections (keypoints in any layout;
-/// box-only detections have no keypoints and are only subject to misses). `clean_ids` is
+/// Applies the model to one camera-frame of clean detections: poses (keypoints in any layout)
+/// or box-only detections (box noise instead of keypoint noise and dropout). `clean_ids` is
 /// parallel to clean.detections. `image_width_px`, `image_height_px` > 0 are the image size.
 /// With options.enabled false, returns the clean frame and ids unchanged. `options` must be
 /// valid (checked).

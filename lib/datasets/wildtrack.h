@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "datasets/corruption.h"
 #include "datasets/dataset.h"
 
 namespace mvtrack::datasets {
@@ -26,6 +27,49 @@ namespace mvtrack::datasets {
 ///    ids are per-frame position indices, not person ids), when mvdet/gt.txt exists; else empty.
 /// @throws DatasetError on a missing or malformed file.
 Dataset LoadWildtrack(const std::filesystem::path& data_root);
+
+/// Where the detections of LoadWildtrackAnnotated come from.
+struct WildtrackAnnotatedOptions {
+  /// Annotated frames first..last (annotated-frame indices 0..399, image file = 5 x index).
+  FrameIndex first = 360;
+  FrameIndex last = 399;
+  /// The detector model applied to the annotated boxes (box-only detections: box noise, misses,
+  /// false positives; corruption.h). Disabled: the boxes as annotated.
+  CorruptionOptions corruption = CorruptionOptions::Clean();
+
+  /// 0 <= first <= last <= 399 and valid corruption. On failure writes the reason to `why`.
+  bool Validate(std::string* why) const;
+};
+
+/// The corruption defaults for WILDTRACK's annotated boxes: the Campus defaults (box noise
+/// scales with the box, corruption.h), the blackout placed in the converted frames.
+CorruptionOptions WildtrackCorruptionDefaults();
+
+/// Loads WILDTRACK with the annotated per-view boxes of `<data_root>`/wildtrack/opentraj (the
+/// original annotations with person ids) as the detections:
+///  - cameras as LoadWildtrack;
+///  - frames: annotated frames options.first..last (2 fps);
+///  - detections: each person's box in each view where it is annotated (not -1), clipped to the
+///    image (boxes left narrower or lower than 2 px dropped), box-only, score 1, in file order,
+///    then options.corruption (blackout placed inside the frames); source ids = person ids;
+///  - ground truth: WildtrackGroundTruthWithIds of the same frames.
+/// @throws DatasetError on a missing or malformed file; std::invalid_argument on invalid options.
+Dataset LoadWildtrackAnnotated(const std::filesystem::path& data_root,
+                               const WildtrackAnnotatedOptions& options);
+
+/// Ground truth with person ids of annotated frames `first`..`last` from
+/// `<data_root>`/wildtrack/opentraj/annotations_positions (one JSON file per annotated frame,
+/// image index 5 k): one EvalFrame per frame (also frames without people), object id =
+/// personID, position from positionID on the 480 x 1440 grid (x = -3 + 0.025 (id mod 480),
+/// y = -9 + 0.025 (id div 480), z = 0), objects in file order.
+/// @throws DatasetError on a missing or malformed file (a position outside the grid, a person
+/// twice in a frame) or a range outside 0..399.
+eval::EvalSequence WildtrackGroundTruthWithIds(const std::filesystem::path& data_root,
+                                               FrameIndex first,
+                                               FrameIndex last);
+
+/// Whether `<data_root>`/wildtrack/opentraj/annotations_positions exists.
+bool HasWildtrackAnnotations(const std::filesystem::path& data_root);
 
 /// The floor area WILDTRACK annotates (its 480 x 1440 grid of 2.5 cm cells from (-3, -9) m):
 /// x in [-3, 9) m, y in [-9, 27) m. Positions outside are never annotated.

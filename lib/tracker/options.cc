@@ -58,6 +58,9 @@ bool TrackerOptions::Validate(std::string* why) const {
 
 namespace {
 
+// A person's height (m): SORT's motion buffer is in box heights.
+constexpr double kPersonHeightM = 1.7;
+
 // The factor f of AtFrameRate (>= 1: nothing scales).
 double RateFactor(const TrackerOptions& options, double seconds_per_frame) {
   MVTRACK_CHECK(std::isfinite(seconds_per_frame) && seconds_per_frame > 0.0);
@@ -71,11 +74,17 @@ int Scaled(int n, int minimum, double f) {
   return std::max(minimum, static_cast<int>(std::ceil(static_cast<double>(n) * f - 1e-9)));
 }
 
-tracking2d::SortOptions ScaledSort(const tracking2d::SortOptions& sort, double f) {
+// SORT's gate at a stream slower than reference_fps (f < 1, frames seconds_per_frame apart):
+// the boxes are buffered by the distance nobody exceeds on foot (linking::kMaxReidSpeedMps, the
+// linker's own bound) in the time the frame period exceeds the reference one, in person
+// heights (SortOptions::motion_buffer); the IoU threshold stays. docs/DECISIONS.md "Time".
+tracking2d::SortOptions ScaledSort(const tracking2d::SortOptions& sort,
+                                   double f,
+                                   double seconds_per_frame) {
   tracking2d::SortOptions o = sort;
   if (sort.max_age > 0) o.max_age = Scaled(sort.max_age, 1, f);
   o.min_hits = Scaled(sort.min_hits, 1, f);
-  o.iou_threshold = sort.iou_threshold * f;
+  o.motion_buffer = linking::kMaxReidSpeedMps * seconds_per_frame * (1.0 - f) / kPersonHeightM;
   return o;
 }
 
@@ -88,7 +97,7 @@ TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_fra
   o.window_size = Scaled(options.window_size, 2, f);
   o.window_step = std::min(o.window_size, Scaled(options.window_step, 1, f));
   o.min_tracklet_length = Scaled(options.min_tracklet_length, 1, f);
-  o.sort = ScaledSort(options.sort, f);
+  o.sort = ScaledSort(options.sort, f, seconds_per_frame);
   if (options.triangulation.phi > 0) o.triangulation.phi = Scaled(options.triangulation.phi, 1, f);
   o.refinement.box_min_duplicate_frames = Scaled(options.refinement.box_min_duplicate_frames, 1, f);
   if (options.refinement.smooth_half_window > 0) {
@@ -100,7 +109,7 @@ TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_fra
 tracking2d::SortOptions SortOptionsAtFrameRate(const TrackerOptions& options,
                                                double seconds_per_frame) {
   const double f = RateFactor(options, seconds_per_frame);
-  return f < 1.0 ? ScaledSort(options.sort, f) : options.sort;
+  return f < 1.0 ? ScaledSort(options.sort, f, seconds_per_frame) : options.sort;
 }
 
 int NumPoints(const TrackerOptions& options) {

@@ -51,8 +51,9 @@ struct TrackerOptions {
   /// at this rate or faster, and sort.iou_threshold holds at this rate. A slower stream (its rate
   /// measured from the capture times) scales them by its rate / reference_fps (counts rounded up;
   /// AtFrameRate), so each keeps its duration (ν = 30 frames = 1.2 s, 3 frames at 2 fps) and SORT
-  /// accepts the longer steps between frames. 25: the paper's defaults were set on 25 fps data
-  /// (Shelf, Campus), and 30 fps streams keep them unchanged. 0: counts are frames at any rate.
+  /// accepts the longer steps between frames (SortOptions::motion_buffer). 25: the paper's defaults
+  /// were set on 25 fps data (Shelf, Campus), and 30 fps streams keep them unchanged. 0: counts are
+  /// frames at any rate.
   double reference_fps = 25.0;
   /// Box mode: which point of the box is associated and triangulated.
   BoxPoint box_point = BoxPoint::kCenterEnds;
@@ -119,7 +120,8 @@ struct TrackerOptions {
 /// `options` unchanged when reference_fps is 0 or the stream runs at reference_fps or faster;
 /// else with f = (1 / seconds_per_frame) / reference_fps < 1: every frame count n of
 /// TrackerOptions::reference_fps becomes max(its minimum, ceil(n f)) (ν >= 2, φ >= 1 unless 0,
-/// all others >= 1; δ <= ν) and sort.iou_threshold becomes iou_threshold * f. The result is
+/// all others >= 1; δ <= ν) and sort.motion_buffer becomes kMaxReidSpeedMps x (seconds_per_frame
+/// - 1 / reference_fps) / 1.7 m (box heights; the IoU threshold stays). The result is
 /// valid when `options` is. docs/DECISIONS.md "Time".
 TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_frame);
 

@@ -24,8 +24,21 @@ bool SortOptions::Validate(std::string* why) const {
   if (!std::isfinite(iou_threshold) || iou_threshold <= 0.0 || iou_threshold > 1.0) {
     return fail("iou_threshold must be in (0, 1]");
   }
+  if (!std::isfinite(motion_buffer) || motion_buffer < 0.0) {
+    return fail("motion_buffer must be finite and >= 0");
+  }
   return true;
 }
+
+namespace {
+
+// `box` grown by `buffer` times its height on every side (SortOptions::motion_buffer).
+core::BoxPx Buffered(const core::BoxPx& box, double buffer) {
+  const double grow = buffer * box.height();
+  return {box.x_min - grow, box.y_min - grow, box.x_max + grow, box.y_max + grow};
+}
+
+}  // namespace
 
 SortTracker::SortTracker(SortOptions options) : options_(options) {
   std::string why;
@@ -139,11 +152,16 @@ std::vector<TrackedDetection> SortTracker::Update(
   const auto num_usable = static_cast<Eigen::Index>(usable.size());
   Eigen::MatrixXd& cost = cost_;
   cost.resize(num_tracks_before, num_usable);
+  const double buffer = options_.motion_buffer;
+  if (buffer > 0.0) {
+    for (core::BoxPx& box : predicted_) box = Buffered(box, buffer);
+  }
   for (Eigen::Index r = 0; r < num_tracks_before; ++r) {
     const core::BoxPx& predicted = predicted_[static_cast<std::size_t>(r)];
     for (Eigen::Index c = 0; c < num_usable; ++c) {
       const auto detection = static_cast<std::size_t>(usable[static_cast<std::size_t>(c)]);
-      cost(r, c) = 1.0 - BoxIouOfUsable(predicted, boxes[detection]);
+      const core::BoxPx& box = boxes[detection];
+      cost(r, c) = 1.0 - BoxIouOfUsable(predicted, buffer > 0.0 ? Buffered(box, buffer) : box);
     }
   }
   double max_cost = 1.0 - options_.iou_threshold;

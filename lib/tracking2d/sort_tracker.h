@@ -36,6 +36,14 @@ struct SortOptions {
   /// Minimum IoU between a track's predicted box and a detection for them to be matched
   /// (SORT's value). In (0, 1].
   double iou_threshold = 0.5;
+  /// How far a person may move beyond the Kalman prediction between two processed frames, in
+  /// box heights (a person is about as tall as their box): both the predicted box and the
+  /// detection are grown by this times their height on every side before their IoU is taken
+  /// (the buffered IoU of C-BIoU, Yang et al. WACV 2023). Not a configuration key: the tracker
+  /// derives it from the stream's frame period (tracker::AtFrameRate): 0 at the reference
+  /// rate, so that slower streams, where a walking person moves a body width between frames
+  /// and IoU alone loses them, keep the same gate in metres. >= 0, finite.
+  double motion_buffer = 0.0;
 
   /// Checks the ranges above; on failure writes a reason to `why` (if not null).
   bool Validate(std::string* why) const;

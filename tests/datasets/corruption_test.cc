@@ -534,5 +534,83 @@ TEST_CASE("Partial false positives sit next to a real person of the same view", 
   CHECK(rate < 0.33);
 }
 
+
+TEST_CASE("Box-only detections get box noise scaled to the box, clipped to the image",
+          "[unit]") {
+  // Two people's boxes, 100 and 200 px tall, in a 1920 x 1080 view; one box cut by the border.
+  core::CameraFrame clean;
+  clean.frame = 7;
+  clean.camera_id = 1;
+  core::Detection2D small;
+  small.box = {100.0, 100.0, 140.0, 200.0};
+  core::Detection2D large;
+  large.box = {500.0, 300.0, 580.0, 500.0};
+  core::Detection2D cut;
+  cut.box = {0.0, 900.0, 60.0, 1080.0};
+  for (core::Detection2D* d : {&small, &large, &cut}) {
+    d->layout = core::KeypointLayoutId::kNone;
+    d->score = 1.0;
+  }
+  clean.detections = {small, large, cut};
+  CorruptionOptions o;
+  o.miss_rate = 0.0;
+  o.false_positives_per_frame = 0.0;
+  o.pixel_noise_px = 2.0;
+  std::vector<double> small_dev, large_dev;
+  for (FrameIndex f = 0; f < 2000; ++f) {
+    clean.frame = f;
+    const CorruptedFrame out = CorruptCameraFrame(clean, {0, 1, 2}, {}, 1920, 1080, o);
+    REQUIRE(out.frame.detections.size() == 3);
+    for (std::size_t i = 0; i < 3; ++i) {
+      const core::BoxPx& b = out.frame.detections[i].box;
+      REQUIRE(out.frame.detections[i].keypoints.empty());
+      CHECK(b.x_min >= 0.0);
+      CHECK(b.y_max <= 1080.0);
+      CHECK(b.width() >= 2.0);
+      const core::BoxPx& c = clean.detections[static_cast<std::size_t>(out.source_ids[i])].box;
+      if (out.source_ids[i] == 0) small_dev.push_back(b.y_max - c.y_max);
+      if (out.source_ids[i] == 1) large_dev.push_back(b.y_max - c.y_max);
+    }
+  }
+  const auto rms = [](const std::vector<double>& v) {
+    double s2 = 0.0;
+    for (const double x : v) s2 += x * x;
+    return std::sqrt(s2 / static_cast<double>(v.size()));
+  };
+  // sigma = 2 px x height / 95 px: 2.1 px for 100 px, 4.2 px for 200 px.
+  CHECK(rms(small_dev) == Approx(2.0 * 100.0 / kReferenceHeightPx).epsilon(0.08));
+  CHECK(rms(large_dev) == Approx(2.0 * 200.0 / kReferenceHeightPx).epsilon(0.08));
+  // Without noise the boxes pass unchanged (only shuffled).
+  o.pixel_noise_px = 0.0;
+  const CorruptedFrame still = CorruptCameraFrame(clean, {0, 1, 2}, {}, 1920, 1080, o);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const core::BoxPx& b = still.frame.detections[i].box;
+    const core::BoxPx& c = clean.detections[static_cast<std::size_t>(still.source_ids[i])].box;
+    CHECK((b.x_min == c.x_min && b.y_min == c.y_min && b.x_max == c.x_max && b.y_max == c.y_max));
+  }
+}
+
+TEST_CASE("Box-only false positives are pool boxes moved inside the image", "[unit]") {
+  core::CameraFrame clean;
+  clean.camera_id = 2;
+  core::Detection2D pool_box;
+  pool_box.box = {10.0, 10.0, 50.0, 130.0};
+  pool_box.layout = core::KeypointLayoutId::kNone;
+  CorruptionOptions o;
+  o.false_positives_per_frame = 2.0;
+  int ghosts = 0;
+  for (FrameIndex f = 0; f < 200; ++f) {
+    clean.frame = f;
+    const CorruptedFrame out = CorruptCameraFrame(clean, {}, {pool_box}, 1920, 1080, o);
+    for (std::size_t i = 0; i < out.frame.detections.size(); ++i) {
+      CHECK(out.source_ids[i] == kFalsePositiveSourceId);
+      const core::BoxPx& b = out.frame.detections[i].box;
+      CHECK((b.x_min >= 0.0 && b.y_min >= 0.0 && b.x_max <= 1920.0 && b.y_max <= 1080.0));
+      ++ghosts;
+    }
+  }
+  CHECK(ghosts == Approx(400).margin(60));
+}
+
 }  // namespace
 }  // namespace mvtrack::datasets

@@ -18,6 +18,7 @@ TEST_CASE("AtFrameRate: unchanged at the reference rate and faster", "[unit]") {
     CHECK(o.min_tracklet_length == 2);
     CHECK(o.sort.max_age == 5);
     CHECK(o.sort.iou_threshold == 0.5);
+    CHECK(o.sort.motion_buffer == 0.0);
     CHECK(o.triangulation.phi == 7);
     CHECK(o.refinement.box_min_duplicate_frames == 3);
     CHECK(o.refinement.smooth_half_window == 5);
@@ -26,13 +27,15 @@ TEST_CASE("AtFrameRate: unchanged at the reference rate and faster", "[unit]") {
   off.reference_fps = 0.0;
   CHECK(AtFrameRate(off, 0.5).window_size == 30);
   CHECK(AtFrameRate(off, 0.5).sort.iou_threshold == 0.5);
+  CHECK(AtFrameRate(off, 0.5).sort.motion_buffer == 0.0);
 }
 
 TEST_CASE("AtFrameRate: a slower stream keeps the durations, counts rounded up", "[unit]") {
   const TrackerOptions base;
   // 2 fps: f = 2 / 25 = 0.08. nu = ceil(2.4) = 3, delta = ceil(1.6) = 2, phi = ceil(0.56) = 1,
   // max_age = ceil(0.4) = 1, min_tracklet_length = ceil(0.16) = 1, duplicates ceil(0.24) = 1,
-  // min_hits stays 1, IoU 0.5 * 0.08 = 0.04.
+  // min_hits stays 1; the IoU threshold stays 0.5 and the boxes are buffered by 3 m/s x
+  // (0.5 - 0.04) s / 1.7 m = 0.8118 box heights.
   const TrackerOptions o = AtFrameRate(base, 0.5);
   CHECK(o.window_size == 3);
   CHECK(o.window_step == 2);
@@ -42,7 +45,8 @@ TEST_CASE("AtFrameRate: a slower stream keeps the durations, counts rounded up",
   CHECK(o.min_tracklet_length == 1);
   CHECK(o.refinement.box_min_duplicate_frames == 1);
   CHECK(o.refinement.smooth_half_window == 1);  // ceil(0.4)
-  CHECK(o.sort.iou_threshold == Approx(0.04));
+  CHECK(o.sort.iou_threshold == 0.5);
+  CHECK(o.sort.motion_buffer == Approx(3.0 * 0.46 / 1.7));
   std::string why;
   CHECK(o.Validate(&why));
   // 12.5 fps: f = 0.5 exactly: 15 / 10 frames, phi ceil(3.5) = 4 (no rounding up past exact).
@@ -52,7 +56,8 @@ TEST_CASE("AtFrameRate: a slower stream keeps the durations, counts rounded up",
   CHECK(h.triangulation.phi == 4);
   CHECK(h.refinement.smooth_half_window == 3);  // ceil(2.5)
   CHECK(SortOptionsAtFrameRate(base, 0.08).max_age == 3);
-  CHECK(SortOptionsAtFrameRate(base, 0.08).iou_threshold == Approx(0.25));
+  CHECK(SortOptionsAtFrameRate(base, 0.08).iou_threshold == 0.5);
+  CHECK(SortOptionsAtFrameRate(base, 0.08).motion_buffer == Approx(3.0 * 0.04 / 1.7));
   // Minimums: nu >= 2, delta <= nu, phi 0 and max_age 0 stay 0.
   TrackerOptions z = base;
   z.triangulation.phi = 0;

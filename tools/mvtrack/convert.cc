@@ -55,7 +55,8 @@ const char kConvertDescription[] =
     "                       the same inputs always give a byte-identical log\n"
     "  calibration.yaml     the cameras (mvtrack.calibration/1)\n"
     "  ground_truth.jsonl   the ground-truth actors as tracks (canonical tracks JSONL), when\n"
-    "                       the dataset has ground truth (Shelf, Campus, Panoptic)\n"
+    "                       the dataset has ground truth (Shelf, Campus, Panoptic,\n"
+    "                       WILDTRACK)\n"
     "  peer.jsonl           the published output of a peer method mapped to shelf14 (Shelf:\n"
     "                       4D Association, Campus: Cross-View Tracking)\n"
     "  ground_points.jsonl  WILDTRACK only: MVDeTr's merged ground points per frame\n"
@@ -265,6 +266,10 @@ struct DatasetJob {
   /// eval command differ, and `gt_area` is the annotated floor area (eval --area).
   bool gt_without_ids = false;
   std::string gt_area;
+  /// Box-only ground truth with person ids (WILDTRACK's annotations): what a track of
+  /// ground_truth.jsonl is, and the eval options its protocol adds (e.g. "--threshold 1.0").
+  std::string gt_track_description;
+  std::string eval_extra;
   /// The tracker mode and layout that match the detections.
   std::string replay_mode;
   std::string replay_layout;
@@ -415,11 +420,16 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
     }
     r << "  " << formats::kConvertGroundTruthFile
       << ": canonical tracks JSONL (transport::TracksJsonLine), " << ds.ground_truth.size()
-      << " lines, one per frame (also frames without people);\n"
-      << "      the ground-truth actors as tracks: id = actor id, position = footprint (hip\n"
-      << "      midpoint dropped onto z = 0), joints in layout "
-      << formats::LayoutName(ds.gt_layout)
-      << " (metres, null = missing).\n      Actors (frames present):";
+      << " lines, one per frame (also frames without people);\n";
+    if (!job.gt_track_description.empty()) {
+      r << "      " << job.gt_track_description << "\n      " << frames_per_actor.size()
+        << " ids; frames present per id:";
+    } else {
+      r << "      the ground-truth actors as tracks: id = actor id, position = footprint (hip\n"
+        << "      midpoint dropped onto z = 0), joints in layout "
+        << formats::LayoutName(ds.gt_layout)
+        << " (metres, null = missing).\n      Actors (frames present):";
+    }
     for (const auto& [id, n] : frames_per_actor) r << " " << id << " (" << n << ")";
     r << ".\n";
   }
@@ -465,6 +475,7 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
       }
     }
     if (ds.gt_layout != core::KeypointLayoutId::kNone) r << " --distance joints";
+    if (!job.eval_extra.empty()) r << " " << job.eval_extra;
     if (ds.gt_layout == core::KeypointLayoutId::kShelf14) {
       r << " --pcp";
       if (!ds.protocol_actor_ids.empty()) {
@@ -703,60 +714,148 @@ int ConvertPanoptic(int argc, char** argv, const std::string& command_line) {
 int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
   Args args;
   AddCommonOptions(&args, true);
-  args.Option("gt-frames",
-              "annotated frames A-B (0-399) whose ground-truth positions go to "
-              "ground_truth.jsonl (default: the 40 detection frames)");
-  if (!args.Parse(argc,
-                  argv,
-                  FormatUsage("wildtrack", "[--data DIR] [--gt-frames A-B] "),
-                  "WILDTRACK (Chavdarova et al., CVPR 2018): MVDeTr's detections of the 40 test\n"
-                  "frames 360-399 (2 fps) drawn as boxes into the 7 views (1920x1080), box-only\n"
-                  "(layout none: track with --mode boxes). ground_truth.jsonl: the annotated\n"
-                  "floor positions of mvdet/gt.txt (MVDet) without person ids (ids are per-frame\n"
-                  "indices): score with `mvtrack eval --points --area -3,9,-9,27` (MODA, MODP,\n"
-                  "precision, recall). ground_points.jsonl: MVDeTr's own ground points (the box\n"
-                  "bottoms mapped through the dataset's homographies and merged across views),\n"
-                  "the tracker's input as points; their ids are meaningless.\n\n" +
-                      std::string(kFormatTrailer))) {
+  args.Option("detections",
+              "'mvdetr': MVDeTr's boxes of the 40 test frames 360-399; 'annotated': the "
+              "annotated per-view boxes of opentraj/ (any --frames), through --corruption",
+              "mvdetr")
+      .Option("frames",
+              "annotated frames A-B (0-399) to convert (--detections annotated; default: the "
+              "test frames 360-399)")
+      .Option("gt-frames",
+              "annotated frames A-B (0-399) whose ground truth goes to ground_truth.jsonl "
+              "(default: the converted frames)");
+  datasets::CorruptionOptions corruption_defaults = datasets::WildtrackCorruptionDefaults();
+  AddCorruptionOptions(&args, corruption_defaults);
+  if (!args.Parse(
+          argc,
+          argv,
+          FormatUsage("wildtrack",
+                      "[--data DIR] [--detections mvdetr|annotated] [--frames A-B] "
+                      "[--gt-frames A-B] [--corruption clean|default|hard] [--seed N] "),
+          "WILDTRACK (Chavdarova et al., CVPR 2018): 7 views (1920x1080) at 2 fps, box-only\n"
+          "detections (layout none: track with --mode boxes).\n"
+          "--detections mvdetr (default): MVDeTr's detections of the 40 test frames 360-399\n"
+          "drawn as boxes into the 7 views, as they are (--corruption does not apply).\n"
+          "--detections annotated: the annotated per-view boxes of opentraj/ (the original\n"
+          "annotations with person ids) of --frames, as they are (--corruption clean) or\n"
+          "through the seeded detector model (default: box noise 2.1 % of the box height per\n"
+          "edge, 5 % misses, 0.1 false positives per view and frame; hard: heavier).\n"
+          "ground_truth.jsonl: with opentraj/ present, the annotated floor positions WITH\n"
+          "person ids (score with `mvtrack eval --threshold 1.0`, the literature's 1 m radius,\n"
+          "or 0.5); without it, the positions of mvdet/gt.txt without ids (score with `mvtrack\n"
+          "eval --points --area -3,9,-9,27`). ground_points.jsonl (mvdetr only): MVDeTr's own\n"
+          "ground points, the tracker's input as points; their ids are meaningless.\n\n" +
+              std::string(kFormatTrailer))) {
     return 0;
   }
   const CommonSettings c = ParseCommon(args, "wildtrack", true, command_line);
+  const std::string source = args.Get("detections");
+  if (source != "mvdetr" && source != "annotated") {
+    throw UsageError("--detections must be 'mvdetr' or 'annotated', not '" + source + "'");
+  }
+  const bool annotated = source == "annotated";
+  const auto one_range = [&](const char* option) {
+    const std::vector<eval::FrameRange> r =
+        ParseFrameRanges(args.Get(option), std::string("--") + option);
+    if (r.size() != 1) throw UsageError(std::string("--") + option + " takes one range A-B");
+    if (r[0].first < 0 || r[0].last > 399) {
+      throw UsageError(std::string("--") + option + " must lie within the annotated frames 0-399");
+    }
+    return r[0];
+  };
+  if (!annotated) {
+    if (args.Has("frames")) {
+      throw UsageError("--frames needs --detections annotated (MVDeTr's boxes cover 360-399)");
+    }
+    for (const char* name : {"corruption",
+                             "clean",
+                             "seed",
+                             "noise-px",
+                             "miss-rate",
+                             "false-positives",
+                             "near-false-positives",
+                             "blackout-seconds",
+                             "dropout",
+                             "noise-tail-dof"}) {
+      if (args.Has(name)) {
+        throw UsageError(std::string("--") + name +
+                         " needs --detections annotated (MVDeTr's boxes are used as they are)");
+      }
+    }
+  }
   DatasetJob job;
   job.source_dir = RequireDatasetDir(c, "wildtrack");
+  const bool with_ids = datasets::HasWildtrackAnnotations(c.data_root);
+  if (annotated && !with_ids) {
+    throw std::runtime_error("--detections annotated: " +
+                             (job.source_dir / "opentraj" / "annotations_positions").string() +
+                             " not found");
+  }
   Progress(c, "loading WILDTRACK from " + job.source_dir.string());
   const Clock::time_point start = Clock::now();
-  job.ds = datasets::LoadWildtrack(c.data_root);
-  if (args.Has("gt-frames")) {
-    const std::vector<eval::FrameRange> r = ParseFrameRanges(args.Get("gt-frames"), "--gt-frames");
-    if (r.size() != 1) throw UsageError("--gt-frames takes one range A-B");
-    if (!datasets::HasWildtrackGroundTruth(c.data_root)) {
-      throw UsageError("--gt-frames: " + (job.source_dir / "mvdet" / "gt.txt").string() +
-                       " is missing");
+  std::string detections_line;
+  if (annotated) {
+    datasets::WildtrackAnnotatedOptions options;
+    if (args.Has("frames")) {
+      const eval::FrameRange r = one_range("frames");
+      options.first = r.first;
+      options.last = r.last;
     }
-    job.ds.ground_truth = datasets::WildtrackGroundTruth(c.data_root, r[0].first, r[0].last);
+    options.corruption = ParseCorruption(args, corruption_defaults);
+    job.ds = datasets::LoadWildtrackAnnotated(c.data_root, options);
+    detections_line =
+        "WILDTRACK: the annotated per-view boxes (opentraj/annotations_positions) "
+        "of 7 cameras C1-C7 (ids 0-6), frames " +
+        std::to_string(options.first) + "-" + std::to_string(options.last) +
+        ", box-only (layout none), score 1; " + datasets::DescribeCorruption(options.corruption) +
+        ".";
+  } else {
+    job.ds = datasets::LoadWildtrack(c.data_root);
+    detections_line =
+        "WILDTRACK: MVDeTr's boxes (rest/MVDeTr_test.json) of 7 cameras C1-C7 (ids 0-6), "
+        "box-only detections (layout none), score 1.";
+    const datasets::WildtrackGroundOptions ground_options;
+    job.ground_points = datasets::WildtrackGroundPoints(c.data_root, ground_options);
+    job.ground_cluster_radius_m = ground_options.cluster_radius_m;
   }
-  const datasets::WildtrackGroundOptions ground_options;
-  job.ground_points = datasets::WildtrackGroundPoints(c.data_root, ground_options);
-  job.ground_cluster_radius_m = ground_options.cluster_radius_m;
-  job.gt_without_ids = true;
-  {
+  const FrameIndex first = job.ds.detections.front().front().frame;
+  const FrameIndex last = job.ds.detections.back().front().frame;
+  eval::FrameRange gt_range{first, last};
+  if (args.Has("gt-frames")) gt_range = one_range("gt-frames");
+  std::string gt_line;
+  if (with_ids) {
+    job.ds.ground_truth =
+        datasets::WildtrackGroundTruthWithIds(c.data_root, gt_range.first, gt_range.last);
+    job.ds.protocol_frames = {gt_range};
+    job.gt_track_description =
+        "the annotated people as tracks: id = WILDTRACK's personID, position = the annotated "
+        "floor position (z = 0).";
+    job.eval_extra = "--threshold 1.0";
+    gt_line =
+        "ground_truth.jsonl: the annotated positions WITH person ids "
+        "(opentraj/annotations_positions), frames " +
+        std::to_string(gt_range.first) + "-" + std::to_string(gt_range.last) +
+        "; score with `mvtrack eval --threshold 1.0` (1 m, the literature's radius) or 0.5.";
+  } else if (datasets::HasWildtrackGroundTruth(c.data_root)) {
+    job.ds.ground_truth =
+        datasets::WildtrackGroundTruth(c.data_root, gt_range.first, gt_range.last);
+    job.gt_without_ids = true;
     std::ostringstream area;
     area << datasets::WildtrackArea::kMinX << "," << datasets::WildtrackArea::kMaxX << ","
          << datasets::WildtrackArea::kMinY << "," << datasets::WildtrackArea::kMaxY;
     job.gt_area = area.str();
+    gt_line = "ground_truth.jsonl: the positions of mvdet/gt.txt, frames " +
+              std::to_string(gt_range.first) + "-" + std::to_string(gt_range.last) +
+              ", no person ids (opentraj/ missing; ids = per-frame indices; use `mvtrack eval "
+              "--points --area -3,9,-9,27`).";
+  } else {
+    job.ds.ground_truth.clear();
+    gt_line = "No ground truth (opentraj/ and mvdet/gt.txt missing).";
   }
+  if (job.ground_points.has_value()) gt_line += " ground_points.jsonl: MVDeTr's ground points.";
   job.load_seconds = SecondsSince(start);
   job.camera_names = NamesFromPattern(job.ds.cameras, "C", 1);
-  job.what = {
-      "WILDTRACK: MVDeTr's boxes (rest/MVDeTr_test.json) of 7 cameras C1-C7 (ids 0-6), box-only",
-      "detections (layout none), score 1.",
-      job.ds.ground_truth.empty()
-          ? "No ground truth (mvdet/gt.txt missing). ground_points.jsonl: MVDeTr's ground points."
-          : "ground_truth.jsonl: the positions of mvdet/gt.txt, frames " +
-                std::to_string(job.ds.ground_truth.front().frame) + "-" +
-                std::to_string(job.ds.ground_truth.back().frame) +
-                ", no person ids (ids = per-frame indices; use `mvtrack eval --points --area "
-                "-3,9,-9,27`). ground_points.jsonl: MVDeTr's ground points."};
+  job.what = {detections_line, gt_line};
   job.replay_mode = "boxes";
   job.replay_layout = "none";
   WriteDatasetJob(c, job);
