@@ -534,9 +534,7 @@ TEST_CASE("Partial false positives sit next to a real person of the same view", 
   CHECK(rate < 0.33);
 }
 
-
-TEST_CASE("Box-only detections get box noise scaled to the box, clipped to the image",
-          "[unit]") {
+TEST_CASE("Box-only detections get box noise scaled to the box, clipped to the image", "[unit]") {
   // Two people's boxes, 100 and 200 px tall, in a 1920 x 1080 view; one box cut by the border.
   core::CameraFrame clean;
   clean.frame = 7;

@@ -38,9 +38,28 @@ case $DATASET in
     eval_args=(--frames 350-470,650-750 --distance joints --pcp --actors 0,1,2) ;;
   wildtrack)
     # Defaults, no tuned file: the 2 fps stream scales the frame counts (reference_fps).
+    # Detection metrics (footprints against the positions, 0.5 m).
     replay_args=(--mode boxes --layout none)
     eval_args=(--points --area -3,9,-9,27) ;;
-  *) echo "unknown dataset '$DATASET' (shelf, campus, campus_hard, wildtrack)" >&2; exit 2 ;;
+  wildtrack_tracking)
+    # Tracking with person ids (opentraj/): MVDeTr's boxes, test frames, 1 m.
+    source=wildtrack
+    replay_args=(--mode boxes --layout none)
+    eval_args=(--threshold 1.0) ;;
+  wildtrack_annotated)
+    # The annotated per-view boxes as they are, test frames 360-399, 1 m.
+    source=wildtrack
+    convert_args=(--detections annotated --corruption clean)
+    replay_args=(--mode boxes --layout none)
+    eval_args=(--threshold 1.0) ;;
+  wildtrack_annotated_all_default)
+    # The annotated boxes of all 400 frames through the default detector model, 1 m.
+    source=wildtrack
+    convert_args=(--detections annotated --frames 0-399 --corruption default)
+    replay_args=(--mode boxes --layout none)
+    eval_args=(--threshold 1.0) ;;
+  *) echo "unknown dataset '$DATASET' (shelf, campus, campus_hard, wildtrack," \
+       "wildtrack_tracking, wildtrack_annotated, wildtrack_annotated_all_default)" >&2; exit 2 ;;
 esac
 if [ ! -d "$DATA_ROOT/$source" ]; then
   message="dataset '$source' not found under $DATA_ROOT (set MVTRACK_DATA to the data root)"
