@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <map>
@@ -70,7 +71,7 @@ ImportedCalibration FromDataset(const std::vector<geometry::CameraModel>& camera
 
 // Runs a lib/datasets parser, turning its DatasetError into a ConfigError.
 template <typename F>
-std::vector<geometry::CameraModel> RunDatasetParser(F&& parse) {
+auto RunDatasetParser(F&& parse) -> decltype(parse()) {
   try {
     return parse();
   } catch (const datasets::DatasetError& e) {
@@ -618,6 +619,93 @@ ImportedCalibration ImportWildtrack(const std::string& path, const ImageSize& im
   out.notes.push_back("image size " + std::to_string(size.width_px) + "x" +
                       std::to_string(size.height_px) +
                       (image_size.given() ? " as given" : " (WILDTRACK's; not in the files)"));
+  return out;
+}
+
+ImportedHomographies ImportFloorHomographies(const std::vector<std::string>& paths,
+                                             const HomographyImportOptions& options) {
+  if (paths.empty()) Fail("", "", "no homography files (one per camera)");
+  if (!options.image_size.given()) {
+    Fail(paths.front(), "", "homography files carry no image size: give it (--image-size WxH)");
+  }
+  geometry::FloorHomographyOptions camera_options;
+  camera_options.floor_unit_m = options.floor_unit_m.value_or(1.0);
+  camera_options.focal_px = options.focal_px;
+  camera_options.principal_point_px = options.principal_point_px;
+  std::string why;
+  if (!camera_options.Validate(&why)) Fail(paths.front(), "", why);
+  ImportedHomographies out;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    const CameraId id = static_cast<CameraId>(i);
+    const Mat3 h = RunDatasetParser([&] { return datasets::LoadFloorHomographyFile(paths[i]); });
+    geometry::FloorHomographyCamera r = geometry::CameraFromFloorHomography(
+        h, id, options.image_size.width_px, options.image_size.height_px, camera_options);
+    if (!r.ok) Fail(paths[i], "camera " + std::to_string(id), r.reason);
+    out.checks.push_back(std::move(r));
+  }
+  const geometry::FloorHomographyCamera& first = out.checks.front();
+  for (std::size_t i = 1; i < out.checks.size(); ++i) {
+    if (out.checks[i].mirrored_y != first.mirrored_y) {
+      Fail(paths[i],
+           "camera " + std::to_string(i),
+           std::string("needs the floor's y axis ") + (out.checks[i].mirrored_y ? "" : "not ") +
+               "mirrored to make the world right-handed with z up, camera 0 (" + paths.front() +
+               ") the opposite: the homographies do not share one floor frame (is one of them "
+               "floor -> image?)");
+    }
+  }
+  std::string focals;
+  for (const geometry::FloorHomographyCamera& c : out.checks) {
+    out.calibration.document.cameras.push_back(c.camera);
+    char buffer[96];
+    if (c.focal_estimated) {
+      std::snprintf(buffer,
+                    sizeof(buffer),
+                    "%s%d: %.1f px (closed form %.1f)",
+                    focals.empty() ? "" : ", ",
+                    c.camera.id,
+                    c.focal_px,
+                    c.initial_focal_px);
+    } else {
+      std::snprintf(buffer,
+                    sizeof(buffer),
+                    "%s%d: %.1f px",
+                    focals.empty() ? "" : ", ",
+                    c.camera.id,
+                    c.focal_px);
+    }
+    focals += buffer;
+  }
+  std::vector<std::string>& notes = out.calibration.notes;
+  notes.push_back(
+      "homography: H maps image (u, v, 1) to floor (x, y, 1); each camera recovered from "
+      "H^-1 = s K [r1 r2 t] assuming square pixels, zero skew, no distortion, the principal "
+      "point " +
+      std::string(options.principal_point_px ? "as given" : "at the image centre") +
+      "; R = the nearest rotation of [r1 r2 r1 x r2]; the sign of s puts the floor in front of "
+      "the camera; world z up, the floor at z = 0; then R, t" +
+      std::string(options.focal_px ? "" : " and f") +
+      " refined to minimise the floor reprojection error over an 11 x 11 pixel grid");
+  notes.push_back(std::string("focal length ") +
+                  (options.focal_px ? "as given"
+                                    : "from each homography's orthogonality constraints (least "
+                                      "squares), refined") +
+                  ": " + focals);
+  if (options.floor_unit_m) {
+    char buffer[96];
+    std::snprintf(buffer, sizeof(buffer), "floor unit %.6g m as given", *options.floor_unit_m);
+    notes.push_back(buffer);
+  } else {
+    notes.push_back(
+        "floor unit taken as 1 m (no --floor-unit given): if the homographies' floor is in "
+        "another unit (cm, mm, grid cells), every distance is off by that factor");
+  }
+  notes.push_back(first.mirrored_y
+                      ? "the floor's (x, y) with z up is a left-handed frame: y mirrored (world "
+                        "y = -floor y) so that the world is right-handed with z up"
+                      : "the floor's (x, y) with z up is right-handed: world x, y = floor x, y");
+  notes.push_back("image size " + std::to_string(options.image_size.width_px) + "x" +
+                  std::to_string(options.image_size.height_px) + " as given (not in the files)");
   return out;
 }
 

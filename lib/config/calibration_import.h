@@ -13,16 +13,21 @@
 ///  - VoxelPose's calibration_<dataset>.json (`R`, `T` = camera centre in mm, `fx fy cx cy`, `k`,
 ///    `p`);
 ///  - WILDTRACK's calibration XML files (`intrinsic_zero/intr_<name>.xml` with `camera_matrix`
-///    and `distortion_coefficients`, `extrinsic/extr_<name>.xml` with `rvec`, `tvec` in cm).
+///    and `distortion_coefficients`, `extrinsic/extr_<name>.xml` with `rvec`, `tvec` in cm);
+///  - image -> floor homographies, one 3x3 text file per camera (EPFL's Homography.txt), made
+///    into full cameras under stated assumptions (geometry/floor_homography.h).
 ///
 /// Every importer validates every camera (geometry::CameraModel::Validate) and throws ConfigError
 /// naming the file, the entry and the reason. Stateless functions; thread-compatible.
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "config/calibration.h"
 #include "config/config_error.h"
+#include "core/types.h"
+#include "geometry/floor_homography.h"
 
 namespace mvtrack::config {
 
@@ -92,5 +97,39 @@ ImportedCalibration ImportWildtrack(const std::string& path, const ImageSize& im
 /// has no image size: `image_size` when given, else Campus's 360x288.
 /// @throws ConfigError on any problem.
 ImportedCalibration ImportCampus(const std::string& path, const ImageSize& image_size = {});
+
+/// Options of ImportFloorHomographies.
+struct HomographyImportOptions {
+  /// The image size of every camera (required: the files carry none).
+  ImageSize image_size;
+  /// Metres per floor unit; nullopt: 1 (the floor unit taken as the metre, said in a note).
+  std::optional<double> floor_unit_m;
+  /// The focal length of every camera, pixels; nullopt: estimated per camera from its
+  /// homography.
+  std::optional<double> focal_px;
+  /// The principal point of every camera, pixels; nullopt: the image centre.
+  std::optional<Vec2> principal_point_px;
+};
+
+/// The result of ImportFloorHomographies: the calibration, and per camera (the order of the
+/// files) the recovered camera with the checks to show a user.
+struct ImportedHomographies {
+  ImportedCalibration calibration;
+  std::vector<geometry::FloorHomographyCamera> checks;
+};
+
+/// Image -> floor homographies, one file per camera (3 rows of 3 numbers, H (u, v, 1) = (x, y,
+/// 1) up to scale: datasets::LoadFloorHomographyFile), made into cameras by
+/// geometry::CameraFromFloorHomography (square pixels, zero skew, no distortion, principal point
+/// at the image centre unless given, focal length from each homography unless given; the sign
+/// that puts the floor in front of the camera, world z up, the floor's y mirrored when (x, y)
+/// with z up is left-handed). Camera ids 0..n-1 in the order of `paths`, no names. Notes state
+/// the assumptions, the unit, the mirroring and each camera's focal length.
+/// @throws ConfigError naming the file and the camera on a missing or malformed file, no image
+///   size, invalid options, a homography that gives no camera (non-finite, singular, no
+///   positive focal length, ...), or cameras that disagree on the mirroring (then the files do
+///   not share one floor frame).
+ImportedHomographies ImportFloorHomographies(const std::vector<std::string>& paths,
+                                             const HomographyImportOptions& options);
 
 }  // namespace mvtrack::config

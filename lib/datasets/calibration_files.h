@@ -3,13 +3,15 @@
 /// The calibration parsers of the dataset loaders, on their own: each reads one dataset's
 /// calibration file into cameras in our world frame (metres, z up, cam_from_world), exactly as
 /// the loaders do (LoadShelf, LoadCampus, LoadPanoptic, LoadWildtrack call the same code). Used by
-/// `mvtrack calib import` (lib/config/calibration_import.h) so the parsing exists once.
+/// `mvtrack calib import` (lib/config/calibration_import.h) so the parsing exists once. The
+/// floor homography file (EPFL) is read by LoadEpflTerrace and `calib import homography`.
 /// Formats: the `SOURCE.md` of each dataset folder. Stateless functions.
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "core/types.h"
 #include "datasets/dataset.h"
 #include "geometry/camera_model.h"
 
@@ -43,5 +45,11 @@ std::vector<geometry::CameraModel> LoadPanopticCalibrationFile(
 /// Rodrigues(rvec) to 1e-6; world in cm -> metres); ids 0..6 in index order.
 /// @throws DatasetError on a missing or malformed file or an invalid camera.
 std::vector<geometry::CameraModel> LoadWildtrackCalibrationFile(const std::filesystem::path& file);
+
+/// An image -> floor homography as EPFL's Homography.txt holds it: 3 rows of 3 numbers
+/// separated by blanks, tabs or commas (blank lines and lines starting with '#' ignored); H maps
+/// an image pixel (u, v, 1) to a floor point (x, y, 1) (geometry/floor_homography.h).
+/// @throws DatasetError on a missing file, a row that is not 3 finite numbers, or not 3 rows.
+Mat3 LoadFloorHomographyFile(const std::filesystem::path& file);
 
 }  // namespace mvtrack::datasets

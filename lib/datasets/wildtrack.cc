@@ -118,6 +118,32 @@ std::vector<geometry::CameraModel> LoadWildtrackCalibration(const std::filesyste
 
 constexpr FrameIndex kLastAnnotatedFrame = 399;
 
+// One frame of WildtrackGroundPoints: the bottom centres of (camera index, box) mapped to the
+// ground and merged across views.
+WildtrackGroundFrame GroundFrame(FrameIndex frame,
+                                 const std::vector<std::pair<std::size_t, core::BoxPx>>& boxes,
+                                 const std::vector<Mat3>& ground_from_image,
+                                 double cluster_radius_m,
+                                 const std::filesystem::path& source) {
+  std::vector<Vec2> points;
+  std::vector<int> cameras;
+  for (const auto& [camera, box] : boxes) {
+    const Vec2 foot = box.bottom_center();
+    const Vec3 g = ground_from_image[camera] * Vec3(foot.x(), foot.y(), 1.0);
+    if (!(std::abs(g.z()) > 0.0)) {
+      throw DatasetError(
+          source.string(),
+          "frame " + std::to_string(frame) + ": a box's bottom centre maps to infinity");
+    }
+    points.push_back(kCmToM * g.head<2>() / g.z());
+    cameras.push_back(static_cast<int>(camera));
+  }
+  WildtrackGroundFrame gf;
+  gf.frame = frame;
+  gf.points = MergeGroundPoints(points, cameras, cluster_radius_m);
+  return gf;
+}
+
 std::filesystem::path AnnotationsDir(const std::filesystem::path& data_root) {
   return data_root / "wildtrack" / "opentraj" / "annotations_positions";
 }
@@ -183,7 +209,7 @@ std::vector<AnnotatedPerson> LoadAnnotatedFrame(const std::filesystem::path& dat
 
 }  // namespace
 
-Dataset LoadWildtrack(const std::filesystem::path& data_root) {
+Dataset LoadWildtrack(const std::filesystem::path& data_root, const CorruptionOptions& corruption) {
   const std::filesystem::path dir = data_root / "wildtrack";
   Dataset ds;
   ds.name = "wildtrack";
@@ -207,6 +233,13 @@ Dataset LoadWildtrack(const std::filesystem::path& data_root) {
     }
     ++f;
   }
+  CorruptionOptions placed = corruption;
+  std::string why;
+  if (!placed.Validate(&why)) throw std::invalid_argument("wildtrack corruption: " + why);
+  std::vector<CameraId> camera_ids;
+  for (const geometry::CameraModel& cam : ds.cameras) camera_ids.push_back(cam.id);
+  PlaceBlackout(&placed, camera_ids, {{frames.front(), frames.back()}}, ds.fps);
+  internal::CorruptDetectionGrid(placed, ds.cameras, &ds.detections, &ds.source_ids);
   ds.gt_layout = core::KeypointLayoutId::kNone;
   const bool has_gt = HasWildtrackGroundTruth(data_root);
   if (has_gt) ds.ground_truth = WildtrackGroundTruth(data_root, frames.front(), frames.back());
@@ -216,8 +249,10 @@ Dataset LoadWildtrack(const std::filesystem::path& data_root) {
       "Detections: MVDeTr's boxes for the test frames " +
       std::to_string(frames.front()) + "-" + std::to_string(frames.back()) +
       " (annotated-frame indices, image file = 5 x index, 2 fps) from ReST's "
-      "MVDeTr_test.json, box-only, score 1. They are ground-plane detections drawn into every "
-      "view, not independent per-view detections. " +
+      "MVDeTr_test.json, box-only, score 1; " +
+      DescribeCorruption(placed) +
+      ". They are ground-plane detections drawn into every view, not independent per-view "
+      "detections. " +
       (has_gt ? std::string("Ground truth: the floor positions of mvdet/gt.txt (MVDet), no "
                             "person ids: detection metrics (MODA, MODP, precision, recall) "
                             "only, with `mvtrack eval --points`; ids in ground_truth.jsonl are "
@@ -533,23 +568,35 @@ std::vector<WildtrackGroundFrame> WildtrackGroundPoints(const std::filesystem::p
       LoadMvdetrBoxes(box_file, homographies.size());
   std::vector<WildtrackGroundFrame> out;
   for (const auto& [frame, list] : boxes) {
-    std::vector<Vec2> points;
-    std::vector<int> cameras;
-    for (const MvdetrBox& b : list) {
-      const Vec2 foot = b.box.bottom_center();
-      const Vec3 g = ground_from_image[b.camera] * Vec3(foot.x(), foot.y(), 1.0);
-      if (!(std::abs(g.z()) > 0.0)) {
-        throw DatasetError(
-            box_file.string(),
-            "frame " + std::to_string(frame) + ": a box's bottom centre maps to infinity");
-      }
-      points.push_back(kCmToM * g.head<2>() / g.z());
-      cameras.push_back(static_cast<int>(b.camera));
+    std::vector<std::pair<std::size_t, core::BoxPx>> frame_boxes;
+    for (const MvdetrBox& b : list) frame_boxes.emplace_back(b.camera, b.box);
+    out.push_back(
+        GroundFrame(frame, frame_boxes, ground_from_image, options.cluster_radius_m, box_file));
+  }
+  return out;
+}
+
+std::vector<WildtrackGroundFrame> WildtrackGroundPoints(
+    const std::filesystem::path& data_root,
+    const std::vector<std::vector<core::CameraFrame>>& detections,
+    const WildtrackGroundOptions& options) {
+  std::string why;
+  if (!options.Validate(&why)) throw DatasetError((data_root / "wildtrack").string(), why);
+  const std::vector<Mat3> homographies = WildtrackHomographies(data_root);
+  std::vector<Mat3> ground_from_image;
+  for (const Mat3& h : homographies) ground_from_image.push_back(h.inverse());
+  std::vector<WildtrackGroundFrame> out;
+  for (const std::vector<core::CameraFrame>& frame : detections) {
+    if (frame.empty()) continue;
+    std::vector<std::pair<std::size_t, core::BoxPx>> frame_boxes;
+    for (std::size_t c = 0; c < frame.size() && c < ground_from_image.size() && c < 64; ++c) {
+      for (const core::Detection2D& d : frame[c].detections) frame_boxes.emplace_back(c, d.box);
     }
-    WildtrackGroundFrame gf;
-    gf.frame = frame;
-    gf.points = MergeGroundPoints(points, cameras, options.cluster_radius_m);
-    out.push_back(std::move(gf));
+    out.push_back(GroundFrame(frame.front().frame,
+                              frame_boxes,
+                              ground_from_image,
+                              options.cluster_radius_m,
+                              data_root / "wildtrack"));
   }
   return out;
 }

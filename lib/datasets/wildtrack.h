@@ -25,8 +25,12 @@ namespace mvtrack::datasets {
 ///    kUnknownSourceId;
 ///  - ground truth: WildtrackGroundTruth of the detection frames (no joints, gt_layout kNone;
 ///    ids are per-frame position indices, not person ids), when mvdet/gt.txt exists; else empty.
-/// @throws DatasetError on a missing or malformed file.
-Dataset LoadWildtrack(const std::filesystem::path& data_root);
+///  - then `corruption` (clean by default: the boxes as they are; corruption.h, the blackout
+///    placed inside the frames), e.g. misses to see what missing boxes cost.
+/// @throws DatasetError on a missing or malformed file; std::invalid_argument on invalid
+/// corruption options.
+Dataset LoadWildtrack(const std::filesystem::path& data_root,
+                      const CorruptionOptions& corruption = CorruptionOptions::Clean());
 
 /// Where the detections of LoadWildtrackAnnotated come from.
 struct WildtrackAnnotatedOptions {
@@ -126,6 +130,14 @@ struct WildtrackGroundFrame {
 /// @throws DatasetError on a missing or malformed file, or invalid options.
 std::vector<WildtrackGroundFrame> WildtrackGroundPoints(const std::filesystem::path& data_root,
                                                         const WildtrackGroundOptions& options = {});
+
+/// WildtrackGroundPoints of the boxes in `detections` ([frame][camera index], as
+/// Dataset::detections; e.g. MVDeTr's boxes after a corruption model) instead of the file's.
+/// @throws DatasetError on a missing or malformed homography file, or invalid options.
+std::vector<WildtrackGroundFrame> WildtrackGroundPoints(
+    const std::filesystem::path& data_root,
+    const std::vector<std::vector<core::CameraFrame>>& detections,
+    const WildtrackGroundOptions& options = {});
 
 /// The clustering step of WildtrackGroundPoints on one frame: `points_m[i]` seen by camera
 /// `cameras[i]` (0..63). Starting from single points, the two clusters with the closest means

@@ -13,6 +13,7 @@
 #include "calib/calib_test_util.h"
 #include "config/calibration_import.h"
 #include "datasets/data_test_util.h"
+#include "datasets/epfl.h"
 #include "datasets/panoptic.h"
 #include "datasets/wildtrack.h"
 
@@ -144,6 +145,34 @@ TEST_CASE("WILDTRACK: the derived JSON agrees with ReST's homographies, the XML 
     CHECK(xml.document.names.at(static_cast<CameraId>(c)) ==
           json.document.names.at(static_cast<CameraId>(c)));
   }
+}
+
+TEST_CASE("EPFL Terrace: the homography import gives the loader's cameras", "[data]") {
+  MVTRACK_REQUIRE_DATASET(root, "epfl");
+  datasets::EpflOptions options;
+  options.corruption = datasets::CorruptionOptions::Clean();
+  datasets::EpflCalibration cal;
+  const datasets::Dataset ds = datasets::LoadEpflTerrace(root, options, &cal);
+  std::vector<std::string> paths;
+  for (int c = 0; c < 4; ++c) {
+    paths.push_back(
+        (root / "epfl/terrace1" / ("terrace1-c" + std::to_string(c)) / "Homography.txt").string());
+  }
+  HomographyImportOptions import_options;
+  import_options.image_size = ImageSize{360, 288};
+  import_options.floor_unit_m = cal.floor_unit_m;
+  const ImportedHomographies imported = ImportFloorHomographies(paths, import_options);
+  RequireSameCameras(imported.calibration.document.cameras, ds.cameras, 1e-12, 1e-12, 1e-15);
+  // SOURCE.md: focal lengths 420-447 px, horizontal field of view about 45 deg.
+  for (const geometry::FloorHomographyCamera& c : imported.checks) {
+    INFO("camera " << c.camera.id);
+    CHECK(c.focal_px > 415.0);
+    CHECK(c.focal_px < 450.0);
+    CHECK(c.horizontal_fov_deg == Approx(45.0).margin(3.0));
+    CHECK(c.floor_reprojection_median_px < 2.0);
+    CHECK(c.mirrored_y == cal.mirrored_y);
+  }
+  CHECK(cal.mirrored_y);
 }
 
 }  // namespace

@@ -80,10 +80,37 @@ expect_exit 2 "$OUT/bad_range.txt" \
 expect_exit 2 "$OUT/out_of_file.txt" \
   "$MVTRACK" convert wildtrack --data "$DATA_ROOT" --out "$OUT/bad2" --gt-frames 390-450 --quiet
 expect_fixed "within the annotated frames 0-399" "$OUT/out_of_file.txt"
-# MVDeTr's boxes are used as they are: the detector model and --frames need the annotated boxes.
-expect_exit 2 "$OUT/mvdetr_corrupt.txt" \
-  "$MVTRACK" convert wildtrack --data "$DATA_ROOT" --out "$OUT/bad3" --corruption hard --quiet
-expect_fixed "needs --detections annotated" "$OUT/mvdetr_corrupt.txt"
+# MVDeTr's boxes are used as they are unless a corruption level is named; --frames needs the
+# annotated boxes.
+expect_exit 2 "$OUT/mvdetr_rate.txt" \
+  "$MVTRACK" convert wildtrack --data "$DATA_ROOT" --out "$OUT/bad3" --miss-rate 0.2 --quiet
+expect_fixed "needs --corruption LEVEL" "$OUT/mvdetr_rate.txt"
+expect_exit 2 "$OUT/mvdetr_frames.txt" \
+  "$MVTRACK" convert wildtrack --data "$DATA_ROOT" --out "$OUT/bad5" --frames 0-9 --quiet
+expect_fixed "needs --detections annotated" "$OUT/mvdetr_frames.txt"
+# 20 % of MVDeTr's boxes removed: fewer detections, the ground points of the kept boxes only.
+"$MVTRACK" convert wildtrack --data "$DATA_ROOT" --out "$OUT/m20" --corruption default \
+  --noise-px 0 --false-positives 0 --miss-rate 0.2 --quiet
+"$CHECK" "$OUT/m20" --cameras 0,1,2,3,4,5,6 --frames 40 --every-camera-frame --layout none \
+  --ground-points-lines 40 --gt-lines 40 --gt-layout none \
+  --dump "$OUT/m20.dump"
+python3 - "$OUT/a.dump" "$OUT/m20.dump" "$OUT/a/ground_points.jsonl" \
+  "$OUT/m20/ground_points.jsonl" <<'PY'
+import json, sys
+def boxes(path):
+    out = set()
+    for line in open(path):
+        d = json.loads(line)
+        out |= {(d["frame"], d["camera"], tuple(x["box"])) for x in d["detections"]}
+    return out
+full, kept = boxes(sys.argv[1]), boxes(sys.argv[2])
+assert kept < full, "the kept boxes are not a subset of MVDeTr's"
+assert 0.7 < len(kept) / len(full) < 0.9, len(kept) / len(full)
+points = [sum(len(json.loads(l)["tracks"]) for l in open(p)) for p in sys.argv[3:5]]
+assert points[1] != points[0], points
+print(f"20 % misses: {len(kept)} of {len(full)} boxes kept, ground points {points[0]} -> {points[1]}")
+PY
+expect_fixed "miss rate 0.2" "$OUT/m20/README.txt"
 expect_exit 2 "$OUT/bad_source.txt" \
   "$MVTRACK" convert wildtrack --data "$DATA_ROOT" --out "$OUT/bad4" --detections yolo --quiet
 "$MVTRACK" convert wildtrack --data "$DATA_ROOT" --out "$OUT/b" --quiet

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// Synthetic calibrated cameras for tests: a look-at constructor, a ring rig of cameras around a
-/// room, back-projection of pixels to 3D, and a Panoptic-like lens distortion. Header-only,
-/// stateless, deterministic.
+/// room, back-projection of pixels to 3D, a Panoptic-like lens distortion, and a camera's
+/// image -> floor homography. Header-only, stateless, deterministic.
 ///
 /// World convention used here: metres, z up (the floor is z = 0). Cameras follow OpenCV's
 /// convention (x right, y down, z forward), which is what geometry::CameraModel expects.
@@ -100,6 +100,23 @@ inline Vec3 BackProjectUndistorted(const geometry::CameraModel& camera,
                                    double depth_m) {
   const Vec3 ray_in_cam = camera.K.inverse() * undistorted_px.homogeneous();  // z == 1
   return camera.cam_from_world.Inverse() * (depth_m * ray_in_cam);
+}
+
+/// The image -> floor homography H of a distortion-free `camera` (world metres, z up, floor
+/// z = 0) when the floor's coordinates are in units of `unit_m` metres, with the floor's y
+/// negated when `mirror_y`, times `scale`: H (u, v, 1) ~ (x, y, 1) with the world point
+/// unit_m (x, ±y, 0) seen at pixel (u, v).
+inline Mat3 FloorHomographyOf(const geometry::CameraModel& camera,
+                              double unit_m,
+                              bool mirror_y,
+                              double scale) {
+  const Mat3& R = camera.cam_from_world.rotation;
+  Mat3 floor_to_image;
+  floor_to_image.col(0) = unit_m * R.col(0);
+  floor_to_image.col(1) = (mirror_y ? -unit_m : unit_m) * R.col(1);
+  floor_to_image.col(2) = camera.cam_from_world.translation;
+  floor_to_image = camera.K * floor_to_image;
+  return scale * floor_to_image.inverse();
 }
 
 }  // namespace mvtrack::testing

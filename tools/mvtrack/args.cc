@@ -33,6 +33,11 @@ Args& Args::Positional(const std::string& name, const std::string& help, bool re
   return *this;
 }
 
+Args& Args::Rest(const std::string& name, const std::string& help) {
+  rest_spec_ = std::make_pair(name, help);
+  return *this;
+}
+
 std::string Args::Help(const std::string& usage_line, const std::string& description) const {
   std::ostringstream os;
   os << "usage: " << usage_line << "\n\n" << description << "\n";
@@ -40,6 +45,7 @@ std::string Args::Help(const std::string& usage_line, const std::string& descrip
     os << "\narguments:\n";
     for (const auto& [name, help] : positional_specs_)
       os << "  " << name << "\n      " << help << "\n";
+    if (rest_spec_) os << "  " << rest_spec_->first << "\n      " << rest_spec_->second << "\n";
   }
   os << "\noptions:\n";
   for (const std::string& name : option_order_) {
@@ -94,7 +100,11 @@ bool Args::Parse(int argc,
     }
     positionals.push_back(arg);
   }
-  if (positionals.size() > positional_specs_.size()) {
+  if (rest_spec_) {
+    for (std::size_t i = positional_specs_.size(); i < positionals.size(); ++i) {
+      rest_.push_back(positionals[i]);
+    }
+  } else if (positionals.size() > positional_specs_.size()) {
     throw UsageError("unexpected argument '" + positionals[positional_specs_.size()] + "'");
   }
   for (std::size_t i = 0; i < positional_specs_.size(); ++i) {

@@ -1,11 +1,12 @@
 // mvtrack calib: calibration tools.
-//   mvtrack calib import FORMAT INPUT [INPUT2] --out CAL.yaml   other formats -> ours
+//   mvtrack calib import FORMAT INPUT [INPUT2 ...] --out CAL.yaml   other formats -> ours
 //   mvtrack calib check CAL.yaml [--png FILE]                      sanity, overlap, baselines
 // The importers and the checks are lib/config (calibration_import.h, calibration_check.h), the
 // picture lib/viz (coverage_map.h); this file parses arguments and prints.
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <sstream>
@@ -34,12 +35,59 @@ const char kFormats[] =
     "  wildtrack DIR|FILE.json         WILDTRACK calibrations/ (intrinsic_zero/, extrinsic/ XML)\n"
     "                                  or the derived JSON; image size 1920x1080 unless given\n"
     "  campus FILE.json                Cross-View Tracking Campus calibration.json (360x288\n"
-    "                                  unless given)\n";
+    "                                  unless given)\n"
+    "  homography H0.txt [H1.txt ...]  image -> floor homographies, one 3x3 text file per camera\n"
+    "                                  (EPFL's Homography.txt), ids 0..n-1 in argument order;\n"
+    "                                  --image-size required, --floor-unit M (default 1 m),\n"
+    "                                  --focal PX (default: from each homography)\n";
 
 std::string Fixed(double v, int decimals) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
   return buf;
+}
+
+// One of the homography options, finite (and > 0 when `positive`).
+double FiniteOption(const Args& args, const std::string& name, bool positive) {
+  const double v = args.GetDouble(name);
+  if (positive && !(v > 0.0)) throw UsageError("--" + name + " must be > 0");
+  return v;
+}
+
+// The per-camera checks of `calib import homography`, a table on stdout.
+void PrintHomographyChecks(const std::vector<std::string>& paths,
+                           const config::ImportedHomographies& imported,
+                           const config::HomographyImportOptions& options) {
+  std::ostream& os = std::cout;
+  os << "calib import homography: " << paths.size() << " camera(s), image "
+     << options.image_size.width_px << "x" << options.image_size.height_px << ", floor unit "
+     << (options.floor_unit_m ? Fixed(*options.floor_unit_m, 6) + " m"
+                              : std::string("1 m (assumed)"))
+     << ", floor y " << (imported.checks.front().mirrored_y ? "mirrored" : "kept") << "\n\n";
+  os << "camera  focal px        height m  hfov deg  vfov deg  orthogonality  floor reprojection "
+        "px       file\n"
+        "                                                      residual       median / max "
+        "(points)\n";
+  for (std::size_t i = 0; i < imported.checks.size(); ++i) {
+    const geometry::FloorHomographyCamera& c = imported.checks[i];
+    char line[512];
+    std::snprintf(line,
+                  sizeof line,
+                  "%6d  %8.1f %-6s  %8.3f  %8.1f  %8.1f  %13.1e  %6.2f / %-6.2f (%3d)   %s\n",
+                  c.camera.id,
+                  c.focal_px,
+                  c.focal_estimated ? "(est.)" : "(given)",
+                  c.height_m,
+                  c.horizontal_fov_deg,
+                  c.vertical_fov_deg,
+                  c.orthogonality_residual,
+                  c.floor_reprojection_median_px,
+                  c.floor_reprojection_max_px,
+                  c.floor_check_points,
+                  paths[i].c_str());
+    os << line;
+  }
+  os << "\n";
 }
 
 std::vector<std::string> SplitComma(const std::string& text) {
@@ -54,13 +102,23 @@ std::vector<std::string> SplitComma(const std::string& text) {
 
 int RunImport(int argc, char** argv) {
   Args args;
-  args.Positional("FORMAT", "easymocap, 4da, voxelpose, panoptic, wildtrack or campus")
+  args.Positional("FORMAT", "easymocap, 4da, voxelpose, panoptic, wildtrack, campus or homography")
       .Positional("INPUT", "the file (or WILDTRACK directory) to import")
-      .Positional("INPUT2", "easymocap: extri.yml", false)
+      .Positional("INPUT2", "easymocap: extri.yml; homography: the second camera's file", false)
+      .Rest("INPUT3...", "homography: the further cameras' files")
       .Option("out", "write the calibration (mvtrack.calibration/1) here (required)")
       .Option("image-size", "WIDTHxHEIGHT for formats without image sizes")
-      .Option("cameras", "panoptic: comma-separated HD cameras (00_xx or 0..30; default: all)");
-  const std::string usage = "mvtrack calib import FORMAT INPUT [INPUT2] --out CAL.yaml [options]";
+      .Option("cameras", "panoptic: comma-separated HD cameras (00_xx or 0..30; default: all)")
+      .Option("floor-unit",
+              "homography: metres per floor unit of the homographies (default: 1, the floor "
+              "unit taken as the metre)")
+      .Option("focal",
+              "homography: the focal length of every camera, pixels (default: from "
+              "each homography)")
+      .Option("principal-point",
+              "homography: CX,CY in pixels for every camera (default: the image centre)");
+  const std::string usage =
+      "mvtrack calib import FORMAT INPUT [INPUT2 ...] --out CAL.yaml [options]";
   if (!args.Parse(argc,
                   argv,
                   usage,
@@ -76,11 +134,21 @@ int RunImport(int argc, char** argv) {
   const std::string format = args.Get("FORMAT");
   const std::string input = args.Get("INPUT");
   const bool two_inputs = format == "easymocap";
+  const bool homography = format == "homography";
   if (two_inputs && !args.Has("INPUT2")) {
     throw UsageError("easymocap needs two files: INTRI.yml EXTRI.yml");
   }
-  if (!two_inputs && args.Has("INPUT2")) {
+  if (!homography && !args.GetRest().empty()) {
+    throw UsageError(format + " takes at most " + (two_inputs ? "two inputs" : "one input") +
+                     ", got also '" + args.GetRest().front() + "'");
+  }
+  if (!two_inputs && !homography && args.Has("INPUT2")) {
     throw UsageError(format + " takes one input, got also '" + args.Get("INPUT2") + "'");
+  }
+  for (const char* name : {"floor-unit", "focal", "principal-point"}) {
+    if (args.Has(name) && !homography) {
+      throw UsageError(std::string("--") + name + " is for homography only");
+    }
   }
   if (args.Has("cameras") && format != "panoptic")
     throw UsageError("--cameras is for panoptic only");
@@ -96,7 +164,35 @@ int RunImport(int argc, char** argv) {
     }
   }
   config::ImportedCalibration imported;
-  if (format == "easymocap") {
+  if (homography) {
+    if (!size.given()) {
+      throw UsageError("homography needs --image-size WxH (the files have none; EPFL 360x288)");
+    }
+    std::vector<std::string> paths = {input};
+    if (args.Has("INPUT2")) paths.push_back(args.Get("INPUT2"));
+    for (const std::string& path : args.GetRest()) paths.push_back(path);
+    config::HomographyImportOptions options;
+    options.image_size = size;
+    if (args.Has("floor-unit")) options.floor_unit_m = FiniteOption(args, "floor-unit", true);
+    if (args.Has("focal")) options.focal_px = FiniteOption(args, "focal", true);
+    if (args.Has("principal-point")) {
+      const std::vector<std::string> parts = SplitComma(args.Get("principal-point"));
+      if (parts.size() != 2) throw UsageError("--principal-point: expected CX,CY");
+      Vec2 pp;
+      for (int i = 0; i < 2; ++i) {
+        char* end = nullptr;
+        const std::string& part = parts[static_cast<std::size_t>(i)];
+        pp(i) = std::strtod(part.c_str(), &end);
+        if (end == nullptr || *end != '\0' || !std::isfinite(pp(i))) {
+          throw UsageError("--principal-point: '" + part + "' is not a number");
+        }
+      }
+      options.principal_point_px = pp;
+    }
+    const config::ImportedHomographies result = config::ImportFloorHomographies(paths, options);
+    PrintHomographyChecks(paths, result, options);
+    imported = result.calibration;
+  } else if (format == "easymocap") {
     imported = config::ImportEasyMocap(input, args.Get("INPUT2"), size);
   } else if (format == "4da") {
     imported = config::ImportFourDAssociation(input);
@@ -269,7 +365,7 @@ int RunCalib(int argc, char** argv) {
   const char* usage =
       "usage: mvtrack calib <import|check> ... (mvtrack calib <command> --help for details)\n\n"
       "  import   convert a calibration (EasyMocap, 4D Association, VoxelPose, Panoptic,\n"
-      "           WILDTRACK, Campus) into mvtrack.calibration/1\n"
+      "           WILDTRACK, Campus, floor homographies) into mvtrack.calibration/1\n"
       "  check    sanity checks, camera overlap graph and short-baseline warnings\n";
   if (argc < 2) {
     std::cerr << usage;

@@ -32,6 +32,8 @@ class Args {
                const std::string& default_value = "");
   Args& Flag(const std::string& name, const std::string& help);
   Args& Positional(const std::string& name, const std::string& help, bool required = true);
+  /// Declares that any number of positionals may follow the declared ones (GetRest).
+  Args& Rest(const std::string& name, const std::string& help);
 
   /// Parses argv[1..argc); returns false if --help was given (help already printed).
   /// @throws UsageError on unknown options, missing values or missing positionals.
@@ -41,6 +43,8 @@ class Args {
   bool Has(const std::string& name) const;  ///< flag given, or option given explicitly
   double GetDouble(const std::string& name) const;
   std::int64_t GetInt(const std::string& name) const;
+  /// The positionals after the declared ones (only with Rest), in order.
+  const std::vector<std::string>& GetRest() const { return rest_; }
   std::string Help(const std::string& usage_line, const std::string& description) const;
 
  private:
@@ -53,6 +57,8 @@ class Args {
   std::vector<std::string> option_order_;
   std::vector<std::pair<std::string, std::string>> positional_specs_;
   std::vector<bool> positional_required_;
+  std::optional<std::pair<std::string, std::string>> rest_spec_;
+  std::vector<std::string> rest_;
   std::map<std::string, std::string> values_;
   std::map<std::string, bool> given_;
 };

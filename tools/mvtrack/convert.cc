@@ -1,5 +1,5 @@
-// mvtrack convert: turns the evaluation datasets (Shelf, Campus, CMU Panoptic, WILDTRACK) and
-// the generic JSON-lines detection format into mvtrack's inputs: a detections log that
+// mvtrack convert: turns the evaluation datasets (Shelf, Campus, CMU Panoptic, WILDTRACK, EPFL)
+// and the generic JSON-lines detection format into mvtrack's inputs: a detections log that
 // `mvtrack replay` tracks, the calibration, and, where the dataset has them, ground truth and a
 // peer method's output as canonical tracks JSONL, plus a README.txt stating the protocol.
 
@@ -25,6 +25,7 @@
 #include "datasets/campus.h"
 #include "datasets/corruption.h"
 #include "datasets/dataset.h"
+#include "datasets/epfl.h"
 #include "datasets/panoptic.h"
 #include "datasets/shelf.h"
 #include "datasets/wildtrack.h"
@@ -56,7 +57,7 @@ const char kConvertDescription[] =
     "  calibration.yaml     the cameras (mvtrack.calibration/1)\n"
     "  ground_truth.jsonl   the ground-truth actors as tracks (canonical tracks JSONL), when\n"
     "                       the dataset has ground truth (Shelf, Campus, Panoptic,\n"
-    "                       WILDTRACK)\n"
+    "                       WILDTRACK, EPFL)\n"
     "  peer.jsonl           the published output of a peer method mapped to shelf14 (Shelf:\n"
     "                       4D Association, Campus: Cross-View Tracking)\n"
     "  ground_points.jsonl  WILDTRACK only: MVDeTr's merged ground points per frame\n"
@@ -735,7 +736,9 @@ int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
           "WILDTRACK (Chavdarova et al., CVPR 2018): 7 views (1920x1080) at 2 fps, box-only\n"
           "detections (layout none: track with --mode boxes).\n"
           "--detections mvdetr (default): MVDeTr's detections of the 40 test frames 360-399\n"
-          "drawn as boxes into the 7 views, as they are (--corruption does not apply).\n"
+          "drawn as boxes into the 7 views, as they are unless --corruption names a level\n"
+          "(then the detector model acts on them, e.g. --corruption default --noise-px 0\n"
+          "--false-positives 0 --miss-rate 0.2 removes 20 % of the boxes).\n"
           "--detections annotated: the annotated per-view boxes of opentraj/ (the original\n"
           "annotations with person ids) of --frames, as they are (--corruption clean) or\n"
           "through the seeded detector model (default: box noise 2.1 % of the box height per\n"
@@ -763,13 +766,14 @@ int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
     }
     return r[0];
   };
-  if (!annotated) {
-    if (args.Has("frames")) {
-      throw UsageError("--frames needs --detections annotated (MVDeTr's boxes cover 360-399)");
-    }
-    for (const char* name : {"corruption",
-                             "clean",
-                             "seed",
+  if (!annotated && args.Has("frames")) {
+    throw UsageError("--frames needs --detections annotated (MVDeTr's boxes cover 360-399)");
+  }
+  // MVDeTr's boxes are used as they are unless a level is named: the detector model then acts
+  // on them (e.g. --miss-rate 0.2 to see what missing boxes cost).
+  const bool mvdetr_corrupted = !annotated && (args.Has("corruption") || args.Has("clean"));
+  if (!annotated && !mvdetr_corrupted) {
+    for (const char* name : {"seed",
                              "noise-px",
                              "miss-rate",
                              "false-positives",
@@ -779,7 +783,8 @@ int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
                              "noise-tail-dof"}) {
       if (args.Has(name)) {
         throw UsageError(std::string("--") + name +
-                         " needs --detections annotated (MVDeTr's boxes are used as they are)");
+                         " needs --corruption LEVEL with --detections mvdetr (its boxes are "
+                         "used as they are by default)");
       }
     }
   }
@@ -810,12 +815,20 @@ int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
         ", box-only (layout none), score 1; " + datasets::DescribeCorruption(options.corruption) +
         ".";
   } else {
-    job.ds = datasets::LoadWildtrack(c.data_root);
+    const datasets::CorruptionOptions corruption = mvdetr_corrupted
+                                                       ? ParseCorruption(args, corruption_defaults)
+                                                       : datasets::CorruptionOptions::Clean();
+    job.ds = datasets::LoadWildtrack(c.data_root, corruption);
     detections_line =
         "WILDTRACK: MVDeTr's boxes (rest/MVDeTr_test.json) of 7 cameras C1-C7 (ids 0-6), "
-        "box-only detections (layout none), score 1.";
+        "box-only detections (layout none), score 1; " +
+        datasets::DescribeCorruption(corruption) + ".";
     const datasets::WildtrackGroundOptions ground_options;
-    job.ground_points = datasets::WildtrackGroundPoints(c.data_root, ground_options);
+    // The ground points of the boxes the log holds (after the detector model, if any).
+    job.ground_points =
+        corruption.enabled
+            ? datasets::WildtrackGroundPoints(c.data_root, job.ds.detections, ground_options)
+            : datasets::WildtrackGroundPoints(c.data_root, ground_options);
     job.ground_cluster_radius_m = ground_options.cluster_radius_m;
   }
   const FrameIndex first = job.ds.detections.front().front().frame;
@@ -856,6 +869,89 @@ int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
   job.load_seconds = SecondsSince(start);
   job.camera_names = NamesFromPattern(job.ds.cameras, "C", 1);
   job.what = {detections_line, gt_line};
+  job.replay_mode = "boxes";
+  job.replay_layout = "none";
+  WriteDatasetJob(c, job);
+  return 0;
+}
+
+int ConvertEpfl(int argc, char** argv, const std::string& command_line) {
+  const auto num = [](double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+  };
+  Args args;
+  AddCommonOptions(&args, true);
+  const datasets::EpflOptions option_defaults;
+  args.Option("person-height",
+              "the person-height prior the floor unit is estimated from, m",
+              num(option_defaults.person_height_m))
+      .Option("floor-unit",
+              "metres per floor unit of the homographies (default: estimated from "
+              "--person-height)");
+  const datasets::CorruptionOptions corruption_defaults = datasets::EpflCorruptionDefaults();
+  AddCorruptionOptions(&args, corruption_defaults);
+  if (!args.Parse(
+          argc,
+          argv,
+          FormatUsage("epfl",
+                      "[--data DIR] [--corruption clean|default|hard] [--seed N] "
+                      "[--person-height M | --floor-unit M] "),
+          "EPFL Terrace 1 (Fleuret et al., TPAMI 2008) with the UCLA per-view boxes and person\n"
+          "ids (as released by GNN-CCA): 4 views (360x288) at 25 fps, 9 people, box-only\n"
+          "detections (layout none: track with --mode boxes). The only calibration is one\n"
+          "image -> floor homography per camera: each camera is recovered from it (square\n"
+          "pixels, principal point at the image centre, focal length from the homography; see\n"
+          "`mvtrack calib import homography`), and the floor unit from a person-height prior\n"
+          "applied to the annotated boxes (--person-height, default 1.7 m) or --floor-unit.\n"
+          "Detections: the annotated boxes as they are (--corruption clean) or through the\n"
+          "seeded detector model (default: box noise 2.1 % of the box height per edge, 5 %\n"
+          "misses, 0.1 false positives per view and frame; hard: heavier).\n"
+          "ground_truth.jsonl: each person per frame at the mean floor point of its box bottom\n"
+          "centres mapped by the homographies (score with `mvtrack eval --threshold 1.0` or\n"
+          "0.5).\n\n" +
+              std::string(kFormatTrailer))) {
+    return 0;
+  }
+  const CommonSettings c = ParseCommon(args, "epfl", true, command_line);
+  datasets::EpflOptions options;
+  options.corruption = ParseCorruption(args, corruption_defaults);
+  if (args.Has("person-height") && args.Has("floor-unit")) {
+    throw UsageError("--floor-unit and --person-height exclude each other");
+  }
+  if (args.Has("person-height")) options.person_height_m = args.GetDouble("person-height");
+  if (args.Has("floor-unit")) options.floor_unit_m = args.GetDouble("floor-unit");
+  std::string why;
+  if (!options.Validate(&why)) throw UsageError(why);
+  DatasetJob job;
+  job.source_dir = RequireDatasetDir(c, "epfl");
+  Progress(c, "loading EPFL Terrace 1 from " + job.source_dir.string());
+  const Clock::time_point start = Clock::now();
+  datasets::EpflCalibration calibration;
+  job.ds = datasets::LoadEpflTerrace(c.data_root, options, &calibration);
+  job.load_seconds = SecondsSince(start);
+  std::ostringstream unit;
+  unit << "floor unit " << calibration.floor_unit_m << " m ("
+       << (calibration.unit_estimated
+               ? "estimated: people " + num(calibration.person_height.median_height) +
+                     " floor units tall, taken as " + num(options.person_height_m) + " m"
+               : std::string("as given"))
+       << ")" << (calibration.mirrored_y ? ", floor y mirrored" : "");
+  Progress(c, unit.str());
+  job.camera_names = NamesFromPattern(job.ds.cameras, "c", 0);
+  job.what = {
+      "EPFL Terrace 1: the annotated per-view boxes (terrace1-c*/gt.txt, rows with lost = 0) of "
+      "4 cameras c0-c3 (ids 0-3), box-only (layout none), score 1; " +
+          datasets::DescribeCorruption(options.corruption) + ".",
+      "Cameras: recovered from terrace1-c*/Homography.txt (image -> floor), " + unit.str() + ".",
+      "ground_truth.jsonl: per frame, each person at the mean floor point of its box bottom "
+      "centres (z = 0), ids = gt.txt's person ids; score with `mvtrack eval --threshold 1.0` "
+      "or 0.5."};
+  job.gt_track_description =
+      "the annotated people as tracks: id = gt.txt's person id, position = the mean floor "
+      "point of its box bottom centres (z = 0).";
+  job.eval_extra = "--threshold 1.0";
   job.replay_mode = "boxes";
   job.replay_layout = "none";
   WriteDatasetJob(c, job);
@@ -1319,6 +1415,9 @@ constexpr Format kFormats[] = {
     {"wildtrack",
      "WILDTRACK: MVDeTr boxes of 7 views (box mode) + MVDeTr ground points",
      ConvertWildtrack},
+    {"epfl",
+     "EPFL Terrace 1: annotated boxes of 4 views (box mode), cameras from homographies",
+     ConvertEpfl},
     {"jsonl", "generic JSON-lines detections + a calibration (docs/FORMATS.md)", ConvertJsonl},
     {"motchallenge",
      "MOTChallenge det.txt boxes, one file per camera + a calibration",
@@ -1358,7 +1457,7 @@ int RunConvert(int argc, char** argv) {
     if (format == f.name) return f.run(argc - 1, argv + 1, command_line);
   }
   throw UsageError("unknown format '" + format +
-                   "' (shelf, campus, panoptic, wildtrack, jsonl, motchallenge, coco; "
+                   "' (shelf, campus, panoptic, wildtrack, epfl, jsonl, motchallenge, coco; "
                    "see mvtrack convert --help)");
 }
 
