@@ -58,8 +58,20 @@ case $DATASET in
     convert_args=(--detections annotated --frames 0-399 --corruption default)
     replay_args=(--mode boxes --layout none)
     eval_args=(--threshold 1.0) ;;
+  epfl)
+    # EPFL Terrace, the annotated boxes as they are; cameras from the floor homographies; 0.5 m.
+    convert_args=(--corruption clean)
+    replay_args=(--mode boxes --layout none)
+    eval_args=() ;;
+  epfl_default)
+    # EPFL Terrace through the default detector model; 0.5 m.
+    source=epfl
+    convert_args=(--corruption default)
+    replay_args=(--mode boxes --layout none)
+    eval_args=() ;;
   *) echo "unknown dataset '$DATASET' (shelf, campus, campus_hard, wildtrack," \
-       "wildtrack_tracking, wildtrack_annotated, wildtrack_annotated_all_default)" >&2; exit 2 ;;
+       "wildtrack_tracking, wildtrack_annotated, wildtrack_annotated_all_default, epfl," \
+       "epfl_default)" >&2; exit 2 ;;
 esac
 if [ ! -d "$DATA_ROOT/$source" ]; then
   message="dataset '$source' not found under $DATA_ROOT (set MVTRACK_DATA to the data root)"

@@ -49,7 +49,7 @@ if [[ ! -x $mvtrack_bin ]]; then
   echo "results.sh: $mvtrack_bin: no such program (build it, or pass --build or --mvtrack PATH)" >&2
   exit 1
 fi
-for d in shelf campus panoptic wildtrack; do
+for d in shelf campus panoptic wildtrack epfl; do
   if [[ ! -d $data/$d ]]; then
     echo "results.sh: $data/$d: dataset missing (set --data or MVTRACK_DATA)" >&2
     exit 1
@@ -145,6 +145,14 @@ for seq in 160906_band1 160906_band2; do
   for n in 5 10 31; do convert "panoptic_${seq#160906_}_c$n" panoptic --sequence $seq --num-cameras $n; done
 done
 convert wildtrack wildtrack
+convert wildtrack_annotated wildtrack --detections annotated --corruption clean
+convert wildtrack_annotated_all wildtrack --detections annotated --corruption clean --frames 0-399
+convert wildtrack_annotated_all_default wildtrack --detections annotated --corruption default \
+  --frames 0-399
+convert wildtrack_mvdetr_miss20 wildtrack --corruption default --noise-px 0 --false-positives 0 \
+  --miss-rate 0.2
+convert epfl epfl --corruption clean
+convert epfl_default epfl --corruption default
 
 # ---- Main results (paper Table 6) and the peers' own outputs.
 experiment shelf shelf poses body25 - $shelf_eval
@@ -207,6 +215,21 @@ experiment wildtrack wildtrack boxes none - $wildtrack_eval
 for v in box_point_center box_point_bottom_center frame_counts_at_any_rate \
          association_complete_linkage_empty_as_zero association_complete_linkage_empty_as_upper; do
   experiment "wildtrack_$v" wildtrack boxes none $ab/$v.yaml $wildtrack_eval
+done
+
+# ---- WILDTRACK tracking with person ids (opentraj/), 1 m (the literature's radius) and 0.5 m;
+# MVDeTr's boxes with 20 % removed against the ground points of the kept boxes (MODA, 0.5 m).
+for ds in wildtrack wildtrack_annotated wildtrack_annotated_all wildtrack_annotated_all_default; do
+  experiment "${ds}_tracking_1m" $ds boxes none - --threshold 1.0
+  experiment "${ds}_tracking_05m" $ds boxes none - --threshold 0.5
+done
+peer wildtrack_mvdetr_miss20_input wildtrack_mvdetr_miss20 ground_points.jsonl $wildtrack_eval
+experiment wildtrack_mvdetr_miss20 wildtrack_mvdetr_miss20 boxes none - $wildtrack_eval
+
+# ---- EPFL Terrace (cameras from the floor homographies), the whole sequence.
+for ds in epfl epfl_default; do
+  experiment "${ds}_1m" $ds boxes none - --threshold 1.0
+  experiment "${ds}_05m" $ds boxes none - --threshold 0.5
 done
 
 # ---- Tables.
