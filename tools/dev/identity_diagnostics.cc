@@ -198,6 +198,7 @@ datasets::Dataset Load(const Args& a) {
 // Window tracklet of one person with what the diagnostic needs.
 struct WindowPerson {
   std::int64_t window = 0;
+  FrameIndex begin = 0, end = 0;  // the window's frames [begin, end)
   TrackId3D track = 0;
   linking::LinkKind kind = linking::LinkKind::kBirth;
   std::int64_t label = -1;  // majority person of its observations, -1 none
@@ -288,6 +289,8 @@ int main(int argc, char** argv) {
     for (std::size_t p = 0; p < w->persons.size(); ++p) {
       WindowPerson wp;
       wp.window = w->window_id;
+      wp.begin = w->begin;
+      wp.end = w->end;
       wp.track = w->link.track_of_tracklet[p];
       wp.kind = w->link.link_kind[p];
       std::map<std::int64_t, int> votes;
@@ -363,6 +366,34 @@ int main(int argc, char** argv) {
       if (l >= 0) prev = l;
     }
   }
+  // Each 2D switch (p at the track's previous labelled frame, q at this one): was p detected
+  // in that camera at this frame (its track left it for q) or missed? Was q tracked before?
+  std::map<std::string, int> switch_kinds;
+  for (const auto& [key, frames] : track2d) {
+    std::int64_t prev = -10;
+    FrameIndex prev_frame = 0;
+    for (const auto& [f, l] : frames) {
+      if (prev >= 0 && l >= 0 && l != prev) {
+        const auto pit = by_person.find(prev);
+        const bool p_seen = pit != by_person.end() && pit->second.count(key.first) &&
+                            pit->second.at(key.first).count(f);
+        const auto qit = by_person.find(l);
+        bool q_before = false;
+        if (qit != by_person.end() && qit->second.count(key.first)) {
+          const auto& qf = qit->second.at(key.first);
+          const auto it = qf.lower_bound(f);
+          q_before = it != qf.begin() && std::prev(it)->first >= prev_frame;
+        }
+        ++switch_kinds[std::string(p_seen ? "its person detected" : "its person missed") +
+                       (q_before ? ", the other person tracked just before"
+                                 : ", the other person new in this camera")];
+      }
+      if (l >= 0) {
+        prev = l;
+        prev_frame = f;
+      }
+    }
+  }
   int continued = 0, broken = 0;
   for (const auto& [person, cams] : by_person) {
     for (const auto& [cam, frames] : cams) {
@@ -382,6 +413,8 @@ int main(int argc, char** argv) {
       broken,
       100.0 * broken / std::max(1, continued + broken),
       switches2d);
+
+  for (const auto& [k, n] : switch_kinds) std::printf("  2D switches, %s: %d\n", k.c_str(), n);
 
   // ---- Output: GT <-> output per frame (kept matches first, then min-cost).
   std::map<FrameIndex, const tracker::Frame3D*> out_by_frame;
@@ -469,7 +502,23 @@ int main(int argc, char** argv) {
           for (const auto& [p, v] : id_votes[s.to]) n += v;
           return n;
         }()) {
+      // The window tracklet that gave the person the other person's id.
+      const WindowPerson* via = nullptr;
+      for (const WindowPerson& wp : persons) {
+        if (wp.track == s.to && wp.label == s.person && wp.begin <= s.frame && s.frame < wp.end) {
+          via = &wp;
+        }
+      }
+      static const char* const kKinds[] = {
+          "birth", "overlap", "gap", "reidentified", "duplicate", "appearance"};
       cause = "swap (the new id is mostly another person's)";
+      if (via == nullptr) {
+        cause += " via no tracklet of the person";
+      } else {
+        cause += std::string(" via ") + kKinds[static_cast<int>(via->kind)] +
+                 (via->impure_2d ? ", a 2D switch in it"
+                                 : (via->purity < 0.999 ? ", mixed cluster" : ", pure cluster"));
+      }
     } else if (to == nullptr) {
       cause = "unknown (no window tracklet)";
     } else if (to->purity < 0.999 && to->impure_2d) {
