@@ -256,6 +256,32 @@ void KeepAlive(const std::vector<char>& alive,
   persons->resize(kept);
 }
 
+// A cheap test before ReprojectionResidual: at the middle frame `tracklet` and `person` share,
+// the person's box point projects farther than one box scale |w + h| from the tracklet's
+// observation (it cannot fit within a fraction of it). False without a shared frame.
+bool FarInImage(const geometry::CameraRig& rig,
+                const core::Tracklet2D& tracklet,
+                const core::Tracklet3D& person) {
+  std::size_t shared = 0;
+  for (const FrameIndex f : tracklet.frames) shared += person.IndexOf(f) >= 0 ? 1 : 0;
+  if (shared == 0) return false;
+  std::size_t k = shared / 2;
+  for (std::size_t f = 0; f < tracklet.frames.size(); ++f) {
+    const int at = person.IndexOf(tracklet.frames[f]);
+    if (at < 0) continue;
+    if (k-- > 0) continue;
+    const core::Observation2D& obs = tracklet.observations[f];
+    const auto& row = person.points[static_cast<std::size_t>(at)];
+    if (row.empty() || !row[0] || obs.points_px.empty() || !(obs.scale_px > 0.0)) return false;
+    const std::optional<int> c = rig.IndexOf(tracklet.camera_id);
+    if (!c) return false;
+    const std::optional<Vec2> x = rig.camera(*c).ProjectUndistorted(*row[0]);
+    if (!x) return true;  // behind the camera
+    return (*x - obs.points_px[0]).norm() > obs.scale_px;
+  }
+  return false;
+}
+
 // Merges persons of one window that are one person split by association: in pose mode when their
 // common joints lie within refinement.merge_distance_m on average (PointDistance), in box mode
 // when their footprints lie within refinement.box_merge_distance_m (median, FootprintDistance),
@@ -597,6 +623,9 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
   if (options.mode == InputMode::kBoxes) {
     SplitInconsistent(rig, options, job, workspace, &person_clusters, &r.persons);
   }
+  if (options.mode == InputMode::kBoxes) {
+    RegroupTwoCameraPersons(rig, options, job, workspace, &person_clusters, &r.persons);
+  }
   MergeDuplicates(rig, options, job, workspace, &person_clusters, &r.persons);
   if (options.mode == InputMode::kBoxes) {
     MergeCutPersons(rig, options, job, &person_clusters, &r.persons);
@@ -639,6 +668,86 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
                               const WindowJob& job) {
   WindowWorkspace workspace(options.triangulation);
   return ProcessWindowJob(rig, options, job, &workspace);
+}
+
+// See the header. Persons are judged on the triangulations before any move; a tracklet goes to
+// the person it fits best.
+void RegroupTwoCameraPersons(const geometry::CameraRig& rig,
+                             const TrackerOptions& options,
+                             const WindowJob& job,
+                             WindowWorkspace* workspace,
+                             std::vector<std::vector<int>>* clusters,
+                             std::vector<core::Tracklet3D>* persons) {
+  const double max_residual = 0.5 * options.refinement.box_split_residual;
+  if (max_residual <= 0.0 || persons->size() < 2) return;
+  const std::size_t n = persons->size();
+  std::vector<int> cameras(n);
+  for (std::size_t p = 0; p < n; ++p) cameras[p] = NumCameras(job, (*clusters)[p]);
+  // Whether person q's cluster holds a tracklet of tracklet i's camera in one of i's frames.
+  const auto camera_taken = [&](std::size_t q, int i) {
+    const core::Tracklet2D& t = job.tracklets[static_cast<std::size_t>(i)];
+    for (const int j : (*clusters)[q]) {
+      const core::Tracklet2D& u = job.tracklets[static_cast<std::size_t>(j)];
+      if (u.camera_id != t.camera_id) continue;
+      for (const FrameIndex f : t.frames) {
+        if (u.IndexOf(f) >= 0) return true;
+      }
+    }
+    return false;
+  };
+  std::vector<std::vector<int>> joins(n);
+  std::vector<char> dissolved(n, 0);
+  // A person that received a tracklet is not dissolved afterwards, and a dissolved one
+  // receives none (two two-camera persons cannot dissolve each other).
+  std::vector<char> receiving(n, 0);
+  for (std::size_t p = 0; p < n; ++p) {
+    if (cameras[p] != 2 || receiving[p]) continue;
+    std::vector<std::pair<std::size_t, int>> moves;
+    for (const int i : (*clusters)[p]) {
+      std::size_t best = n;
+      double best_residual = max_residual;
+      for (std::size_t q = 0; q < n; ++q) {
+        if (q == p || cameras[q] < 2 || dissolved[q] ||
+            FarInImage(rig, job.tracklets[static_cast<std::size_t>(i)], (*persons)[q]) ||
+            camera_taken(q, i)) {
+          continue;
+        }
+        const std::optional<double> r =
+            triangulation::ReprojectionResidual(rig,
+                                                job.tracklets[static_cast<std::size_t>(i)],
+                                                (*persons)[q],
+                                                options.association.min_confidence,
+                                                NumTriangulatedPoints(options));
+        if (r && *r <= best_residual && (best == n || *r < best_residual)) {
+          best = q;
+          best_residual = *r;
+        }
+      }
+      if (best == n) continue;
+      moves.emplace_back(best, i);
+    }
+    if (moves.empty()) continue;
+    for (const auto& [q, i] : moves) {
+      joins[q].push_back(i);
+      receiving[q] = 1;
+    }
+    dissolved[p] = 1;
+  }
+  std::vector<char> alive(n, 1);
+  for (std::size_t q = 0; q < n; ++q) {
+    if (joins[q].empty()) continue;
+    std::vector<int> merged = (*clusters)[q];
+    merged.insert(merged.end(), joins[q].begin(), joins[q].end());
+    std::sort(merged.begin(), merged.end());
+    core::Tracklet3D person = TriangulateCluster(rig, options, job, merged, workspace);
+    if (person.frames.empty()) continue;
+    (*clusters)[q] = std::move(merged);
+    (*persons)[q] = std::move(person);
+  }
+  for (std::size_t p = 0; p < n; ++p) {
+    if (dissolved[p]) alive[p] = 0;
+  }
+  KeepAlive(alive, clusters, persons);
 }
 
 }  // namespace mvtrack::tracker

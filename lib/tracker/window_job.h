@@ -119,4 +119,23 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
                               const TrackerOptions& options,
                               const WindowJob& job);
 
+/// One step of ProcessWindowJob, exposed for tests. Box mode: a person seen by two cameras
+/// only is weak evidence (any two rays of one epipolar plane meet, so two cameras' tracklets
+/// of different people can pair up), three agreeing views are strong. A tracklet of a
+/// two-camera person that another person of at least two cameras reprojects onto as closely as
+/// one person's own views do (triangulation::ReprojectionResidual at most half of
+/// RefinementOptions::box_split_residual) and whose cluster has no tracklet of its camera in
+/// the same frames joins that person (the best fitting), which is triangulated again; the
+/// two-camera person is dissolved (what is left of it, one camera, can only continue a track
+/// alone: LinkerOptions::monocular_max_s). Persons are judged on their triangulations before
+/// any move, in order: a person that received a tracklet is not dissolved afterwards, and a
+/// dissolved one receives none. `clusters` (indices into job.tracklets) and `persons` are parallel.
+/// Off when box_split_residual is 0. docs/DECISIONS.md "Two-camera persons".
+void RegroupTwoCameraPersons(const geometry::CameraRig& rig,
+                             const TrackerOptions& options,
+                             const WindowJob& job,
+                             WindowWorkspace* workspace,
+                             std::vector<std::vector<int>>* clusters,
+                             std::vector<core::Tracklet3D>* persons);
+
 }  // namespace mvtrack::tracker

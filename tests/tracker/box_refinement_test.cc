@@ -261,5 +261,81 @@ TEST_CASE("Box mode: a 2D tracklet no person was triangulated from is placed by 
   CHECK(tracker::ProcessWindowJob(rig, options, job_of(false)).monocular.empty());
 }
 
+// RegroupTwoCameraPersons: walker A seen by cameras 3 and 5 is person Q; a two-camera cluster X
+// pairs A's box in camera 8 with another walker's box in camera 13 (two cameras' tracklets of
+// different people that association could pair). Q reprojects onto A's camera-8 box as its own
+// views do, so that box joins Q and X is dissolved. Not when Q already has a camera-8 tracklet
+// in those frames, not when X has three cameras, not with box_split_residual 0.
+TEST_CASE("Box mode: a two-camera person's view that a third person explains joins it",
+          "[unit][tracker]") {
+  const auto cameras = RoomCameras();  // ids 3, 5, 8, 13
+  const geometry::CameraRig rig = MakeRig(cameras);
+  const Walker a;
+  Walker b = a;
+  b.start = a.start + Vec3(0.0, 2.0, 0.0);
+  std::mt19937 rng(9);
+  const ViewSpec spec{true, 0.5};
+  const auto frames = FrameRange(0, 29);
+  tracker::WindowJob job = EmptyJob();
+  job.tracklets.push_back(MakeTracklet(cameras[0], 1, a, frames, spec, &rng));  // 0: A @ 3
+  job.tracklets.push_back(MakeTracklet(cameras[1], 1, a, frames, spec, &rng));  // 1: A @ 5
+  job.tracklets.push_back(MakeTracklet(cameras[2], 1, a, frames, spec, &rng));  // 2: A @ 8
+  job.tracklets.push_back(MakeTracklet(cameras[3], 2, b, frames, spec, &rng));  // 3: B @ 13
+  const tracker::TrackerOptions options = BoxOptions();
+  // Q: the person of A's views in cameras 3 and 5 alone.
+  tracker::WindowJob q_job = EmptyJob();
+  q_job.tracklets = {job.tracklets[0], job.tracklets[1]};
+  const tracker::WindowResult q = tracker::ProcessWindowJob(rig, options, q_job);
+  REQUIRE(q.persons.size() == 1);
+  REQUIRE(WorstError(q.persons[0], a) < 0.1);
+  // X's own points (where the two rays pass closest) do not matter to the rule: here B's.
+  core::Tracklet3D x = q.persons[0];
+  for (std::size_t f = 0; f < x.frames.size(); ++f) x.points[f][0] = b.Pelvis(x.frames[f]);
+  x.cameras = {8, 13};
+
+  tracker::WindowWorkspace workspace(options.triangulation);
+  {
+    std::vector<std::vector<int>> clusters = {{0, 1}, {2, 3}};
+    std::vector<core::Tracklet3D> persons = {q.persons[0], x};
+    tracker::RegroupTwoCameraPersons(rig, options, job, &workspace, &clusters, &persons);
+    REQUIRE(persons.size() == 1);
+    CHECK(clusters[0] == std::vector<int>{0, 1, 2});
+    CHECK(persons[0].cameras == std::vector<CameraId>{3, 5, 8});
+    CHECK(WorstError(persons[0], a) < 0.1);
+  }
+  {  // Q already sees A in camera 8 over the same frames: nothing moves.
+    tracker::WindowJob busy = job;
+    busy.tracklets.push_back(MakeTracklet(cameras[2], 7, a, frames, spec, &rng));  // 4: A @ 8
+    std::vector<std::vector<int>> clusters = {{0, 1, 4}, {2, 3}};
+    std::vector<core::Tracklet3D> persons = {q.persons[0], x};
+    tracker::RegroupTwoCameraPersons(rig, options, busy, &workspace, &clusters, &persons);
+    CHECK(persons.size() == 2);
+    CHECK(clusters[1] == std::vector<int>{2, 3});
+  }
+  {  // X has three cameras: strong enough, untouched.
+    tracker::WindowJob three = job;
+    three.tracklets.push_back(MakeTracklet(cameras[0], 9, b, frames, spec, &rng));  // 4: B @ 3
+    std::vector<std::vector<int>> clusters = {{0, 1}, {2, 3, 4}};
+    std::vector<core::Tracklet3D> persons = {q.persons[0], x};
+    tracker::RegroupTwoCameraPersons(rig, options, three, &workspace, &clusters, &persons);
+    CHECK(persons.size() == 2);
+  }
+  {  // Two two-camera persons that each explain a view of the other: one receives, one goes.
+    std::vector<std::vector<int>> clusters = {{0, 1}, {2, 3}};
+    std::vector<core::Tracklet3D> persons = {q.persons[0], q.persons[0]};
+    persons[1].cameras = {8, 13};
+    tracker::RegroupTwoCameraPersons(rig, options, job, &workspace, &clusters, &persons);
+    CHECK(persons.size() == 1);
+  }
+  {  // Off with box_split_residual 0.
+    tracker::TrackerOptions off = options;
+    off.refinement.box_split_residual = 0.0;
+    std::vector<std::vector<int>> clusters = {{0, 1}, {2, 3}};
+    std::vector<core::Tracklet3D> persons = {q.persons[0], x};
+    tracker::RegroupTwoCameraPersons(rig, off, job, &workspace, &clusters, &persons);
+    CHECK(persons.size() == 2);
+  }
+}
+
 }  // namespace
 }  // namespace mvtrack
