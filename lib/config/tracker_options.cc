@@ -338,11 +338,6 @@ std::vector<Field> MakeFields() {
       DoubleRange::AtLeast(0.0)));
   f.push_back(DoubleField(
       "linking",
-      "unshared_link_distance_m",
-      [](auto& o) -> auto& { return o.linking.unshared_link_distance_m; },
-      DoubleRange::AtLeast(0.0)));
-  f.push_back(DoubleField(
-      "linking",
       "duplicate_distance_m",
       [](auto& o) -> auto& { return o.linking.duplicate_distance_m; },
       DoubleRange::AtLeast(0.0)));

@@ -206,10 +206,6 @@ bool LinkerOptions::Validate(std::string* why) const {
   if (!std::isfinite(max_link_distance_m) || max_link_distance_m <= 0.0) {
     return fail("max_link_distance_m must be finite and > 0");
   }
-  if (!std::isfinite(unshared_link_distance_m) || unshared_link_distance_m < 0.0 ||
-      unshared_link_distance_m > max_link_distance_m) {
-    return fail("unshared_link_distance_m must be finite and in [0, max_link_distance_m]");
-  }
   if (!std::isfinite(duplicate_distance_m) || duplicate_distance_m < 0.0 ||
       duplicate_distance_m > max_link_distance_m) {
     return fail("duplicate_distance_m must be finite and in [0, max_link_distance_m]");
@@ -939,7 +935,6 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
   // Evidence of every pair: Eq. 8 over the overlap (NaN without), shared 2D tracks.
   Eigen::MatrixXd overlap = Eigen::MatrixXd::Constant(rows_n, cols_n, kNaN);
   Eigen::MatrixXi shared = Eigen::MatrixXi::Zero(rows_n, cols_n);
-  std::vector<char> row_shares(num_tracks, 0);
   std::vector<char> col_shares(num_tracklets, 0);
   for (std::size_t r = 0; r < num_tracks; ++r) {
     for (std::size_t c = 0; c < num_tracklets; ++c) {
@@ -950,7 +945,6 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
       }
       shared(er, ec) = SharedMembers(tracks_[r].members, tracklets[c]);
       if (shared(er, ec) > 0) {
-        row_shares[r] = 1;
         col_shares[c] = 1;
       }
     }
@@ -1016,18 +1010,9 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     if (vetoed(r, c)) return std::nullopt;
     return d - options_.max_link_distance_m * static_cast<double>(shared(r, c));
   });
-  // Stage 2: overlap without a shared 2D track, where neither side shares one with anybody.
-  if (options_.unshared_link_distance_m > 0.0) {
-    solve_stage(LinkKind::kOverlap, [&](int r, int c) -> std::optional<double> {
-      const double d = overlap(r, c);
-      if (std::isnan(d) || d > options_.unshared_link_distance_m) return std::nullopt;
-      if (row_shares[static_cast<std::size_t>(r)] || col_shares[static_cast<std::size_t>(c)]) {
-        return std::nullopt;
-      }
-      if (vetoed(r, c)) return std::nullopt;
-      return d;
-    });
-  }
+  // Without a shared 2D track there is no overlap link: a tracklet whose cameras all changed
+  // their 2D tracks is a new candidate (docs/DECISIONS.md "Window linking": the stage that
+  // linked such tracklets within 0.25 m changed no output on any benchmark and was removed).
 
   // Overlap links report their Eq. 8 distance.
   for (std::size_t c = 0; c < num_tracklets; ++c) {
@@ -1056,7 +1041,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     return StateDistanceSquared(predicted, *initial[uc]);
   };
 
-  // Stage 3: gap with a shared 2D track and the motion gate.
+  // Stage 2: gap with a shared 2D track and the motion gate.
   solve_stage(LinkKind::kGap, [&](int r, int c) -> std::optional<double> {
     if (shared(r, c) == 0) return std::nullopt;
     const std::optional<double> d2 = motion_distance(r, c, options_.max_lost_s);
@@ -1065,7 +1050,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     return d2;
   });
 
-  // Stage 4: re-identification by motion alone, only when unambiguous on both sides.
+  // Stage 3: re-identification by motion alone, only when unambiguous on both sides.
   if (options_.reid_gate_chi2 > 0.0) {
     std::vector<int> rows;
     std::vector<int> cols;
@@ -1216,12 +1201,12 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
   for (std::size_t c = 0; c < num_tracklets; ++c) {
     if (track_of_col[c] < 0) find_duplicate(c, [](std::size_t) { return true; });
   }
-  // Stage 5, appearance.
+  // Stage 4, appearance.
   std::vector<int> revive(num_tracklets, -1);
   std::vector<int> same_as(num_tracklets, -1);  // a second tracklet of a re-identified person
   std::vector<int> forget;                      // departed fragments of re-identified people
   // A birth confirmed at once: seen by strong_birth_cameras, or far from everybody else of the
-  // window (not a split-off duplicate of a person). Asked by stage 5 and again at birth: the
+  // window (not a split-off duplicate of a person). Asked by stage 4 and again at birth: the
   // answer depends on the window's tracklets only, so it is computed once per tracklet.
   std::vector<signed char> strong_cache(num_tracklets, -1);
   // A piece of a tracked person: it carries a 2D track an alive track holds

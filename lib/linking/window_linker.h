@@ -29,12 +29,6 @@ struct LinkerOptions {
   /// only measures the disagreement of two triangulations (centimetres), whereas two people
   /// are at least a body width apart. Finite, > 0.
   double max_link_distance_m = 0.5;
-  /// An overlap link between a track and a tracklet that share no 2D track (every camera's 2D
-  /// track changed) needs Eq. 8 <= this, and neither of them may share a 2D track with any
-  /// other tracklet / track of the window: a person whose members all changed is a new
-  /// candidate unless nothing else explains it. 0 disables such links. Finite, in
-  /// [0, max_link_distance_m].
-  double unshared_link_distance_m = 0.25;
   /// A tracklet left unmatched whose distance to a tracklet of the same window linked to an
   /// existing track is at most this (metres: the median over the frames both have of Eq. 8's
   /// per-frame distance, so that the few frames where one of them is triangulated from a
@@ -290,11 +284,9 @@ inline constexpr int kMaxSamePerson = 16;
 /// window's tracklets as columns, each stage solved optimally (core::SolveAssignment, Eq. 9)
 /// among what the earlier stages left:
 ///  1. Overlap: Eq. 8 <= max_link_distance_m and at least one shared (camera, 2D track).
-///  2. Overlap without a shared 2D track: Eq. 8 <= unshared_link_distance_m, only between a
-///     track and a tracklet that share a 2D track with nobody in this window.
-///  3. Gap: no overlap, a shared 2D track, the gap <= max_lost_s, and the tracklet's initial
+///  2. Gap: no overlap, a shared 2D track, the gap <= max_lost_s, and the tracklet's initial
 ///     state within gap_gate_chi2 of the track's prediction (cost: that distance).
-///  4. Re-identification: no overlap, no shared 2D track, a lost track, the gap <=
+///  3. Re-identification: no overlap, no shared 2D track, a lost track, the gap <=
 ///     max_reid_gap_s, the motion distance <= reid_gate_chi2 and smaller by reid_margin_chi2
 ///     than every other candidate of the track and of the tracklet.
 /// Then two matched tracklets within duplicate_distance_m of each other are one person linked
@@ -303,12 +295,12 @@ inline constexpr int kMaxSamePerson = 16;
 /// (Eq. 8) of a matched one is a duplicate of that person (its 2D tracks join the track's members,
 /// track_of_tracklet is that track's id, nothing is born). With appearance
 /// (core::AppearanceOptions::enabled and tracklets that carry one):
-///  5. Appearance: each remaining tracklet with an appearance descriptor (with
+///  4. Appearance: each remaining tracklet with an appearance descriptor (with
 ///     AppearanceOptions::defer_weak_reid only one that would be a strong birth, plus the
-///     tracklets linked in stages 1-4 to tentative tracks born in an earlier window: a weak
+///     tracklets linked in stages 1-3 to tentative tracks born in an earlier window: a weak
 ///     birth is re-identified, if at all, when its track is linked again, and the tentative
 ///     track then ends, EndReason::kReidentified) against the confirmed
-///     tracks left unmatched by stages 1-4 (lost before or in this window) and the departed
+///     tracks left unmatched by stages 1-3 (lost before or in this window) and the departed
 ///     tracks (ended within max_reid_s): the gallery distance (core::GalleryDistance) must be
 ///     <= reid_max_distance and smaller by reid_margin than every other candidate of the track
 ///     and of the tracklet (candidates that are on evidence the same person,
@@ -408,7 +400,7 @@ class WindowLinker {
   void LinkMonocular(std::int64_t window_id,
                      const std::vector<core::Tracklet3D>& monocular,
                      LinkResult* result);
-  // Stage 5 of Link (see the class comment): fills `revive` (departed index per tracklet, -1)
+  // Stage 4 of Link (see the class comment): fills `revive` (departed index per tracklet, -1)
   // and links lost tracks into tracklet_of_track / track_of_col.
   void LinkByAppearance(const std::vector<core::Tracklet3D>& tracklets,
                         const std::vector<bool>& column,

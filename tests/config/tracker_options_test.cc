@@ -61,7 +61,6 @@ void RequireSameOptions(const TrackerOptions& a, const TrackerOptions& b) {
   REQUIRE(a.triangulation.min_inliers == b.triangulation.min_inliers);
   REQUIRE(a.triangulation.max_views == b.triangulation.max_views);
   REQUIRE(a.linking.max_link_distance_m == b.linking.max_link_distance_m);
-  REQUIRE(a.linking.unshared_link_distance_m == b.linking.unshared_link_distance_m);
   REQUIRE(a.linking.duplicate_distance_m == b.linking.duplicate_distance_m);
   REQUIRE(a.linking.duplicate_max_gap_s == b.linking.duplicate_max_gap_s);
   REQUIRE(a.linking.merge_linked_duplicates == b.linking.merge_linked_duplicates);
@@ -159,7 +158,6 @@ TrackerOptions RandomOptions(std::mt19937* rng) {
   o.triangulation.min_inliers = small(1, 8);
   o.triangulation.max_views = integer(0, 3) == 0 ? 0 : small(2, 16);
   o.linking.max_link_distance_m = 0.01 + 3.0 * unit(*rng);
-  o.linking.unshared_link_distance_m = o.linking.max_link_distance_m * unit(*rng);
   o.linking.duplicate_distance_m = o.linking.max_link_distance_m * unit(*rng);
   o.linking.duplicate_max_gap_s = 2.0 * unit(*rng);
   o.linking.merge_linked_duplicates = unit(*rng) < 0.5;
@@ -241,11 +239,11 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   // motion_buffer (derived from the frame period by tracker::AtFrameRate).
   CHECK(sizeof(tracking2d::SortOptions) == 24);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
-  CHECK(sizeof(linking::LinkerOptions) == 136);
+  CHECK(sizeof(linking::LinkerOptions) == 128);
   CHECK(sizeof(triangulation::RefinementOptions) == 136);
   CHECK(sizeof(core::AppearanceOptions) == 96);
   CHECK(sizeof(association::AssociationOptions) == 56);
-  CHECK(sizeof(TrackerOptions) == 600);
+  CHECK(sizeof(TrackerOptions) == 592);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
@@ -298,7 +296,6 @@ TEST_CASE("Every key sets its own field", "[unit]") {
       "    max_views: 0\n"
       "  linking:\n"
       "    max_link_distance_m: 0.65\n"
-      "    unshared_link_distance_m: 0.125\n"
       "    duplicate_distance_m: 0.375\n"
       "    min_hits: 3\n"
       "    strong_birth_cameras: 4\n"
@@ -364,7 +361,6 @@ TEST_CASE("Every key sets its own field", "[unit]") {
   CHECK(o.triangulation.min_inliers == 3);
   CHECK(o.triangulation.max_views == 0);
   CHECK(o.linking.max_link_distance_m == 0.65);
-  CHECK(o.linking.unshared_link_distance_m == 0.125);
   CHECK(o.linking.duplicate_distance_m == 0.375);
   CHECK(o.linking.min_hits == 3);
   CHECK(o.linking.strong_birth_cameras == 4);
@@ -445,9 +441,12 @@ TEST_CASE("Options round-trip exactly: defaults and random sets", "[unit]") {
 TEST_CASE("ToYaml lists every option and the example documents exactly those", "[unit]") {
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
-  // 14 + 3 (sort) + 4 (association) + 7 (triangulation) + 4 (linking) + 12 (refinement)
-  // + 12 (appearance)
-  CHECK(written.size() == 86);
+  // 86 before issue 38; linking.unshared_link_distance_m removed (it changed no output on any
+  // benchmark).
+  CHECK(written.size() == 85);
+  CHECK_THROWS_WITH(
+      ParseTrackerOptions("tracker:\n  linking:\n    unshared_link_distance_m: 0.25\n", "r.yaml"),
+      Catch::Contains("unshared_link_distance_m"));
   std::set<std::string> documented;
   CollectKeyPaths(YAML::LoadFile(ExamplePath()), "", &documented);
   CHECK(documented == written);
@@ -799,12 +798,11 @@ TEST_CASE("Config ranges agree with Validate at every boundary", "[unit]") {
        "tracker.triangulation.max_views",
        false,
        [](O& o) { o.triangulation.max_views = -1; }},
-      {"linking: {max_link_distance_m: 1e-9, unshared_link_distance_m: 0, duplicate_distance_m: 0}",
+      {"linking: {max_link_distance_m: 1e-9, duplicate_distance_m: 0}",
        "",
        true,
        [](O& o) {
          o.linking.max_link_distance_m = 1e-9;
-         o.linking.unshared_link_distance_m = 0.0;
          o.linking.duplicate_distance_m = 0.0;
        }},
       {"linking: {max_link_distance_m: 0}",
@@ -821,14 +819,6 @@ TEST_CASE("Config ranges agree with Validate at every boundary", "[unit]") {
        "tracker.linking.max_lost_s",
        false,
        [](O& o) { o.linking.max_lost_s = -0.5; }},
-      {"linking: {unshared_link_distance_m: 0.5}",
-       "",
-       true,
-       [](O& o) { o.linking.unshared_link_distance_m = 0.5; }},
-      {"linking: {unshared_link_distance_m: 0.6}",
-       "tracker.linking.unshared_link_distance_m",
-       false,
-       [](O& o) { o.linking.unshared_link_distance_m = 0.6; }},
       {"linking: {duplicate_distance_m: 0.5}",
        "",
        true,

@@ -261,7 +261,6 @@ TEST_CASE("LinkerOptions::Validate rejects out-of-range settings", "[unit]") {
   };
   rejects([](LinkerOptions* o) { o->max_link_distance_m = 0.0; }, "max_link_distance_m");
   rejects([](LinkerOptions* o) { o->max_link_distance_m = INFINITY; }, "max_link_distance_m");
-  rejects([](LinkerOptions* o) { o->unshared_link_distance_m = 0.6; }, "unshared_link_distance_m");
   rejects([](LinkerOptions* o) { o->duplicate_distance_m = 0.6; }, "duplicate_distance_m");
   rejects([](LinkerOptions* o) { o->duplicate_distance_m = -1.0; }, "duplicate_distance_m");
   rejects([](LinkerOptions* o) { o->min_hits = 0; }, "min_hits");
@@ -409,41 +408,25 @@ TEST_CASE("A duplicate is judged on the median over common frames, not the mean"
   CHECK(b.track_of_tracklet[1] == 2);
 }
 
-TEST_CASE("Overlap without a shared 2D track: a new candidate unless nobody else explains it",
-          "[unit]") {
-  // Window 0: track 1 at the origin with 2D tracks {1, 2}.
-  // Window 1: a tracklet 0.1 m away whose 2D tracks all changed, while nobody continues the
-  // old ones -> linked (the stricter unshared gate, 0.25 m).
-  {
-    WindowLinker linker;
-    LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
-    const LinkResult r =
-        LinkWindow(&linker, 1, {ConstantTracklet(20, 49, Vec3(0.1, 0.0, 1.0), {7, 8})});
-    CHECK(r.track_of_tracklet[0] == 1);
-    CHECK(r.link_kind[0] == LinkKind::kOverlap);
-    CHECK(r.shared_members[0] == 0);
-  }
-  // ... but 0.3 m away (inside Eq. 8's gate, outside the unshared one) it is born.
-  {
-    WindowLinker linker;
-    LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
-    const LinkResult r =
-        LinkWindow(&linker, 1, {ConstantTracklet(20, 49, Vec3(0.3, 0.0, 1.0), {7, 8})});
-    CHECK(r.link_kind[0] == LinkKind::kBirth);
-    CHECK(r.track_of_tracklet[0] == 2);
-  }
-  // ... and when the old track's 2D tracks continue in another tracklet, the unshared one is a
-  // new person even right on top of the track.
-  {
-    WindowLinker linker;
-    LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
-    const LinkResult r = LinkWindow(&linker,
-                                    1,
-                                    {ConstantTracklet(20, 49, Vec3(0.0, 0.0, 1.0), {7, 8}),
-                                     ConstantTracklet(20, 49, Vec3(0.45, 0.0, 1.0), {1, 2})});
-    CHECK(r.track_of_tracklet[1] == 1);
-    CHECK(r.link_kind[0] == LinkKind::kBirth);
-  }
+TEST_CASE("Overlap without a shared 2D track: a new candidate", "[unit]") {
+  // Window 0: track 1 at the origin with 2D tracks {1, 2}. Window 1: a tracklet 0.1 m away
+  // whose 2D tracks all changed: no 2D track ties it to the track, so it is a new candidate
+  // (the stage that linked such tracklets within 0.25 m changed no output on any benchmark and
+  // was removed, issue 38), even when nobody continues the old 2D tracks.
+  WindowLinker linker;
+  LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+  const LinkResult r =
+      LinkWindow(&linker, 1, {ConstantTracklet(20, 49, Vec3(0.1, 0.0, 1.0), {7, 8})});
+  CHECK(r.link_kind[0] == LinkKind::kBirth);
+  CHECK(r.track_of_tracklet[0] == 2);
+  CHECK(r.shared_members[0] == 0);
+  // The same tracklet with one of the old 2D tracks is the old person.
+  WindowLinker other;
+  LinkWindow(&other, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
+  const LinkResult s =
+      LinkWindow(&other, 1, {ConstantTracklet(20, 49, Vec3(0.1, 0.0, 1.0), {1, 8})});
+  CHECK(s.link_kind[0] == LinkKind::kOverlap);
+  CHECK(s.track_of_tracklet[0] == 1);
 }
 
 TEST_CASE("A gap is bridged by a 2D track that continued, within the motion gate", "[unit]") {
