@@ -214,7 +214,7 @@ TEST_CASE("a pair at distance infinity never ends up in one cluster", "[unit]") 
   }
 }
 
-TEST_CASE("empty distances alone never merge under PDNC; values merge only below lambda",
+TEST_CASE("empty distances alone never merge under PDNC, values merge only below lambda",
           "[unit]") {
   DistanceMatrix all_empty(4);
   CHECK(ClusterTracklets(all_empty, Options(ClusteringMethod::kPdnc, 0.3)) ==

@@ -191,7 +191,7 @@ TEST_CASE("Per-camera sanity warnings", "[unit]") {
   }
 }
 
-TEST_CASE("A camera sharing no floor with the others is a load warning; normal rigs have none",
+TEST_CASE("A camera sharing no floor with the others is a load warning, normal rigs have none",
           "[unit]") {
   // Two cameras over one spot, a third far away over another.
   const std::vector<mvtrack::geometry::CameraModel> cams = {
@@ -204,9 +204,16 @@ TEST_CASE("A camera sharing no floor with the others is a load warning; normal r
   const std::vector<std::string> at_load = CalibrationLoadWarnings(cams);
   REQUIRE(at_load.size() == 1);
   CHECK(at_load[0] == report.load_warnings[0]);
-  // The first two alone: a single-view border is a warning of calib check, not at load.
+  // The first two alone: a single-view border (a region wider than the floor both see) is a
+  // warning of calib check, not at load. (Their default region, the rig plus 1 m, is seen by
+  // both everywhere: no warning at all there.)
   const std::vector<mvtrack::geometry::CameraModel> pair(cams.begin(), cams.begin() + 2);
-  CHECK_FALSE(CheckCalibration(pair).warnings.empty());
+  CHECK(CheckCalibration(pair).warnings.empty());
+  CalibrationCheckOptions wide;
+  wide.region = FloorRegion{-5.0, -5.0, 6.0, 5.0};
+  const CalibrationReport wide_report = CheckCalibration(pair, wide);
+  CHECK(wide_report.area_single_view_m2 > 0.0);
+  CHECK_FALSE(wide_report.warnings.empty());
   CHECK(CalibrationLoadWarnings(pair).empty());
 }
 

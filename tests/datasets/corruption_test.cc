@@ -456,7 +456,7 @@ TEST_CASE("A blacked-out camera detects nothing in its blackout frames only", "[
   }
 }
 
-TEST_CASE("Student-t noise has the tails it promises; the Gaussian default has none", "[unit]") {
+TEST_CASE("Student-t noise has the tails it promises, the Gaussian default has none", "[unit]") {
   const CleanFrames clean = MakeCleanFrames(2000, 60.0);
   auto far_fraction = [&](int dof) {
     CorruptionOptions o;

@@ -170,7 +170,7 @@ TEST_CASE("EPFL Terrace real data: the cameras from the homographies, the unit f
   CHECK(distances_px[distances_px.size() / 2] < 10.0);
 }
 
-TEST_CASE("EPFL Terrace real data: the corrupted variant is seeded; a given unit is used",
+TEST_CASE("EPFL Terrace real data: the corrupted variant is seeded, a given unit is used",
           "[data]") {
   MVTRACK_REQUIRE_DATASET(root, "epfl");
   const Dataset a = LoadEpflTerrace(root);

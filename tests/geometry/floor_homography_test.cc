@@ -107,7 +107,7 @@ TEST_CASE("The floor unit scales the translation: a floor in centimetres", "[uni
   CHECK(as_m.focal_px == Approx(r.focal_px).epsilon(1e-12));
 }
 
-TEST_CASE("A left-handed floor frame is mirrored in y; the world is the original one", "[unit]") {
+TEST_CASE("A left-handed floor frame is mirrored in y, the world is the original one", "[unit]") {
   for (const Case& c : Cameras()) {
     for (double scale : {1.0, -2.0}) {
       INFO(c.name << ", H scaled by " << scale);
@@ -135,7 +135,7 @@ TEST_CASE("A left-handed floor frame is mirrored in y; the world is the original
   }
 }
 
-TEST_CASE("A given focal length is used as it is; the estimate needs none", "[unit]") {
+TEST_CASE("A given focal length is used as it is, the estimate needs none", "[unit]") {
   const CameraModel cam = Cameras()[0].camera;
   const Mat3 H = FloorHomographyOf(cam, 1.0, false, 1.0);
   FloorHomographyOptions options;
@@ -155,7 +155,7 @@ TEST_CASE("A given focal length is used as it is; the estimate needs none", "[un
   CHECK(r.floor_reprojection_max_px > 1.0);
 }
 
-TEST_CASE("A given principal point is used; the default is the image centre", "[unit]") {
+TEST_CASE("A given principal point is used, the default is the image centre", "[unit]") {
   CameraModel cam = Cameras()[1].camera;
   cam.K(0, 2) = 900.0;
   cam.K(1, 2) = 560.0;

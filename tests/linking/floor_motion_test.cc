@@ -51,7 +51,7 @@ TEST_CASE("FloorMotion: an update fuses a measurement with its variance", "[unit
   CHECK(m.position().y() == Approx(0.0).margin(1e-15));
 }
 
-TEST_CASE("FloorMotion: a constant-velocity walk is tracked; state distances", "[unit]") {
+TEST_CASE("FloorMotion: a constant-velocity walk is tracked, state distances", "[unit]") {
   MotionOptions o;
   FloorMotion m = FloorMotion::Start(Vec2(0.0, 0.0), o);
   for (int i = 1; i <= 60; ++i) {

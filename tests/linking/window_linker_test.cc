@@ -508,7 +508,7 @@ TEST_CASE("A lost track ends when none of its 2D tracks continues, or after max_
   CHECK(r.died_reason[0] == EndReason::kLostTooLong);
 }
 
-TEST_CASE("Weak births wait for a second window; strong ones are confirmed at once", "[unit]") {
+TEST_CASE("Weak births wait for a second window, strong ones are confirmed at once", "[unit]") {
   WindowLinker linker;
   // Two cameras 1.2 m from another person: weak (possibly a duplicate split off that person).
   // Three cameras: strong. Two cameras, 4.8 m from anybody: strong (isolated).
@@ -595,7 +595,7 @@ TEST_CASE("A birth that carries a 2D track of an alive track waits unless isolat
   }
 }
 
-TEST_CASE("Re-identification by motion alone is off by default; when on, only unambiguous",
+TEST_CASE("Re-identification by motion alone is off by default, when on, only unambiguous",
           "[unit]") {
   // Track 1 walks at 1.2 m/s and vanishes (every 2D track lost) after frame 29; a tracklet with
   // new 2D tracks appears on its predicted path after a 16-frame gap.
@@ -633,7 +633,7 @@ TEST_CASE("Re-identification by motion alone is off by default; when on, only un
   }
 }
 
-TEST_CASE("Skipped window ids count as missed windows; the stream end ends every track", "[unit]") {
+TEST_CASE("Skipped window ids count as missed windows, the stream end ends every track", "[unit]") {
   WindowLinker linker;
   const core::Tracklet3D a = ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2});
   LinkWindow(&linker, 0, {a});

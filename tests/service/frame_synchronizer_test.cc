@@ -308,7 +308,7 @@ TEST_CASE("clock model: one camera's skewed clock is flagged alone, the others k
   }
 }
 
-TEST_CASE("clock model: a clock that comes back is included again; one message cannot move time",
+TEST_CASE("clock model: a clock that comes back is included again, one message cannot move time",
           "[unit]") {
   FrameSynchronizer sync({0, 1, 2, 3}, Options());
   std::vector<CameraTransition> transitions;

@@ -417,7 +417,7 @@ TEST_CASE("service: status period and idle flush follow the wall clock", "[unit]
   CHECK(sink.channels["MVTRACK_STATUS"] >= 3);
 }
 
-TEST_CASE("service reload switches the tracker options; track ids keep increasing", "[unit]") {
+TEST_CASE("service reload switches the tracker options, track ids keep increasing", "[unit]") {
   const Utime t0 = Scene().detections[0][0].utime;
   pipeline::ManualClock clock(t0);
   Sink sink;

@@ -36,7 +36,7 @@ double Norm(const std::vector<float>& v) {
   return std::sqrt(n2);
 }
 
-TEST_CASE("embeddings off: detections carry none; on: boxes and keypoints unchanged",
+TEST_CASE("embeddings off: detections carry none, on: boxes and keypoints unchanged",
           "[unit][sim]") {
   const SceneOptions off = Base();
   SceneOptions on = off;
@@ -111,7 +111,7 @@ std::pair<double, double> SameAndOtherDistance(const Scene& s) {
   return {same / static_cast<double>(n_same), other / static_cast<double>(n_other)};
 }
 
-TEST_CASE("same person closer than strangers; more noise blurs the difference", "[unit][sim]") {
+TEST_CASE("same person closer than strangers, more noise blurs the difference", "[unit][sim]") {
   SceneOptions o = Base();
   o.embedding_dim = 128;
   o.false_positives_per_frame = 0.0;

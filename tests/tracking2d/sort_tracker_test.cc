@@ -213,7 +213,7 @@ TEST_CASE("SORT predicts the occluded person along its motion", "[unit]") {
   }
 }
 
-TEST_CASE("SORT track dies after max_age missed frames; a returning person gets a new id",
+TEST_CASE("SORT track dies after max_age missed frames, a returning person gets a new id",
           "[unit]") {
   // Moving at 5 px/frame with a 50 px wide box: after 6 frames a stationary guess would overlap
   // by IoU 0.25 < 0.3, so re-identification needs the multi-step prediction.

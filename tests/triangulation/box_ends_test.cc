@@ -75,7 +75,7 @@ TEST_CASE("Box ends: consistent views give the feet and the head", "[unit]") {
   }
 }
 
-TEST_CASE("Box ends: feet that float mean crossed rays; the frame is dropped", "[unit]") {
+TEST_CASE("Box ends: feet that float mean crossed rays, the frame is dropped", "[unit]") {
   const auto cameras = RoomCameras();
   const geometry::CameraRig rig = MakeRig(cameras);
   const Walker w;
