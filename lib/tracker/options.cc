@@ -85,6 +85,7 @@ tracking2d::SortOptions ScaledSort(const tracking2d::SortOptions& sort,
   if (sort.max_age > 0) o.max_age = Scaled(sort.max_age, 1, f);
   o.min_hits = Scaled(sort.min_hits, 1, f);
   o.motion_buffer = linking::kMaxReidSpeedMps * seconds_per_frame * (1.0 - f) / kPersonHeightM;
+  o.process_noise_scale = 1.0 / (f * f * f);
   return o;
 }
 

@@ -120,8 +120,9 @@ struct TrackerOptions {
 /// `options` unchanged when reference_fps is 0 or the stream runs at reference_fps or faster;
 /// else with f = (1 / seconds_per_frame) / reference_fps < 1: every frame count n of
 /// TrackerOptions::reference_fps becomes max(its minimum, ceil(n f)) (ν >= 2, φ >= 1 unless 0,
-/// all others >= 1; δ <= ν) and sort.motion_buffer becomes kMaxReidSpeedMps x (seconds_per_frame
-/// - 1 / reference_fps) / 1.7 m (box heights; the IoU threshold stays). The result is
+/// all others >= 1; δ <= ν), sort.motion_buffer becomes kMaxReidSpeedMps x (seconds_per_frame
+/// - 1 / reference_fps) / 1.7 m (box heights; the IoU threshold stays) and
+/// sort.process_noise_scale (1 / f)^3. The result is
 /// valid when `options` is. docs/DECISIONS.md "Time".
 TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_frame);
 

@@ -128,16 +128,16 @@ KalmanBoxTracker::KalmanBoxTracker(const core::BoxPx& box)
   x_.head<kMeasurementDim>() = BoxToMeasurement(box);
 }
 
-void KalmanBoxTracker::Predict() {
+void KalmanBoxTracker::Predict(double noise_scale) {
   if (x_(6) + x_(2) <= 0.0) x_(6) = 0.0;
   // x <- F x and P <- F P F^T + Q with F = [I3 0 I3; 0 1 0; 0 0 I3] (cx += vx, cy += vy,
   // s += vs) and diagonal Q, written out on the few non-zero entries instead of dense 7x7
   // products: every entry of the dense products is a sum of at most two non-zero terms plus
   // exact zeros, so this gives bit-identical results at a fraction of the cost.
   x_.head<3>() += x_.tail<3>();
-  p_.topRows<3>() += p_.bottomRows<3>();       // F P
-  p_.leftCols<3>() += p_.rightCols<3>();       // (F P) F^T
-  p_.diagonal() += ProcessNoise().diagonal();  // + Q
+  p_.topRows<3>() += p_.bottomRows<3>();                     // F P
+  p_.leftCols<3>() += p_.rightCols<3>();                     // (F P) F^T
+  p_.diagonal() += noise_scale * ProcessNoise().diagonal();  // + Q (scaled)
 }
 
 void KalmanBoxTracker::Update(const core::BoxPx& box) {

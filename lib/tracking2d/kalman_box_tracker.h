@@ -34,9 +34,10 @@ class KalmanBoxTracker {
   explicit KalmanBoxTracker(const core::BoxPx& box);
 
   /// Advances the state by one frame with the constant-velocity model x <- F x,
-  /// P <- F P F^T + Q. As in SORT, a scale velocity that would make the area non-positive is
-  /// zeroed first.
-  void Predict();
+  /// P <- F P F^T + noise_scale Q. As in SORT, a scale velocity that would make the area
+  /// non-positive is zeroed first. `noise_scale` (finite, > 0; SortOptions::process_noise_scale)
+  /// is 1 at the rate SORT's Q was set for; 1 gives SORT's filter exactly.
+  void Predict(double noise_scale = 1.0);
 
   /// Corrects the state with an observed box (must satisfy IsUsableBox; checked).
   void Update(const core::BoxPx& box);

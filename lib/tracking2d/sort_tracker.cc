@@ -27,6 +27,9 @@ bool SortOptions::Validate(std::string* why) const {
   if (!std::isfinite(motion_buffer) || motion_buffer < 0.0) {
     return fail("motion_buffer must be finite and >= 0");
   }
+  if (!std::isfinite(process_noise_scale) || !(process_noise_scale > 0.0)) {
+    return fail("process_noise_scale must be finite and > 0");
+  }
   return true;
 }
 
@@ -125,7 +128,7 @@ std::vector<TrackedDetection> SortTracker::Update(
   //    surviving tracks were matched at most max_age + 1 frames ago, which bounds the steps.
   const FrameIndex steps = frame - previous_frame;
   for (Track& t : tracks_) {
-    for (FrameIndex s = 0; s < steps; ++s) t.filter.Predict();
+    for (FrameIndex s = 0; s < steps; ++s) t.filter.Predict(options_.process_noise_scale);
   }
   // SORT removes trackers whose prediction is invalid (NaN); a non-positive area or aspect
   // ratio cannot be compared by IoU either. The survivors' predicted boxes are kept for step 3.

@@ -44,6 +44,12 @@ struct SortOptions {
   /// rate, so that slower streams, where a walking person moves a body width between frames
   /// and IoU alone loses them, keep the same gate in metres. >= 0, finite.
   double motion_buffer = 0.0;
+  /// The Kalman filter's process noise Q (SORT's, set per frame at the reference rate) times
+  /// this. Not a configuration key either: tracker::AtFrameRate sets it to (frame period /
+  /// reference period)^3 for a slower stream, the growth of a constant-velocity model's
+  /// white-noise acceleration over the longer step in per-frame units, so a person may turn as
+  /// much per second at 2 fps as at 25 (1 at the reference rate or faster). Finite, > 0.
+  double process_noise_scale = 1.0;
 
   /// Checks the ranges above; on failure writes a reason to `why` (if not null).
   bool Validate(std::string* why) const;

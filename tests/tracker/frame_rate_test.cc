@@ -19,6 +19,7 @@ TEST_CASE("AtFrameRate: unchanged at the reference rate and faster", "[unit]") {
     CHECK(o.sort.max_age == 5);
     CHECK(o.sort.iou_threshold == 0.5);
     CHECK(o.sort.motion_buffer == 0.0);
+    CHECK(o.sort.process_noise_scale == 1.0);
     CHECK(o.triangulation.phi == 7);
     CHECK(o.refinement.box_min_duplicate_frames == 3);
     CHECK(o.refinement.smooth_half_window == 5);
@@ -47,6 +48,7 @@ TEST_CASE("AtFrameRate: a slower stream keeps the durations, counts rounded up",
   CHECK(o.refinement.smooth_half_window == 1);  // ceil(0.4)
   CHECK(o.sort.iou_threshold == 0.5);
   CHECK(o.sort.motion_buffer == Approx(3.0 * 0.46 / 1.7));
+  CHECK(o.sort.process_noise_scale == Approx(12.5 * 12.5 * 12.5));
   std::string why;
   CHECK(o.Validate(&why));
   // 12.5 fps: f = 0.5 exactly: 15 / 10 frames, phi ceil(3.5) = 4 (no rounding up past exact).
@@ -58,6 +60,7 @@ TEST_CASE("AtFrameRate: a slower stream keeps the durations, counts rounded up",
   CHECK(SortOptionsAtFrameRate(base, 0.08).max_age == 3);
   CHECK(SortOptionsAtFrameRate(base, 0.08).iou_threshold == 0.5);
   CHECK(SortOptionsAtFrameRate(base, 0.08).motion_buffer == Approx(3.0 * 0.04 / 1.7));
+  CHECK(SortOptionsAtFrameRate(base, 0.08).process_noise_scale == Approx(8.0));
   // Minimums: nu >= 2, delta <= nu, phi 0 and max_age 0 stay 0.
   TrackerOptions z = base;
   z.triangulation.phi = 0;

@@ -101,6 +101,25 @@ TEST_CASE("KalmanBoxTracker tracks noisy constant velocity motion", "[unit]") {
   REQUIRE(kf.state()(4) == Approx(6.0).margin(0.5));
 }
 
+TEST_CASE("KalmanBoxTracker: the process noise scale grows the prediction's uncertainty",
+          "[unit]") {
+  const core::BoxPx box{100.0, 100.0, 140.0, 220.0};
+  KalmanBoxTracker plain(box);
+  KalmanBoxTracker same(box);
+  KalmanBoxTracker slow(box);
+  plain.Predict();
+  same.Predict(1.0);
+  slow.Predict(8.0);
+  // Scale 1 is SORT's filter exactly; a larger scale adds that many times SORT's Q.
+  CHECK(plain.covariance() == same.covariance());
+  CHECK(plain.state() == slow.state());
+  for (int i = 0; i < 7; ++i) {
+    CHECK(slow.covariance()(i, i) > plain.covariance()(i, i));
+  }
+  // Q's first diagonal entry is 1 (SORT): 8 added instead of 1.
+  CHECK(slow.covariance()(0, 0) - plain.covariance()(0, 0) == Approx(7.0));
+}
+
 TEST_CASE("KalmanBoxTracker never predicts a non-positive area from a shrinking box", "[unit]") {
   // The area shrinks fast; SORT zeroes the scale velocity when it would drive the area <= 0.
   KalmanBoxTracker kf(core::BoxPx{0.0, 0.0, 40.0, 100.0});

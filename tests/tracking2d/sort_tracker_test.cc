@@ -137,6 +137,15 @@ TEST_CASE("SortOptions validation", "[unit]") {
     REQUIRE_FALSE(o.Validate(&why));
     REQUIRE(why.find("motion_buffer") != std::string::npos);
   }
+  for (const double bad : {0.0,
+                           -1.0,
+                           std::numeric_limits<double>::infinity(),
+                           std::numeric_limits<double>::quiet_NaN()}) {
+    o = SortOptions{};
+    o.process_noise_scale = bad;
+    REQUIRE_FALSE(o.Validate(&why));
+    REQUIRE(why.find("process_noise_scale") != std::string::npos);
+  }
 }
 
 // Two people walking side by side, 0.7 box heights apart, sampled at a low frame rate: each
