@@ -217,11 +217,8 @@ Dataset LoadCampus(const std::filesystem::path& data_root, const CampusOptions& 
 
   // The detector model; the false-positive pool of a camera is all its clean poses.
   // The blackout (hard level) falls inside the protocol's frames.
-  CorruptionOptions corruption = options.corruption;
-  std::vector<CameraId> camera_ids;
-  for (const geometry::CameraModel& camera : ds.cameras) camera_ids.push_back(camera.id);
-  PlaceBlackout(&corruption, camera_ids, {{350, 470}, {650, 750}}, 25.0);
-  internal::CorruptDetectionGrid(corruption, ds.cameras, &ds.detections, &ds.source_ids);
+  const CorruptionOptions corruption =
+      internal::CorruptDataset(options.corruption, {{350, 470}, {650, 750}}, &ds);
 
   ds.protocol_frames = {eval::FrameRange{350, 470}, eval::FrameRange{650, 750}};
   ds.protocol_actor_ids = {0, 1, 2};

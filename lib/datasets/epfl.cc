@@ -338,11 +338,8 @@ Dataset LoadEpflTerrace(const std::filesystem::path& data_root,
   }
   ds.gt_layout = core::KeypointLayoutId::kNone;
 
-  CorruptionOptions corruption = options.corruption;
-  std::vector<CameraId> camera_ids;
-  for (const geometry::CameraModel& cam : ds.cameras) camera_ids.push_back(cam.id);
-  PlaceBlackout(&corruption, camera_ids, {{first, last}}, ds.fps);
-  internal::CorruptDetectionGrid(corruption, ds.cameras, &ds.detections, &ds.source_ids);
+  const CorruptionOptions corruption =
+      internal::CorruptDataset(options.corruption, {{first, last}}, &ds);
   ds.protocol_frames = {eval::FrameRange{first, last}};
 
   // Notes.

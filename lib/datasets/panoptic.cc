@@ -199,11 +199,8 @@ Dataset LoadPanoptic(const std::filesystem::path& data_root, const PanopticOptio
   }
 
   // The blackout (hard level) falls inside the protocol's frames.
-  CorruptionOptions corruption = options.corruption;
-  std::vector<CameraId> camera_ids;
-  for (const geometry::CameraModel& camera : ds.cameras) camera_ids.push_back(camera.id);
-  PlaceBlackout(&corruption, camera_ids, {{frames.front(), frames.back()}}, ds.fps);
-  internal::CorruptDetectionGrid(corruption, ds.cameras, &ds.detections, &ds.source_ids);
+  const CorruptionOptions corruption =
+      internal::CorruptDataset(options.corruption, {{frames.front(), frames.back()}}, &ds);
 
   std::string camera_list;
   for (const geometry::CameraModel& camera : ds.cameras) {

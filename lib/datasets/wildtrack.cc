@@ -207,6 +207,19 @@ std::vector<AnnotatedPerson> LoadAnnotatedFrame(const std::filesystem::path& dat
   return people;
 }
 
+// The ground truth of one annotated frame: its people as objects (id = personID).
+eval::EvalFrame GroundTruthFrame(FrameIndex frame, const std::vector<AnnotatedPerson>& people) {
+  eval::EvalFrame ef;
+  ef.frame = frame;
+  for (const AnnotatedPerson& p : people) {
+    eval::EvalObject o;
+    o.id = p.person_id;
+    o.position = p.position_m;
+    ef.objects.push_back(std::move(o));
+  }
+  return ef;
+}
+
 }  // namespace
 
 Dataset LoadWildtrack(const std::filesystem::path& data_root, const CorruptionOptions& corruption) {
@@ -233,13 +246,10 @@ Dataset LoadWildtrack(const std::filesystem::path& data_root, const CorruptionOp
     }
     ++f;
   }
-  CorruptionOptions placed = corruption;
   std::string why;
-  if (!placed.Validate(&why)) throw std::invalid_argument("wildtrack corruption: " + why);
-  std::vector<CameraId> camera_ids;
-  for (const geometry::CameraModel& cam : ds.cameras) camera_ids.push_back(cam.id);
-  PlaceBlackout(&placed, camera_ids, {{frames.front(), frames.back()}}, ds.fps);
-  internal::CorruptDetectionGrid(placed, ds.cameras, &ds.detections, &ds.source_ids);
+  if (!corruption.Validate(&why)) throw std::invalid_argument("wildtrack corruption: " + why);
+  const CorruptionOptions placed =
+      internal::CorruptDataset(corruption, {{frames.front(), frames.back()}}, &ds);
   ds.gt_layout = core::KeypointLayoutId::kNone;
   const bool has_gt = HasWildtrackGroundTruth(data_root);
   if (has_gt) ds.ground_truth = WildtrackGroundTruth(data_root, frames.front(), frames.back());
@@ -291,15 +301,7 @@ eval::EvalSequence WildtrackGroundTruthWithIds(const std::filesystem::path& data
   }
   eval::EvalSequence out;
   for (FrameIndex f = first; f <= last; ++f) {
-    eval::EvalFrame ef;
-    ef.frame = f;
-    for (const AnnotatedPerson& p : LoadAnnotatedFrame(data_root, f)) {
-      eval::EvalObject o;
-      o.id = p.person_id;
-      o.position = p.position_m;
-      ef.objects.push_back(std::move(o));
-    }
-    out.push_back(std::move(ef));
+    out.push_back(GroundTruthFrame(f, LoadAnnotatedFrame(data_root, f)));
   }
   return out;
 }
@@ -317,13 +319,8 @@ Dataset LoadWildtrackAnnotated(const std::filesystem::path& data_root,
   for (FrameIndex f = options.first; f <= options.last; ++f) frames.push_back(f);
   internal::InitDetectionGrid(frames, ds.cameras, ds.fps, &ds.detections, &ds.source_ids);
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    eval::EvalFrame ef;
-    ef.frame = frames[i];
-    for (const AnnotatedPerson& p : LoadAnnotatedFrame(data_root, frames[i])) {
-      eval::EvalObject o;
-      o.id = p.person_id;
-      o.position = p.position_m;
-      ef.objects.push_back(std::move(o));
+    const std::vector<AnnotatedPerson> people = LoadAnnotatedFrame(data_root, frames[i]);
+    for (const AnnotatedPerson& p : people) {
       for (const auto& [view, box] : p.boxes) {
         if (view >= ds.cameras.size()) continue;
         const geometry::CameraModel& cam = ds.cameras[view];
@@ -341,13 +338,10 @@ Dataset LoadWildtrackAnnotated(const std::filesystem::path& data_root,
         ds.source_ids[i][view].push_back(p.person_id);
       }
     }
-    ds.ground_truth.push_back(std::move(ef));
+    ds.ground_truth.push_back(GroundTruthFrame(frames[i], people));
   }
-  CorruptionOptions corruption = options.corruption;
-  std::vector<CameraId> camera_ids;
-  for (const geometry::CameraModel& cam : ds.cameras) camera_ids.push_back(cam.id);
-  PlaceBlackout(&corruption, camera_ids, {{frames.front(), frames.back()}}, ds.fps);
-  internal::CorruptDetectionGrid(corruption, ds.cameras, &ds.detections, &ds.source_ids);
+  const CorruptionOptions corruption =
+      internal::CorruptDataset(options.corruption, {{frames.front(), frames.back()}}, &ds);
   ds.gt_layout = core::KeypointLayoutId::kNone;
   ds.protocol_frames = {{frames.front(), frames.back()}};
   ds.protocol_notes =

@@ -155,16 +155,20 @@ std::vector<TrackedDetection> SortTracker::Update(
   const auto num_usable = static_cast<Eigen::Index>(usable.size());
   Eigen::MatrixXd& cost = cost_;
   cost.resize(num_tracks_before, num_usable);
+  // The compared detection boxes, buffered once per frame (SortOptions::motion_buffer).
   const double buffer = options_.motion_buffer;
+  compared_.clear();
+  for (const int d : usable) {
+    const core::BoxPx& box = boxes[static_cast<std::size_t>(d)];
+    compared_.push_back(buffer > 0.0 ? Buffered(box, buffer) : box);
+  }
   if (buffer > 0.0) {
     for (core::BoxPx& box : predicted_) box = Buffered(box, buffer);
   }
   for (Eigen::Index r = 0; r < num_tracks_before; ++r) {
     const core::BoxPx& predicted = predicted_[static_cast<std::size_t>(r)];
     for (Eigen::Index c = 0; c < num_usable; ++c) {
-      const auto detection = static_cast<std::size_t>(usable[static_cast<std::size_t>(c)]);
-      const core::BoxPx& box = boxes[detection];
-      cost(r, c) = 1.0 - BoxIouOfUsable(predicted, buffer > 0.0 ? Buffered(box, buffer) : box);
+      cost(r, c) = 1.0 - BoxIouOfUsable(predicted, compared_[static_cast<std::size_t>(c)]);
     }
   }
   double max_cost = 1.0 - options_.iou_threshold;

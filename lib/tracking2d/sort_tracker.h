@@ -171,6 +171,7 @@ class SortTracker {
   // (the cost matrix only when its shape changes).
   std::vector<int> usable_;
   std::vector<core::BoxPx> predicted_;            // Update scratch: predicted box of each track
+  std::vector<core::BoxPx> compared_;             // Update scratch: each usable detection's box
   std::vector<int> row_feasible_, col_feasible_;  // Update scratch (appearance): gated pairs
   Eigen::MatrixXd cost_;
   core::AssignmentWorkspace assignment_workspace_;

@@ -422,7 +422,6 @@ int main(int argc, char** argv) {
   std::map<std::int64_t, TrackId3D> last_match;  // GT -> last output id
   std::map<TrackId3D, std::int64_t> id_person;   // output id -> person of most matches
   std::map<TrackId3D, std::map<std::int64_t, int>> id_votes;
-  std::map<TrackId3D, FrameIndex> id_first;
   struct Switch {
     FrameIndex frame;
     std::int64_t person;
@@ -436,7 +435,6 @@ int main(int argc, char** argv) {
     if (it != out_by_frame.end()) {
       for (const auto& t : it->second->tracks) preds.push_back(&t);
     }
-    for (const auto* t : preds) id_first.emplace(t->id, g.frame);
     std::vector<int> gt_match(g.objects.size(), -1);
     std::vector<bool> used(preds.size(), false);
     auto dist = [&](std::size_t gi, std::size_t pi) {
@@ -495,8 +493,6 @@ int main(int argc, char** argv) {
   for (const Switch& s : switches) {
     std::string cause;
     const WindowPerson* to = first_of_id.count(s.to) ? first_of_id[s.to] : nullptr;
-    const bool to_new =
-        id_first[s.to] >= s.frame - 2 || (to != nullptr && id_person[s.to] == s.person);
     if (id_person[s.to] != s.person && id_votes[s.to][s.person] * 2 < [&] {
           int n = 0;
           for (const auto& [p, v] : id_votes[s.to]) n += v;
@@ -536,7 +532,6 @@ int main(int argc, char** argv) {
                        : "2d (no 2D track continued from the old id)";
       }
     }
-    (void)to_new;
     ++causes[cause];
     if (args.verbose) {
       std::printf("  switch frame %lld person %lld: %llu -> %llu: %s\n",

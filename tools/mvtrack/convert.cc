@@ -837,8 +837,11 @@ int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
   if (args.Has("gt-frames")) gt_range = one_range("gt-frames");
   std::string gt_line;
   if (with_ids) {
-    job.ds.ground_truth =
-        datasets::WildtrackGroundTruthWithIds(c.data_root, gt_range.first, gt_range.last);
+    // The annotated loader already holds the ground truth of its own frames.
+    if (!annotated || args.Has("gt-frames")) {
+      job.ds.ground_truth =
+          datasets::WildtrackGroundTruthWithIds(c.data_root, gt_range.first, gt_range.last);
+    }
     job.ds.protocol_frames = {gt_range};
     job.gt_track_description =
         "the annotated people as tracks: id = WILDTRACK's personID, position = the annotated "

@@ -160,4 +160,16 @@ void CorruptDetectionGrid(const CorruptionOptions& corruption,
   }
 }
 
+CorruptionOptions CorruptDataset(const CorruptionOptions& corruption,
+                                 const std::vector<std::pair<FrameIndex, FrameIndex>>& ranges,
+                                 Dataset* ds) {
+  CorruptionOptions placed = corruption;
+  std::vector<CameraId> camera_ids;
+  camera_ids.reserve(ds->cameras.size());
+  for (const geometry::CameraModel& camera : ds->cameras) camera_ids.push_back(camera.id);
+  PlaceBlackout(&placed, camera_ids, ranges, ds->fps);
+  CorruptDetectionGrid(placed, ds->cameras, &ds->detections, &ds->source_ids);
+  return placed;
+}
+
 }  // namespace mvtrack::datasets::internal

@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/detection.h"
 #include "core/keypoint_layout.h"
 #include "core/types.h"
 #include "datasets/corruption.h"
+#include "datasets/dataset.h"
 #include "eval/sequence.h"
 #include "geometry/camera_model.h"
 
@@ -64,6 +66,13 @@ void CorruptDetectionGrid(const CorruptionOptions& corruption,
                           const std::vector<geometry::CameraModel>& cameras,
                           std::vector<std::vector<core::CameraFrame>>* detections,
                           std::vector<std::vector<std::vector<std::int64_t>>>* source_ids);
+
+/// The detector model on a loaded dataset: places `corruption`'s blackout (PlaceBlackout) among
+/// ds's cameras inside `ranges` (inclusive frame ranges) at ds->fps, then applies it
+/// (CorruptDetectionGrid). Returns the options with the blackout placed (for protocol notes).
+CorruptionOptions CorruptDataset(const CorruptionOptions& corruption,
+                                 const std::vector<std::pair<FrameIndex, FrameIndex>>& ranges,
+                                 Dataset* ds);
 
 /// Maps a sequence with `mapping` (joint by joint, a target joint present only when all its
 /// sources are); footprints are recomputed in the target layout; objects left without joints
