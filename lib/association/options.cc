@@ -42,6 +42,8 @@ bool AssociationOptions::Validate(std::string* why) const {
     return fail("min_confidence must be in [0, 1]");
   }
   if (num_points < 0) return fail("num_points must be >= 0");
+  if (floor_point < -1) return fail("floor_point must be >= -1 (-1: no point on the floor)");
+  if (!std::isfinite(floor_height_m)) return fail("floor_height_m must be finite");
   if (!std::isfinite(appearance_weight) || appearance_weight < 0.0) {
     return fail("appearance_weight must be finite and >= 0");
   }

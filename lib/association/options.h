@@ -48,6 +48,16 @@ struct AssociationOptions {
   /// them). Set by the tracker (box ends that do not take part in association); not a file
   /// option. >= 0.
   int num_points = 0;
+  /// Index of the point that stands on the floor plane z = floor_height_m (box mode with the
+  /// box ends: the feet), or -1 for none. For that point Eq. 2's point-to-line distances are
+  /// replaced by point-to-point distances: each view's point is carried over the floor plane
+  /// into the other view, and the mean of the two normalized distances is taken (a person's
+  /// feet are one floor point, which fixes where along the epipolar line the other view's feet
+  /// must be). Set by the tracker (docs/DECISIONS.md "Feet on the floor"); not a file option.
+  int floor_point = -1;
+  /// Height of the floor plane in the world frame (TrackerOptions::ground_height_m). Set by the
+  /// tracker with floor_point; finite.
+  double floor_height_m = 0.0;
   /// Appearance fusion (the paper's "w/ appearance" variant): a finite cross-camera distance
   /// becomes d + appearance_weight x the cosine distance between the two tracklets' mean
   /// embeddings (when both have one); ∅ and ∞ are unchanged. 0 = epipolar only. Set by the

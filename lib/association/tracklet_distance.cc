@@ -1,5 +1,6 @@
 #include "association/tracklet_distance.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +10,7 @@
 #include "core/appearance.h"
 #include "core/check.h"
 #include "geometry/epipolar.h"
+#include "geometry/floor_homography.h"
 
 namespace mvtrack::association {
 namespace {
@@ -22,21 +24,73 @@ bool Usable(const core::Observation2D& o, std::size_t k, double min_confidence) 
   return c > 0.0 && c >= min_confidence;
 }
 
+/// The floor point's term (AssociationOptions::floor_point) is the mean, not the sum, of its
+/// two one-way normalized distances: see DECISIONS "Feet on the floor".
+constexpr double kFloorTermWeight = 0.5;
+
+/// Carries undistorted pixels of one camera over the floor plane z = h into another camera.
+class FloorTransfer {
+ public:
+  FloorTransfer(const Mat34& from, const Mat34& to, double h) : from_(from), to_(to), h_(h) {
+    Mat3 g;  // floor point (x, y, 1) -> pixel of `from`
+    g.col(0) = from.col(0);
+    g.col(1) = from.col(1);
+    g.col(2) = h * from.col(2) + from.col(3);
+    pixel_to_floor_ = g.inverse();  // not finite when `from` is on the plane: no transfer
+  }
+  /// The pixel of `to` that sees the floor point seen by `from`'s pixel x; nullopt when x's ray
+  /// does not meet the floor in front of `from` or the floor point is behind `to`.
+  std::optional<Vec2> operator()(double x, double y) const {
+    const std::optional<Vec2> on_floor = geometry::ImageToFloor(pixel_to_floor_, Vec2(x, y));
+    if (!on_floor) return std::nullopt;
+    const Eigen::Vector4d floor(on_floor->x(), on_floor->y(), h_, 1.0);
+    const Vec3 u = to_ * floor;
+    if (!(from_.row(2).dot(floor) > 0.0) || !(u.z() > 0.0)) return std::nullopt;
+    const Vec2 out(u.x() / u.z(), u.y() / u.z());
+    if (!out.allFinite()) return std::nullopt;
+    return out;
+  }
+
+ private:
+  Mat34 from_, to_;
+  double h_;
+  Mat3 pixel_to_floor_;
+};
+
+/// The cameras of a pair, for the floor point: a's pixels into b and b's into a.
+struct FloorPair {
+  FloorTransfer a_to_b;
+  FloorTransfer b_to_a;
+};
+
 /// Eq. 2 averaged over the points usable in both observations; nullopt if there is none.
+/// The floor point is compared through `floor` (required when options.floor_point >= 0).
 std::optional<double> FrameDistance(const core::Observation2D& a,
                                     const core::Observation2D& b,
                                     const Mat3& f_a_to_b,
-                                    double min_confidence,
-                                    int max_points) {
+                                    const FloorPair* floor,
+                                    const AssociationOptions& options) {
   MVTRACK_DCHECK(a.scale_px > 0.0 && b.scale_px > 0.0);
   std::size_t num_points = std::min(a.points_px.size(), b.points_px.size());
-  if (max_points > 0) num_points = std::min(num_points, static_cast<std::size_t>(max_points));
+  if (options.num_points > 0) {
+    num_points = std::min(num_points, static_cast<std::size_t>(options.num_points));
+  }
   double sum = 0.0;
   int used = 0;
   for (std::size_t k = 0; k < num_points; ++k) {
-    if (!Usable(a, k, min_confidence) || !Usable(b, k, min_confidence)) continue;
-    const double d = geometry::NormalizedEpipolarDistance(
-        a.points_px[k], a.scale_px, b.points_px[k], b.scale_px, f_a_to_b);
+    if (!Usable(a, k, options.min_confidence) || !Usable(b, k, options.min_confidence)) continue;
+    const Vec2& xa = a.points_px[k];
+    const Vec2& xb = b.points_px[k];
+    double d = 0.0;
+    if (static_cast<int>(k) == options.floor_point) {
+      const std::optional<Vec2> ta = floor->a_to_b(xa.x(), xa.y());
+      const std::optional<Vec2> tb = floor->b_to_a(xb.x(), xb.y());
+      if (!ta || !tb) continue;
+      d = kFloorTermWeight *
+          ((*tb - xa).norm() / std::abs(a.scale_px) + (*ta - xb).norm() / std::abs(b.scale_px));
+    } else {
+      d = geometry::NormalizedEpipolarDistance(xa, a.scale_px, xb, b.scale_px, f_a_to_b);
+    }
     if (!std::isfinite(d)) continue;
     sum += d;
     ++used;
@@ -192,6 +246,10 @@ class AllPairs {
       for (std::size_t h = g + 1; h < num_groups; ++h) {
         ComputeLines(g, rig_.fundamental(group_camera_[g], group_camera_[h]), &lines_a_);
         ComputeLines(h, rig_.fundamental(group_camera_[h], group_camera_[g]), &lines_b_);
+        if (options_.floor_point >= 0) {
+          ComputeFloorTransfers(g, group_camera_[h], &lines_a_);
+          ComputeFloorTransfers(h, group_camera_[g], &lines_b_);
+        }
         for (std::size_t a = group_begin_[g]; a < group_begin_[g + 1]; ++a) {
           for (std::size_t b = group_begin_[h]; b < group_begin_[h + 1]; ++b) {
             TrackletDistance d = CrossCamera(g, a, h, b, cutoff);
@@ -227,6 +285,28 @@ class AllPairs {
       out[0] = a * inv_norm;
       out[1] = b * inv_norm;
       out[2] = c * inv_norm;
+    }
+  }
+
+  /// Replaces the line of every floor point (AssociationOptions::floor_point) of group g by the
+  /// point carried over the floor into rig camera `to`, stored as (x, y, NaN); (NaN, NaN, NaN)
+  /// when there is none (FloorTransfer).
+  void ComputeFloorTransfers(std::size_t g, int to, std::vector<double>* lines) const {
+    const FloorTransfer transfer(
+        rig_.projection(group_camera_[g]), rig_.projection(to), options_.floor_height_m);
+    const std::size_t base = point_begin_[group_begin_[g]];
+    const auto k = static_cast<std::size_t>(options_.floor_point);
+    for (std::size_t s = group_begin_[g]; s < group_begin_[g + 1]; ++s) {
+      if (k >= num_points_[s]) continue;
+      for (std::size_t f = frame_begin_[s]; f < frame_begin_[s + 1]; ++f) {
+        const std::size_t p = point_begin_[s] + (f - frame_begin_[s]) * num_points_[s] + k;
+        if (std::isnan(px_[p])) continue;  // unusable point; never read
+        double* out = lines->data() + 3 * (p - base);
+        const std::optional<Vec2> t = transfer(px_[p], py_[p]);
+        out[0] = t ? t->x() : std::numeric_limits<double>::quiet_NaN();
+        out[1] = t ? t->y() : std::numeric_limits<double>::quiet_NaN();
+        out[2] = std::numeric_limits<double>::quiet_NaN();
+      }
     }
   }
 
@@ -266,6 +346,9 @@ class AllPairs {
     // A relative margin far above rounding keeps "proven >= cutoff" true for the exact mean.
     const double stop_sum = cutoff * bound_frames * (1.0 + 1e-9);
     const std::size_t points = std::min(num_points_[a], num_points_[b]);
+    const std::size_t floor_point = options_.floor_point >= 0
+                                        ? static_cast<std::size_t>(options_.floor_point)
+                                        : std::numeric_limits<std::size_t>::max();
     const std::size_t line_base_a = point_begin_[group_begin_[g]];
     const std::size_t line_base_b = point_begin_[group_begin_[h]];
     double sum = 0.0;
@@ -292,9 +375,17 @@ class AllPairs {
         const double ya = py_[pa + k], yb = py_[pb + k];
         const double* la = &lines_a_[3 * (pa + k - line_base_a)];  // a's point, line in b
         const double* lb = &lines_b_[3 * (pb + k - line_base_b)];  // b's point, line in a
-        // Eq. 2: d(x_a, l_a(x_b)) / |w_a + h_a| + d(x_b, l_b(x_a)) / |w_b + h_b|.
-        const double d = std::abs(lb[0] * xa + lb[1] * ya + lb[2]) * inv_sa +
-                         std::abs(la[0] * xb + la[1] * yb + la[2]) * inv_sb;
+        double d = 0.0;
+        if (k == floor_point) {
+          // The floor point: la / lb hold the points carried over the floor (or NaN).
+          if (std::isnan(la[0]) || std::isnan(lb[0])) continue;
+          d = kFloorTermWeight * (std::hypot(lb[0] - xa, lb[1] - ya) * inv_sa +
+                                  std::hypot(la[0] - xb, la[1] - yb) * inv_sb);
+        } else {
+          // Eq. 2: d(x_a, l_a(x_b)) / |w_a + h_a| + d(x_b, l_b(x_a)) / |w_b + h_b|.
+          d = std::abs(lb[0] * xa + lb[1] * ya + lb[2]) * inv_sa +
+              std::abs(la[0] * xb + la[1] * yb + la[2]) * inv_sb;
+        }
         if (!std::isfinite(d)) continue;  // a point at an epipole
         frame_sum += d;
         ++used_points;
@@ -374,10 +465,13 @@ void DistanceMatrix::set(int i, int j, TrackletDistance d) {
   packed_[PackedIndex(i, j)] = code;
 }
 
-TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
-                                         const core::Tracklet2D& b,
-                                         const Mat3& f_a_to_b,
-                                         const AssociationOptions& options) {
+namespace {
+
+TrackletDistance PairDistance(const core::Tracklet2D& a,
+                              const core::Tracklet2D& b,
+                              const Mat3& f_a_to_b,
+                              const FloorPair* floor,
+                              const AssociationOptions& options) {
   MVTRACK_DCHECK(a.frames.size() == a.observations.size());
   MVTRACK_DCHECK(b.frames.size() == b.observations.size());
   if (DisjointRanges(a, b)) return TrackletDistance::Empty();  // Eq. 4, Ψ_a ∩ Ψ_b = ∅
@@ -394,11 +488,8 @@ TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
       ++ib;
     } else {
       if (same_camera) return TrackletDistance::Infinite();  // Eq. 4, c_a = c_b with overlap
-      if (auto d = FrameDistance(a.observations[ia],
-                                 b.observations[ib],
-                                 f_a_to_b,
-                                 options.min_confidence,
-                                 options.num_points)) {
+      if (auto d =
+              FrameDistance(a.observations[ia], b.observations[ib], f_a_to_b, floor, options)) {
         sum += *d;
         ++used_frames;
       }
@@ -410,6 +501,35 @@ TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
   const TrackletDistance d = MeanValue(sum, used_frames);  // Eq. 4, mean(S)
   if (!UsesAppearance(options)) return d;
   return Fuse(d, MeanLook(a), MeanLook(b), options);
+}
+
+}  // namespace
+
+TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
+                                         const core::Tracklet2D& b,
+                                         const Mat3& f_a_to_b,
+                                         const AssociationOptions& options) {
+  MVTRACK_CHECK_MSG(options.floor_point < 0,
+                    "ComputeTrackletDistance: a floor point needs the cameras (the rig overload)");
+  return PairDistance(a, b, f_a_to_b, nullptr, options);
+}
+
+TrackletDistance ComputeTrackletDistance(const geometry::CameraRig& rig,
+                                         const core::Tracklet2D& a,
+                                         const core::Tracklet2D& b,
+                                         const AssociationOptions& options) {
+  const std::optional<int> ia = rig.IndexOf(a.camera_id);
+  const std::optional<int> ib = rig.IndexOf(b.camera_id);
+  MVTRACK_CHECK_MSG(ia.has_value() && ib.has_value(),
+                    "ComputeTrackletDistance: a tracklet's camera is not in the rig");
+  if (*ia == *ib) return PairDistance(a, b, Mat3::Zero(), nullptr, options);
+  std::optional<FloorPair> floor;
+  if (options.floor_point >= 0) {
+    floor.emplace(
+        FloorPair{FloorTransfer(rig.projection(*ia), rig.projection(*ib), options.floor_height_m),
+                  FloorTransfer(rig.projection(*ib), rig.projection(*ia), options.floor_height_m)});
+  }
+  return PairDistance(a, b, rig.fundamental(*ia, *ib), floor ? &*floor : nullptr, options);
 }
 
 double ExpectedLookDistance(int count_a, double length_a, int count_b, double length_b) {

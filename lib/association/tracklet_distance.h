@@ -83,14 +83,26 @@ class DistanceMatrix {
 ///    Observation2D::scale_px as |w + h|; frames without a common usable point are skipped
 ///    (so are points whose Eq. 2 value is not finite, e.g. a point exactly at an epipole);
 ///    the result is the mean over the remaining frames, or ∅ if none remains.
-/// Cost O(|a| + |b| + common frames x points); no allocation.
+/// Cost O(|a| + |b| + common frames x points); no allocation. Without a floor point only
+/// (options.floor_point must be -1, checked): use the rig overload for one.
 TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
                                          const core::Tracklet2D& b,
                                          const Mat3& f_a_to_b,
                                          const AssociationOptions& options);
 
-/// Eq. 4 for every pair of `tracklets`: ComputeTrackletDistance of each pair (with the rig's
-/// F), up to rounding. Every tracklet's camera must be in `rig` (checked with MVTRACK_CHECK: the
+/// ComputeTrackletDistance with the rig's F, and for the floor point
+/// (AssociationOptions::floor_point) the floor-plane transfer between the two cameras: that
+/// point's term is the mean of |T_ab(x_a) - x_b| / |w_b + h_b| and |T_ba(x_b) - x_a| / |w_a +
+/// h_a|, where T carries a pixel over the floor plane into the other camera; a frame's floor
+/// point is not used when either transfer does not exist (a ray that misses the floor in front
+/// of its camera, a floor point behind the other). Both cameras must be in `rig` (checked).
+TrackletDistance ComputeTrackletDistance(const geometry::CameraRig& rig,
+                                         const core::Tracklet2D& a,
+                                         const core::Tracklet2D& b,
+                                         const AssociationOptions& options);
+
+/// Eq. 4 for every pair of `tracklets`: ComputeTrackletDistance(rig, ...) of each pair, up to
+/// rounding. Every tracklet's camera must be in `rig` (checked with MVTRACK_CHECK: the
 /// caller builds tracklets from the rig's cameras, so an unknown camera is a programmer error);
 /// `options` must pass Validate() (checked). Computed camera pair by camera pair on a flat copy
 /// of the tracklets, with each point's epipolar line in the other camera computed once per

@@ -590,6 +590,11 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
   // Cross-view association (Eq. 2-4, PDNC / Algorithm 1).
   association::AssociationOptions ao = options.association;
   if (options.mode == InputMode::kBoxes && !options.box_ends_in_association) ao.num_points = 1;
+  if (options.mode == InputMode::kBoxes && options.box_point == BoxPoint::kCenterEnds &&
+      options.box_ends_in_association) {
+    ao.floor_point = kBoxBottomPoint;  // the feet stand on the floor
+    ao.floor_height_m = options.ground_height_m;
+  }
   if (options.appearance.enabled) {
     ao.appearance_weight = options.appearance.association_weight;
     ao.appearance_gate = options.appearance.association_gate;

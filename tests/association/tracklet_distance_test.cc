@@ -407,6 +407,159 @@ TEST_CASE("the all-pairs computation equals the pairwise definition in pose mode
   CHECK(infinities > 10);
 }
 
+// Box-mode observation with the box ends: the centre, the feet (on the floor z = 0) and the
+// head of a 1.8 m person standing at `foot`, projected into `camera`; |w + h| from the height.
+core::Observation2D BoxWithEnds(const geometry::CameraModel& camera,
+                                const Vec3& foot,
+                                const Vec2& noise_px = Vec2::Zero()) {
+  core::Observation2D o;
+  for (double z : {0.9, 0.0, 1.8}) {
+    o.points_px.push_back(*camera.ProjectUndistorted(foot + Vec3(0.0, 0.0, z)) + noise_px);
+    o.confidence.push_back(1.0);
+  }
+  o.scale_px = 1.3 * (o.points_px[1] - o.points_px[2]).norm();
+  return o;
+}
+
+core::Tracklet2D BoxEndsTracklet(const geometry::CameraModel& camera,
+                                 const Vec3& foot,
+                                 FrameIndex frames,
+                                 const Vec2& noise_px = Vec2::Zero()) {
+  core::Tracklet2D t;
+  t.camera_id = camera.id;
+  for (FrameIndex f = 0; f < frames; ++f) {
+    t.frames.push_back(f);
+    t.observations.push_back(
+        BoxWithEnds(camera, foot + Vec3(0.04 * static_cast<double>(f), 0.0, 0.0), noise_px));
+  }
+  return t;
+}
+
+TEST_CASE("the feet on the floor tell apart two people the epipolar geometry cannot", "[unit]") {
+  // Two people at the same distance from the baseline of two cameras of the same height: every
+  // point of one lies in the epipolar plane of the same point of the other (Eq. 2 is about 0
+  // for camera 0 seeing one and camera 1 the other). Their feet are 1.6 m apart on the floor.
+  const std::vector<geometry::CameraModel> cameras = TwoCameras();
+  const geometry::CameraRig rig(cameras);
+  REQUIRE(rig.ok());
+  const Vec3 left(-0.8, 6.0, 0.0), right(0.8, 6.0, 0.0);
+  const core::Tracklet2D a = BoxEndsTracklet(cameras[0], left, 5);
+  const core::Tracklet2D b_same = BoxEndsTracklet(cameras[1], left, 5, Vec2(2.0, -3.0));
+  const core::Tracklet2D b_other = BoxEndsTracklet(cameras[1], right, 5);
+  AssociationOptions epipolar;
+  AssociationOptions floor;
+  floor.floor_point = 1;
+  const TrackletDistance other_epipolar = ComputeTrackletDistance(rig, a, b_other, epipolar);
+  REQUIRE(other_epipolar.is_value());
+  CHECK(other_epipolar.value < 0.01);  // the ambiguity
+  const TrackletDistance other_floor = ComputeTrackletDistance(rig, a, b_other, floor);
+  REQUIRE(other_floor.is_value());
+  // Per frame, the mean of the centre's and the head's Eq. 2 and the feet term: the mean of
+  // the two one-way distances between a view's feet and the other person's feet carried over
+  // the floor, i.e. projected from the other's floor point (exact, no noise).
+  double expected = 0.0;
+  for (std::size_t f = 0; f < 5; ++f) {
+    const core::Observation2D& oa = a.observations[f];
+    const core::Observation2D& ob = b_other.observations[f];
+    const Vec3 step(0.04 * static_cast<double>(f), 0.0, 0.0);
+    const Vec2 left_in_1 = *cameras[1].ProjectUndistorted(left + step);
+    const Vec2 right_in_0 = *cameras[0].ProjectUndistorted(right + step);
+    const double feet = 0.5 * ((left_in_1 - ob.points_px[1]).norm() / ob.scale_px +
+                               (right_in_0 - oa.points_px[1]).norm() / oa.scale_px);
+    double epipolar_sum = 0.0;
+    for (std::size_t k : {std::size_t{0}, std::size_t{2}}) {
+      epipolar_sum += geometry::NormalizedEpipolarDistance(
+          oa.points_px[k], oa.scale_px, ob.points_px[k], ob.scale_px, rig.fundamental(0, 1));
+    }
+    expected += (epipolar_sum + feet) / 3.0 / 5.0;
+  }
+  CHECK(other_floor.value == Approx(expected).epsilon(1e-9));
+  CHECK(other_floor.value > 20.0 * other_epipolar.value);
+  const TrackletDistance same_floor = ComputeTrackletDistance(rig, a, b_same, floor);
+  REQUIRE(same_floor.is_value());
+  CHECK(same_floor.value < 0.05);
+
+  SECTION("the F overload refuses a floor point; the rig overload without one is Eq. 2") {
+    CHECK(ComputeTrackletDistance(rig, a, b_other, epipolar) ==
+          ComputeTrackletDistance(a, b_other, rig.fundamental(0, 1), epipolar));
+  }
+
+  SECTION("the floor height moves the plane the feet are carried over") {
+    AssociationOptions raised = floor;
+    raised.floor_height_m = 0.5;  // the feet are not on this plane: the same person disagrees
+    const TrackletDistance d = ComputeTrackletDistance(rig, a, b_same, raised);
+    REQUIRE(d.is_value());
+    CHECK(d.value > same_floor.value + 0.05);
+  }
+
+  SECTION("a foot whose ray does not meet the floor in front of its camera is not compared") {
+    core::Tracklet2D up = a;
+    for (core::Observation2D& o : up.observations) o.points_px[1].y() = -5000.0;  // sky
+    AssociationOptions no_feet = floor;
+    const TrackletDistance d = ComputeTrackletDistance(rig, up, b_same, no_feet);
+    REQUIRE(d.is_value());
+    // The frame mean is over the centre and the head only.
+    AssociationOptions two_points = epipolar;
+    core::Tracklet2D up_no_feet = up, b_no_feet = b_same;
+    for (core::Observation2D& o : up_no_feet.observations) o.confidence[1] = 0.0;
+    const TrackletDistance two_point =
+        ComputeTrackletDistance(rig, up_no_feet, b_no_feet, two_points);
+    REQUIRE(two_point.is_value());
+    CHECK(d.value == Approx(two_point.value).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("the all-pairs computation equals the pairwise definition with a floor point", "[unit]") {
+  const std::vector<geometry::CameraModel> cameras =
+      testing::RingOfCameras(4, 6.0, 2.5, Vec3(0.0, 0.0, 0.9), 1000.0, 1920, 1080, 3);
+  const geometry::CameraRig rig(cameras);
+  REQUIRE(rig.ok());
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> uniform(-2.0, 2.0);
+  std::normal_distribution<double> noise(0.0, 3.0);
+  std::vector<core::Tracklet2D> tracklets;
+  for (const geometry::CameraModel& camera : cameras) {
+    for (int person = 0; person < 4; ++person) {
+      const Vec3 foot(uniform(rng), uniform(rng), 0.0);
+      core::Tracklet2D t = BoxEndsTracklet(camera, foot, 8, Vec2(noise(rng), noise(rng)));
+      t.track_id = person;
+      if (person == 3) {
+        for (core::Observation2D& o : t.observations) o.confidence[1] = 0.0;  // cut feet
+      }
+      tracklets.push_back(std::move(t));
+    }
+  }
+  std::shuffle(tracklets.begin(), tracklets.end(), rng);
+  AssociationOptions options;
+  options.floor_point = 1;
+  const DistanceMatrix m = ComputeDistanceMatrix(rig, tracklets, options);
+  const DistanceMatrix fast = ComputeDistanceMatrixForClustering(rig, tracklets, options);
+  const int n = static_cast<int>(tracklets.size());
+  int values = 0, below_lambda = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      const TrackletDistance expected =
+          ComputeTrackletDistance(rig,
+                                  tracklets[static_cast<std::size_t>(i)],
+                                  tracklets[static_cast<std::size_t>(j)],
+                                  options);
+      INFO("pair " << i << ", " << j);
+      REQUIRE(m.at(i, j).kind == expected.kind);
+      if (!expected.is_value()) continue;
+      ++values;
+      CHECK(m.at(i, j).value == Approx(expected.value).epsilon(1e-9));
+      if (expected.value < options.lambda) {
+        ++below_lambda;
+        CHECK(fast.at(i, j).value == m.at(i, j).value);
+      } else {
+        CHECK(fast.at(i, j).value >= options.lambda);
+      }
+    }
+  }
+  CHECK(values == 96);  // every pair of different cameras: 6 camera pairs x 16
+  CHECK(below_lambda > 10);
+}
+
 // A unit embedding along axis k of a 16-dimensional space.
 core::EmbeddingPtr Axis(int k) {
   auto e = std::make_shared<std::vector<float>>(16, 0.0f);
@@ -510,6 +663,14 @@ TEST_CASE("AssociationOptions validation and method names", "[unit]") {
   CHECK_THAT(why, Catch::Contains("appearance_gate"));
   o.appearance_gate = std::nan("");
   CHECK_FALSE(o.Validate(&why));
+  o = AssociationOptions{};
+  o.floor_point = -2;
+  CHECK_FALSE(o.Validate(&why));
+  CHECK_THAT(why, Catch::Contains("floor_point"));
+  o = AssociationOptions{};
+  o.floor_height_m = std::nan("");
+  CHECK_FALSE(o.Validate(&why));
+  CHECK_THAT(why, Catch::Contains("floor_height_m"));
   o = AssociationOptions{};
   o.method = static_cast<ClusteringMethod>(42);
   CHECK_FALSE(o.Validate(&why));

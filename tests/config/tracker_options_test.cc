@@ -237,14 +237,15 @@ TEST_CASE("Option struct sizes match the fields config knows", "[unit]") {
   // above, the explicit mapping test below, docs/examples/tracker_options.yaml and
   // docs/FORMATS.md, then update the sizes here (x86-64, g++). Not keys: SortOptions'
   // motion_buffer and process_noise_scale (derived from the frame period by
-  // tracker::AtFrameRate).
+  // tracker::AtFrameRate); AssociationOptions' num_points, floor_point, floor_height_m and
+  // appearance fields (set by the tracker from box_point, ground_height_m and appearance).
   CHECK(sizeof(tracking2d::SortOptions) == 32);
   CHECK(sizeof(triangulation::TriangulationOptions) == 40);
   CHECK(sizeof(linking::LinkerOptions) == 128);
   CHECK(sizeof(triangulation::RefinementOptions) == 136);
   CHECK(sizeof(core::AppearanceOptions) == 96);
-  CHECK(sizeof(association::AssociationOptions) == 56);
-  CHECK(sizeof(TrackerOptions) == 600);
+  CHECK(sizeof(association::AssociationOptions) == 64);
+  CHECK(sizeof(TrackerOptions) == 608);
 }
 
 TEST_CASE("Absent keys keep the defaults", "[unit]") {
