@@ -1001,14 +1001,19 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
     return core::GalleryDistance(gallery, look) > appearance_.link_max_distance;
   };
 
-  // Stage 1: overlap with a shared 2D track (Eq. 8 + Eq. 9). Each shared 2D track outweighs
-  // any difference in Eq. 8 within the gate: when one person appears twice in a window (split
-  // into two clusters), the track keeps the tracklet that continues more of its 2D tracks.
+  // Stage 1: overlap with a shared 2D track (Eq. 8 + Eq. 9). Each shared 2D track is worth
+  // max_link_distance_m of Eq. 8, in the gate and in the cost: one shared 2D track may be a
+  // camera's track that passed to a neighbour (a body width away), two or more that continue
+  // together are the person, however far a view that joined or left one of the two clusters
+  // moved its triangulation (docs/DECISIONS.md "Window linking"). When one person appears twice
+  // in a window (split into two clusters), the track keeps the tracklet that continues more of
+  // its 2D tracks.
   solve_stage(LinkKind::kOverlap, [&](int r, int c) -> std::optional<double> {
     const double d = overlap(r, c);
-    if (std::isnan(d) || d > options_.max_link_distance_m || shared(r, c) == 0) return std::nullopt;
+    const double per_shared = options_.max_link_distance_m * static_cast<double>(shared(r, c));
+    if (std::isnan(d) || shared(r, c) == 0 || d > per_shared) return std::nullopt;
     if (vetoed(r, c)) return std::nullopt;
-    return d - options_.max_link_distance_m * static_cast<double>(shared(r, c));
+    return d - per_shared;
   });
   // Without a shared 2D track there is no overlap link: a tracklet whose cameras all changed
   // their 2D tracks is a new candidate (docs/DECISIONS.md "Window linking": the stage that

@@ -23,11 +23,15 @@ namespace mvtrack::linking {
 
 /// WindowLinker settings (tunable; the stream's facts are in LinkerContext).
 struct LinkerOptions {
-  /// Gate on the Eq. 8 distance, metres. A tracklet and a track whose overlapping parts are
-  /// farther apart than this are never linked on the overlap. In the overlap both tracklets
-  /// are triangulated from (largely) the same 2D observations, so for the same person Eq. 8
-  /// only measures the disagreement of two triangulations (centimetres), whereas two people
-  /// are at least a body width apart. Finite, > 0.
+  /// Gate on the Eq. 8 distance, metres, per shared 2D track: a tracklet and a track that share
+  /// k 2D tracks and whose overlapping parts are farther apart than k times this are never
+  /// linked on the overlap. In the overlap both tracklets are triangulated from (largely) the
+  /// same 2D observations, so for the same person Eq. 8 only measures the disagreement of two
+  /// triangulations (centimetres), whereas two people are at least a body width apart: one
+  /// shared 2D track may be a camera's track that passed to a neighbour. Two or more that
+  /// continue together are the person even when a view that joined or left one of the two
+  /// clusters moved its triangulation further (docs/DECISIONS.md "Window linking"). Finite,
+  /// > 0.
   double max_link_distance_m = 0.5;
   /// A tracklet left unmatched whose distance to a tracklet of the same window linked to an
   /// existing track is at most this (metres: the median over the frames both have of Eq. 8's
@@ -283,7 +287,8 @@ inline constexpr int kMaxSamePerson = 16;
 /// confirmed, lost with a time to live, removed). Per window, alive tracks as rows and the
 /// window's tracklets as columns, each stage solved optimally (core::SolveAssignment, Eq. 9)
 /// among what the earlier stages left:
-///  1. Overlap: Eq. 8 <= max_link_distance_m and at least one shared (camera, 2D track).
+///  1. Overlap: k >= 1 shared (camera, 2D track) and Eq. 8 <= k x max_link_distance_m (cost:
+///     Eq. 8 - k x max_link_distance_m).
 ///  2. Gap: no overlap, a shared 2D track, the gap <= max_lost_s, and the tracklet's initial
 ///     state within gap_gate_chi2 of the track's prediction (cost: that distance).
 ///  3. Re-identification: no overlap, no shared 2D track, a lost track, the gap <=

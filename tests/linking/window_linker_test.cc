@@ -347,6 +347,27 @@ TEST_CASE("Shared 2D tracks outweigh Eq. 8: a track keeps the tracklet that cont
   CHECK(p.link_kind[0] == LinkKind::kBirth);
 }
 
+TEST_CASE("Each shared 2D track is worth max_link_distance_m of Eq. 8 in the gate", "[unit]") {
+  // Window 0: track 1 at the origin, seen by three cameras. Window 1: the same 2D tracks, but a
+  // view that joined or left moved the triangulation by `offset`.
+  const auto link = [](double offset, const std::vector<TrackId2D>& tracks) {
+    WindowLinker linker;
+    LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2, 3})});
+    return LinkWindow(&linker, 1, {ConstantTracklet(20, 49, Vec3(offset, 0.0, 1.0), tracks)});
+  };
+  // One shared 2D track (the others changed): the plain 0.5 m gate.
+  CHECK(link(0.45, {1, 8, 9}).link_kind[0] == LinkKind::kOverlap);
+  CHECK(link(0.55, {1, 8, 9}).link_kind[0] == LinkKind::kBirth);
+  // Two: 1.0 m; three: 1.5 m.
+  CHECK(link(0.9, {1, 2, 9}).link_kind[0] == LinkKind::kOverlap);
+  CHECK(link(1.1, {1, 2, 9}).link_kind[0] == LinkKind::kBirth);
+  const LinkResult three = link(1.4, {1, 2, 3});
+  CHECK(three.link_kind[0] == LinkKind::kOverlap);
+  CHECK(three.track_of_tracklet[0] == 1);
+  CHECK(three.link_distance_m[0] == Approx(1.4));
+  CHECK(link(1.6, {1, 2, 3}).link_kind[0] == LinkKind::kBirth);
+}
+
 TEST_CASE("A person seen twice keeps one id: the duplicate's 2D tracks join the track", "[unit]") {
   WindowLinker linker;
   LinkWindow(&linker, 0, {ConstantTracklet(0, 29, Vec3(0.0, 0.0, 1.0), {1, 2})});
