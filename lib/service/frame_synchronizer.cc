@@ -75,7 +75,10 @@ FrameSynchronizer::FrameSynchronizer(std::vector<CameraId> camera_ids, const Syn
 }
 
 bool FrameSynchronizer::InQuorum(const Camera& c) const {
-  return c.status.has_data && !c.status.excluded && !c.status.clock_flagged;
+  // A camera whose newest camera-frames were rejected for their time is out of step: its last
+  // accepted time is stale, and judging the others against it would flag them.
+  return c.status.has_data && !c.status.excluded && !c.status.clock_flagged &&
+         c.time_rejections == 0;
 }
 
 std::optional<std::pair<Utime, FrameIndex>> FrameSynchronizer::QuorumTime(
@@ -237,10 +240,22 @@ void FrameSynchronizer::Resync(SyncResult* result) {
     c.status.last_utime = 0;
     c.last_frame = 0;
     c.order_rejections = 0;
+    c.time_rejections = 0;
     c.num_offsets = 0;
     c.next_offset = 0;
-    // Exclusion and clock flags stay: cameras are re-included as they deliver, and a clock is
-    // judged again against the new stream's quorum.
+    // Clock flags were judged against the old stream's time: every clock is judged again
+    // against the new stream's quorum (a camera still off is flagged within kMinOffsetSamples
+    // of its frames). Exclusions stay: cameras are re-included as they deliver.
+    if (c.status.clock_flagged) {
+      c.status.clock_flagged = false;
+      CameraTransition t;
+      t.camera_id = c.status.camera_id;
+      t.kind = CameraTransition::Kind::kClock;
+      t.excluded = false;
+      result->transitions.push_back(t);
+    }
+    c.status.offset_us = 0;
+    c.status.offset_frames = 0;
   }
   last_released_key_.reset();
   now_utime_.reset();
@@ -266,22 +281,31 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
   SyncRejection why = Check(frame, index, &result.reason, &key);
   const bool order_rejection = why == SyncRejection::kBackwards || why == SyncRejection::kLate ||
                                why == SyncRejection::kFarFuture;
-  if (order_rejection && ++cam.order_rejections % options_.resync_after_rejections == 0) {
+  const bool time_rejection = order_rejection || why == SyncRejection::kClockOffset;
+  const int r = options_.resync_after_rejections;
+  const int vote = std::min(r, kStreamVoteRejections);
+  if (order_rejection) ++cam.order_rejections;
+  if (time_rejection) ++cam.time_rejections;
+  if (time_rejection &&
+      (cam.time_rejections % vote == 0 || (order_rejection && cam.order_rejections % r == 0))) {
     // This camera restarted (its clock or frame counter was reset, or jumped). When more than
     // half of the cameras with data (or restarting) did, the stream restarted: release what is
-    // pending, end the tracker's stream and start over with this camera-frame. Otherwise it
-    // starts over alone.
+    // pending, end the tracker's stream and start over with this camera-frame. A camera whose
+    // frames are rejected for their clock counts too: when the whole rig's time steps, the
+    // cameras disagree with the old stream's time, not with each other, and get flagged before
+    // their order rejections add up. Otherwise it starts over alone (order rejections only: a
+    // flagged clock stays flagged until it agrees with the others).
     int restarted = 0;
     int pool = 0;
     for (const Camera& c : cameras_) {
-      const bool restarting = c.order_rejections >= options_.resync_after_rejections;
+      const bool restarting = c.time_rejections >= vote;
       if (!c.status.has_data && !restarting) continue;
       ++pool;
       if (restarting) ++restarted;
     }
     if (2 * restarted > pool) {
       Resync(&result);
-    } else {
+    } else if (order_rejection && cam.order_rejections % r == 0) {
       cam.status.has_data = false;
       cam.status.last_utime = 0;
       cam.last_frame = 0;
@@ -292,8 +316,10 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
       result.transitions.push_back(t);
       UpdateNow();
     }
-    result.reason.clear();
-    why = Check(frame, index, &result.reason, &key);
+    if (result.resynced || cam.order_rejections % r == 0) {
+      result.reason.clear();
+      why = Check(frame, index, &result.reason, &key);
+    }
   }
   if (why != SyncRejection::kNone) {
     switch (why) {
@@ -324,6 +350,7 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
     return result;
   }
   cam.order_rejections = 0;
+  cam.time_rejections = 0;
   Accept(std::move(frame), index, key, &result);
   return result;
 }
@@ -475,7 +502,10 @@ std::vector<SyncAction> FrameSynchronizer::Flush() {
   now_frame_.reset();
   stream_start_utime_.reset();
   last_released_key_.reset();
-  for (Camera& c : cameras_) c.order_rejections = 0;
+  for (Camera& c : cameras_) {
+    c.order_rejections = 0;
+    c.time_rejections = 0;
+  }
   return actions;
 }
 

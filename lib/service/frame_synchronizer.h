@@ -21,8 +21,10 @@
 /// max_frame_offset frames flags its clock and rejects its camera-frames, alone, until the
 /// median is back within half the tolerance (plus the period). A camera with
 /// resync_after_rejections consecutive order rejections starts over alone; the whole stream
-/// restarts only when more than half of the cameras with data did. All time and frame arithmetic
-/// saturates.
+/// restarts when more than half of the cameras with data had kStreamVoteRejections consecutive
+/// camera-frames rejected for their time, order or clock (a step of the whole rig's time: the
+/// cameras then disagree with the old stream, not with each other), and every clock is judged
+/// again in the new stream. All time and frame arithmetic saturates.
 ///
 /// Single-owner, single-threaded object; deterministic; never throws on input. Memory is
 /// bounded by SyncOptions::max_pending_frames frames of at most one camera-frame per camera.
@@ -85,7 +87,7 @@ struct CameraTransition {
 struct SyncResult {
   SyncRejection rejection = SyncRejection::kNone;  ///< kNone when accepted
   std::string reason;                              ///< human-readable, when rejected
-  /// True when this call detected a stream restart (resync_after_rejections reached); the
+  /// True when this call detected a stream restart (see FrameSynchronizer); the
   /// actions then contain the release of every pending frame and a kEndStream, after which the
   /// camera-frame was accepted into a new stream.
   bool resynced = false;
@@ -136,6 +138,13 @@ struct SyncStatus {
 /// The synchronizer; see the file comment.
 class FrameSynchronizer {
  public:
+  /// Consecutive camera-frames rejected for their time (backwards, late, far future or clock
+  /// offset) that make a camera count as restarted in the stream restart vote (at most
+  /// SyncOptions::resync_after_rejections, which alone restarts a single camera): as many as
+  /// the clock flag needs samples, so a whole rig whose time stepped (an NTP step, a reboot
+  /// with reset frame counters) restarts the stream within that many of its frames.
+  static constexpr int kStreamVoteRejections = 8;
+
   /// `camera_ids`: the configured cameras (any order, distinct); `options` valid (as parsed).
   FrameSynchronizer(std::vector<CameraId> camera_ids, const SyncOptions& options);
 
@@ -158,6 +167,9 @@ class FrameSynchronizer {
     SyncCameraStatus status;
     FrameIndex last_frame = 0;
     int order_rejections = 0;  // consecutive
+    // Consecutive rejections for time (order rejections and clock offset): the stream restart
+    // vote (a whole rig whose time stepped first gets its clocks flagged against the old time).
+    int time_rejections = 0;
     // The other cameras' quorum utime when it last delivered (its own utime without one):
     // silence is judged on the others' clocks, so a camera ahead cannot silence the rest and a
     // dead one is noticed however few cameras there are.

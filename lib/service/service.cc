@@ -310,8 +310,10 @@ void Service::OnMessage(const std::string& channel, const std::uint8_t* data, st
   if (r.resynced) {
     Warn("sync:stream_restart",
          "input stream restarted (more than half of the cameras had " +
-             std::to_string(config_.sync.resync_after_rejections) +
-             " consecutive out-of-order camera-frames): tracks end and a new stream starts");
+             std::to_string(std::min(config_.sync.resync_after_rejections,
+                                     FrameSynchronizer::kStreamVoteRejections)) +
+             " consecutive camera-frames rejected for their time: the rig's time stepped): "
+             "tracks end and a new stream starts");
   }
   if (r.rejection != SyncRejection::kNone) {
     Warn(std::string("sync:") + ToString(r.rejection) + ":" + std::to_string(camera),

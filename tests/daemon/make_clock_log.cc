@@ -14,6 +14,14 @@
 //   flood         from frame 10 on, camera a sends 9 extra messages per frame, each with 10,000
 //                 box detections (~340 kB, over input.max_detections) and its utime spread over
 //                 the frame period: a misconfigured publisher flooding the group
+// Faults of the whole rig (every camera at once, from the middle frame of the log on, "the
+// step"):
+//   rig_skew:US   every camera's utimes shifted by US microseconds (an NTP step, a PTP master
+//                 change)
+//   rig_reset     every camera's frame index starts again at 0 (a power cycle of the rig; the
+//                 utimes go on)
+//   forged_stale  at frame 100 one publisher sends, in one burst, 30 stale messages for each
+//                 camera id (copies of that camera's frames 0-29), then the log goes on
 // Exit status 0 on success, 1 on failure, 2 on usage errors.
 
 #include <cstdint>
@@ -42,15 +50,20 @@ using Event = mvtrack::testing::CleanEvent;
 
 int Run(int argc, char** argv) {
   if (argc != 4) {
-    std::cerr << "usage: make_clock_log CLEAN.lcmlog OUT.lcmlog "
-                 "skew:US|first_future|stale_future|burst|fast_counter|drop|flood\n";
+    std::cerr
+        << "usage: make_clock_log CLEAN.lcmlog OUT.lcmlog "
+           "skew:US|first_future|stale_future|burst|fast_counter|drop|flood|rig_skew:US|rig_reset|"
+           "forged_stale\n";
     return 2;
   }
   const std::string kind = argv[3];
   std::optional<std::int64_t> skew;
+  std::optional<std::int64_t> rig_skew;
   if (kind.rfind("skew:", 0) == 0) skew = std::stoll(kind.substr(5));
-  if (!skew && kind != "first_future" && kind != "stale_future" && kind != "burst" &&
-      kind != "fast_counter" && kind != "drop" && kind != "flood") {
+  if (kind.rfind("rig_skew:", 0) == 0) rig_skew = std::stoll(kind.substr(9));
+  if (!skew && !rig_skew && kind != "first_future" && kind != "stale_future" && kind != "burst" &&
+      kind != "fast_counter" && kind != "drop" && kind != "flood" && kind != "rig_reset" &&
+      kind != "forged_stale") {
     std::cerr << "make_clock_log: unknown kind '" << kind << "'\n";
     return 2;
   }
@@ -60,7 +73,9 @@ int Run(int argc, char** argv) {
   const mvtrack::CameraId cam_a = log.cameras[0];
   const mvtrack::CameraId cam_b = log.cameras[1];
   const mvtrack::FrameIndex first = events.front().frame.frame;
+  const mvtrack::FrameIndex step = (events.back().frame.frame - first) / 2;  // the rig's step
   std::vector<const Event*> b_history;
+  std::map<mvtrack::CameraId, std::vector<const Event*>> history;  // forged_stale
 
   std::unique_ptr<transport::LogWriter> out = transport::LogWriter::Open(argv[2], &why);
   if (!out) throw std::runtime_error(why);
@@ -94,6 +109,18 @@ int Run(int argc, char** argv) {
       }
     }
     if (cam == cam_b) b_history.push_back(&e);
+    if (kind == "forged_stale" && k == 100 && cam == cam_a) {
+      // One publisher, one burst: 30 stale messages for every camera id.
+      for (const auto& [id, frames] : history) {
+        for (std::size_t i = 0; i < frames.size() && i < 30; ++i)
+          write(*frames[i], frames[i]->frame);
+      }
+    }
+    history[cam].push_back(&e);
+    if (k >= step) {
+      if (rig_skew) f.utime += *rig_skew;
+      if (kind == "rig_reset") f.frame = k - step;
+    }
     if (cam == cam_a && kind == "flood" && k >= 10) {
       for (int copy = 1; copy <= 9; ++copy) {
         CameraFrame big = f;

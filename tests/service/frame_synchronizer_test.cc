@@ -336,6 +336,80 @@ TEST_CASE("clock model: a clock that comes back is included again, one message c
   }
 }
 
+TEST_CASE("clock model: a step of the whole rig's time restarts the stream within 8 frames",
+          "[unit]") {
+  // Four cameras at 25 Hz; from frame 50 on every camera's clock steps by `step_us`, or every
+  // frame counter starts again at 0. Before issue 39 the cameras flagged each other's clocks
+  // against the old time and no frame was released again.
+  struct Case {
+    const char* name;
+    std::int64_t step_us;
+    bool reset_counters;
+  };
+  for (const Case& c : {Case{"-2 s", -2000000, false},
+                        Case{"-1 h", -3600000000LL, false},
+                        Case{"+1 h", 3600000000LL, false},
+                        Case{"counters reset", 0, true}}) {
+    for (const SyncMode mode : {SyncMode::kFrameIndex, SyncMode::kUtime}) {
+      if (c.reset_counters && mode == SyncMode::kUtime) continue;  // utimes go on: no step
+      INFO(c.name << (mode == SyncMode::kUtime ? " utime" : " frame_index"));
+      SyncOptions o = Options();
+      o.mode = mode;
+      o.resync_after_rejections = 30;  // the default: a camera restarts alone after 30
+      FrameSynchronizer sync({0, 1, 2, 3}, o);
+      int released_after = 0;
+      int resync_frame = -1;
+      for (FrameIndex f = 0; f < 120; ++f) {
+        for (CameraId cam = 0; cam < 4; ++cam) {
+          core::CameraFrame cf = At(cam, f);
+          if (f >= 50) {
+            cf.utime += c.step_us;
+            if (c.reset_counters) cf.frame = f - 50;
+          }
+          const SyncResult r = sync.Add(cf);
+          if (r.resynced && resync_frame < 0) resync_frame = static_cast<int>(f);
+          for (const SyncAction& a : r.actions) {
+            if (a.kind == SyncAction::Kind::kSubmit && resync_frame >= 0) ++released_after;
+          }
+        }
+      }
+      const SyncStatus st = sync.Status();
+      CHECK(st.resyncs == 1);
+      CHECK(resync_frame >= 50);
+      CHECK(resync_frame <= 50 + FrameSynchronizer::kStreamVoteRejections);
+      // Every camera-frame from the restart on is released (the last frames may still pend).
+      CHECK(released_after >= 4 * (120 - resync_frame - 2));
+      for (const SyncCameraStatus& cs : st.cameras) {
+        CHECK_FALSE(cs.clock_flagged);
+        CHECK_FALSE(cs.excluded);
+      }
+    }
+  }
+}
+
+TEST_CASE("clock model: one camera stuck on a bogus time does not get the others flagged",
+          "[unit]") {
+  // Camera 0's first message is an hour ahead; its real frames are then backwards until it
+  // restarts alone (resync_after_rejections, 30). Its stale frame must not be the quorum the
+  // other cameras are judged by: by frame index they would soon look 10 frames off.
+  SyncOptions o = Options();
+  o.resync_after_rejections = 30;
+  FrameSynchronizer sync({0, 1, 2}, o);
+  core::CameraFrame ahead = At(0, 0);
+  ahead.utime += 3600000000LL;
+  sync.Add(ahead);
+  for (FrameIndex f = 0; f < 60; ++f) {
+    for (CameraId cam = 0; cam < 3; ++cam) sync.Add(At(cam, f));
+  }
+  const SyncStatus st = sync.Status();
+  CHECK(st.resyncs == 0);
+  CHECK(st.cameras[0].restarts == 1);
+  CHECK(st.cameras[1].clock_offset == 0);
+  CHECK(st.cameras[2].clock_offset == 0);
+  CHECK_FALSE(st.cameras[1].clock_flagged);
+  CHECK_FALSE(st.cameras[2].clock_flagged);
+}
+
 TEST_CASE("clock model: a frame counter running fast is caught", "[unit]") {
   FrameSynchronizer sync({0, 1, 2, 3}, Options());
   std::size_t released_healthy = 0;
