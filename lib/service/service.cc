@@ -14,6 +14,7 @@
 #include "config/tracker_options.h"
 #include "geometry/camera_rig.h"
 #include "pipeline/executor.h"
+#include "service/status_check.h"
 #include "transport/channels.h"
 #include "transport/codec.h"
 #include "transport/log_io.h"
@@ -196,6 +197,8 @@ void Service::OnMessage(const std::string& channel, const std::uint8_t* data, st
     std::lock_guard<std::mutex> lock(out_mu_);
     Record(channel, data, size, now);
   }
+  if (!any_message_ || now - last_message_us_ >= kNoOutputAfterUs) input_since_us_ = now;
+  any_message_ = true;
   last_message_us_ = now;
   idle_flushed_ = false;
   {
@@ -398,6 +401,7 @@ void Service::OnFrame(tracker::Frame3D frame) {
   counters_.max_latency_us = std::max(counters_.max_latency_us, latency);
   if (latency_samples_.size() < kMaxLatencySamples) latency_samples_.push_back(latency);
   last_frame_ = frame.frame;
+  last_publish_us_ = now;
   active_tracks_ = static_cast<int>(frame.tracks.size());
   confirmed_tracks_ = 0;
   for (const tracker::Track3D& t : frame.tracks) {
@@ -664,6 +668,13 @@ std::vector<std::uint8_t> Service::BuildStatus() {
     msg.latency_p99_us = NearestRankPercentile(&samples, 0.99);
     if (msg.latency_p99_us > config_.latency_limit_us) {
       flags |= mvtrack::tracker_status_t::FLAG_LATENCY_HIGH;
+    }
+    // Input keeps arriving, nothing is published: tracking stopped (every camera-frame
+    // rejected, a stalled pipeline). Judged from the later of the last publish and the start of
+    // the current run of input, so neither start-up nor a return from idle counts.
+    const bool input_now = now - last_message_us_ < kNoOutputAfterUs;
+    if (input_now && now - std::max(last_publish_us_, input_since_us_) >= kNoOutputAfterUs) {
+      flags |= mvtrack::tracker_status_t::FLAG_NO_OUTPUT;
     }
     msg.flags = flags;
     period_start_us_ = now;

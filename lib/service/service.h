@@ -212,6 +212,10 @@ class Service {
   std::unique_ptr<pipeline::Pipeline> pipeline_;
   std::map<CameraId, int> camera_index_;
   std::int64_t last_message_us_ = 0;
+  // Start of the current run of input without a kNoOutputAfterUs pause (NO_OUTPUT is judged
+  // from here or from the last publish, whichever is later).
+  std::int64_t input_since_us_ = 0;
+  bool any_message_ = false;
   bool idle_flushed_ = true;
   std::int64_t next_status_us_ = 0;
   std::int64_t period_start_us_ = 0;
@@ -229,6 +233,7 @@ class Service {
   TrackId3D id_offset_ = 0;                              // added to pipeline ids (reloads)
   TrackId3D max_published_id_ = 0;
   FrameIndex last_frame_ = -1;
+  std::int64_t last_publish_us_ = 0;  // wall time of the newest published frame (0: none)
   int active_tracks_ = 0;
   int confirmed_tracks_ = 0;
   std::int64_t windows_before_ = 0;  // windows processed by earlier pipelines (reloads)

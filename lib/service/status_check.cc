@@ -7,7 +7,7 @@ namespace mvtrack::service {
 namespace {
 
 constexpr std::int64_t kCameraNoData = 1, kCameraStale = 2, kCameraClockOffset = 64;
-constexpr std::int64_t kTrackerBacklog = 4, kTrackerJobFailures = 16;
+constexpr std::int64_t kTrackerBacklog = 4, kTrackerJobFailures = 16, kTrackerNoOutput = 32;
 
 std::string Join(const std::vector<std::string>& words, const char* sep) {
   std::string out;
@@ -63,8 +63,12 @@ HealthReport AssessStatus(const transport::TrackerStatus& status) {
     critical.push_back("JOB_FAILURES: " + std::to_string(status.jobs_failed) +
                        " window jobs failed since start");
   }
-  for (const std::string& f :
-       transport::TrackerFlagNames(status.flags & ~(kTrackerBacklog | kTrackerJobFailures))) {
+  if ((status.flags & kTrackerNoOutput) != 0) {
+    critical.push_back("NO_OUTPUT: cameras deliver but no frame was published for " +
+                       std::to_string(kNoOutputAfterUs / 1000000) + " s");
+  }
+  for (const std::string& f : transport::TrackerFlagNames(
+           status.flags & ~(kTrackerBacklog | kTrackerJobFailures | kTrackerNoOutput))) {
     warning.push_back(f);
   }
   for (const transport::CameraStatus& c : status.cameras) {

@@ -29,10 +29,17 @@ struct HealthReport {
 /// "OK", or the level and its reasons: "WARNING: camera 2 CLOCK_OFFSET; LATENCY_HIGH".
 std::string HealthLine(const HealthReport& report);
 
+/// The daemon flags NO_OUTPUT (tracker_status_t::FLAG_NO_OUTPUT) when camera-frames keep
+/// arriving but no frame has been published for this long, wall clock: longer than the output
+/// gap of a healthy stream (a window step, at most about a second at the rates the frame counts
+/// are scaled for, plus processing), short enough that the health turns CRITICAL within 5 s of
+/// the output stopping with a status period of up to 2 s.
+inline constexpr std::int64_t kNoOutputAfterUs = 3'000'000;
+
 /// CRITICAL when fewer than two configured cameras deliver (a camera delivers when it has data
 /// and is not flagged NO_DATA, STALE or CLOCK_OFFSET: excluded from tracking), or the tracker
-/// reports BACKLOG or JOB_FAILURES; WARNING when any camera or the tracker has another flag set
-/// (each camera's flags are named); otherwise OK.
+/// reports BACKLOG, JOB_FAILURES or NO_OUTPUT; WARNING when any camera or the tracker has another
+/// flag set (each camera's flags are named); otherwise OK.
 HealthReport AssessStatus(const transport::TrackerStatus& status);
 
 /// Cameras delivering (see AssessStatus).

@@ -251,7 +251,8 @@ std::vector<std::uint8_t> EncodeTrackerStatus(const TrackerStatus& status);
 std::vector<std::string> CameraFlagNames(std::int64_t flags);
 
 /// The names of the tracker_status_t::FLAG_* bits set in `flags` ("CAMERA_MISSING",
-/// "INPUT_LOSS", "BACKLOG", "LATENCY_HIGH", "JOB_FAILURES"), in bit order; unknown bits as
+/// "INPUT_LOSS", "BACKLOG", "LATENCY_HIGH", "JOB_FAILURES", "NO_OUTPUT"), in bit order; unknown
+/// bits as
 /// CameraFlagNames does.
 std::vector<std::string> TrackerFlagNames(std::int64_t flags);
 

@@ -155,8 +155,9 @@ std::vector<std::string> CameraFlagNames(std::int64_t flags) {
 }
 
 std::vector<std::string> TrackerFlagNames(std::int64_t flags) {
-  return FlagNames(flags,
-                   {"CAMERA_MISSING", "INPUT_LOSS", "BACKLOG", "LATENCY_HIGH", "JOB_FAILURES"});
+  return FlagNames(
+      flags,
+      {"CAMERA_MISSING", "INPUT_LOSS", "BACKLOG", "LATENCY_HIGH", "JOB_FAILURES", "NO_OUTPUT"});
 }
 
 }  // namespace mvtrack::transport

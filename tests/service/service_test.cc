@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -17,12 +18,14 @@
 #include <mutex>
 #include <mvtrack/tracker_status_t.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "config/config_test_util.h"
 #include "geometry/camera_rig.h"
 #include "service/daemon_config.h"
 #include "service/lcm_runner.h"
+#include "service/status_check.h"
 #include "sim/synthetic_scene.h"
 #include "tracker/tracker.h"
 #include "transport/channels.h"
@@ -415,6 +418,53 @@ TEST_CASE("service: status period and idle flush follow the wall clock", "[unit]
   s->Stop();
   // A final status at Stop.
   CHECK(sink.channels["MVTRACK_STATUS"] >= 3);
+}
+
+TEST_CASE("service: NO_OUTPUT when cameras deliver and nothing is published for 3 s", "[unit]") {
+  const Utime t0 = Scene().detections[0][0].utime;
+  pipeline::ManualClock clock(t0);
+  Sink sink;
+  std::string why;
+  DaemonConfig config = Config(1);
+  config.sync.idle_flush_s = 0.0;
+  std::unique_ptr<Service> s = Service::Create(config, sink.Hooks(&clock), &why);
+  REQUIRE(s);
+  const auto flags = [&] {
+    mvtrack::tracker_status_t st;
+    const std::vector<std::uint8_t> bytes = s->BuildStatus();
+    REQUIRE(st.decode(bytes.data(), 0, static_cast<int>(bytes.size())) ==
+            static_cast<int>(bytes.size()));
+    return st.flags;
+  };
+  // 40 frames over 1.6 s: the first window is published (by the pipeline's threads), no flag.
+  Feed(s.get(), &clock, 0, 40);
+  // Wait until the first window's frames are all out (the count stays put for 200 ms).
+  std::int64_t published = 0;
+  for (int wait = 0, stable = 0; wait < 1000 && (published == 0 || stable < 4); ++wait) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const std::int64_t now_published = s->Counters().frames_published;
+    stable = now_published == published ? stable + 1 : 0;
+    published = now_published;
+  }
+  REQUIRE(published > 0);
+  CHECK((flags() & mvtrack::tracker_status_t::FLAG_NO_OUTPUT) == 0);
+  // Every camera keeps re-sending its frame 39 (each rejected as a duplicate): input arrives,
+  // nothing more is published. Flagged once 3 s have passed since the last publish.
+  const Utime last_publish = clock.NowMicros();
+  for (int k = 1; k <= 40; ++k) {
+    clock.SetMicros(last_publish + k * 100'000);
+    for (const core::CameraFrame& f : Scene().detections[39]) {
+      const std::vector<std::uint8_t> bytes = Encode(f);
+      s->OnMessage(transport::DetectionsChannelForCamera(f.camera_id), bytes.data(), bytes.size());
+    }
+    const bool flagged = (flags() & mvtrack::tracker_status_t::FLAG_NO_OUTPUT) != 0;
+    INFO("at " << k * 100 << " ms");
+    CHECK(flagged == (k * 100'000 >= service::kNoOutputAfterUs));
+  }
+  // Input stops too: not NO_OUTPUT any more (the cameras' own flags tell that story).
+  clock.SetMicros(clock.NowMicros() + 3'000'000);
+  CHECK((flags() & mvtrack::tracker_status_t::FLAG_NO_OUTPUT) == 0);
+  s->Stop();
 }
 
 TEST_CASE("service reload switches the tracker options, track ids keep increasing", "[unit]") {

@@ -64,6 +64,16 @@ TEST_CASE("health: OK, WARNING with the flags named, CRITICAL below two cameras"
   transport::TrackerStatus never = Healthy();
   for (auto& c : never.cameras) c.received = 0;
   CHECK(service::AssessStatus(never).health == service::Health::kCritical);
+
+  // Cameras deliver, nothing is published (issue 39: this was WARNING at best).
+  transport::TrackerStatus no_output = Healthy();
+  no_output.flags = 32;  // NO_OUTPUT
+  h = service::AssessStatus(no_output);
+  CHECK(h.health == service::Health::kCritical);
+  CHECK(h.reasons ==
+        std::vector<std::string>{"NO_OUTPUT: cameras deliver but no frame was published for 3 s"});
+  CHECK(transport::TrackerFlagNames(32 | 8) ==
+        std::vector<std::string>{"LATENCY_HIGH", "NO_OUTPUT"});
 }
 
 TEST_CASE("frame rate over a horizon, not one bursty status period", "[unit]") {
