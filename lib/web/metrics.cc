@@ -60,10 +60,14 @@ void FlagSamples(Exposition* e,
 
 std::string PrometheusText(const std::optional<transport::TrackerStatus>& status,
                            double status_age_s,
+                           double stale_after_s,
                            const WebCounters& web) {
   Exposition e;
-  e.Family("mvtrack_up", "gauge", "1 when a tracker status message has been received");
-  e.Sample(status ? 1.0 : 0.0);
+  const bool fresh = status && !(status_age_s > stale_after_s);
+  e.Family("mvtrack_up",
+           "gauge",
+           "1 while tracker status messages arrive (the latest within the staleness period)");
+  e.Sample(fresh ? 1.0 : 0.0);
   e.Family("mvtrack_web_tracks_messages_total", "counter", "tracks messages received");
   e.Sample(D(web.tracks_messages));
   e.Family("mvtrack_web_status_messages_total", "counter", "status messages received");
@@ -80,13 +84,17 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
   e.Sample(D(web.events_sent));
   if (!status) return e.text();
   const transport::TrackerStatus& s = *status;
-  const service::HealthReport health = service::AssessStatus(s);
   e.Family("mvtrack_status_age_seconds", "gauge", "time since the latest status message");
   e.Sample(status_age_s);
   e.Family("mvtrack_health",
            "gauge",
-           "0 OK, 1 WARNING, 2 CRITICAL (monitoring-plugin levels; mvtrack status)");
-  e.Sample(static_cast<double>(static_cast<int>(health.health)));
+           "0 OK, 1 WARNING, 2 CRITICAL, 3 UNKNOWN: the latest status is stale "
+           "(monitoring-plugin levels; mvtrack status)");
+  if (!fresh) {
+    e.Sample(static_cast<double>(static_cast<int>(service::Health::kUnknown)));
+    return e.text();
+  }
+  e.Sample(static_cast<double>(static_cast<int>(service::AssessStatus(s).health)));
   e.Family("mvtrack_uptime_seconds", "gauge", "tracker uptime");
   e.Sample(D(s.uptime_us) / 1e6);
   e.Family("mvtrack_last_frame", "gauge", "frame index of the latest published tracks");

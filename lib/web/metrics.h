@@ -22,9 +22,13 @@ struct WebCounters {
 };
 
 /// The exposition text. Without a status (none received yet) only mvtrack_up 0 and the web
-/// counters; `status_age_s` is the time since the latest status arrived.
+/// counters; `status_age_s` is the time since the latest status arrived. A status older than
+/// `stale_after_s` (the tracker stopped publishing: /healthz's staleness rule) is not reported
+/// as if it were current: mvtrack_up 0, mvtrack_health 3 (UNKNOWN), its age, and none of the
+/// tracker's or the cameras' values.
 std::string PrometheusText(const std::optional<transport::TrackerStatus>& status,
                            double status_age_s,
+                           double stale_after_s,
                            const WebCounters& web);
 
 }  // namespace mvtrack::web

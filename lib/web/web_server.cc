@@ -287,10 +287,11 @@ class WebServer::Impl {
     server_.Get("/tracks.json", latest(false));
     server_.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
       const auto s = LatestStatus();
-      res.set_content(
-          PrometheusText(
-              s ? std::optional(s->first) : std::nullopt, s ? s->second : 0.0, Counters()),
-          "text/plain; version=0.0.4");
+      res.set_content(PrometheusText(s ? std::optional(s->first) : std::nullopt,
+                                     s ? s->second : 0.0,
+                                     options_.stale_after_s,
+                                     Counters()),
+                      "text/plain; version=0.0.4");
     });
     server_.Get("/healthz", [this](const httplib::Request&, httplib::Response& res) {
       const auto s = LatestStatus();

@@ -78,6 +78,7 @@ time.sleep(14)
   sleep 2.5  # longer than --stale-after without a status
   curl -s -o "$OUT/healthz_stale.txt" -w "%{http_code}\n" http://127.0.0.1:18080/healthz \
     > "$OUT/healthz_stale.code"
+  curl -s http://127.0.0.1:18080/metrics > "$OUT/metrics_stale.txt"
   daemon second &
   SECOND=$!
   wait $PROBE || echo "probe failed" > "$OUT/probe.failed"
@@ -115,6 +116,11 @@ expect_grep "^mvtrack_health 0$" "$OUT/metrics_live.txt"
 expect_grep '^mvtrack_camera_received_total\{camera="0"\} [1-9][0-9]*$' "$OUT/metrics_live.txt"
 expect_grep '^mvtrack_camera_flag\{camera="2",flag="CLOCK_OFFSET"\} 0$' "$OUT/metrics_live.txt"
 expect_grep "^# TYPE mvtrack_kernel_drops_total counter$" "$OUT/metrics_live.txt"
+# ... and once the daemon stopped (issue 39): down, UNKNOWN, no stale per-camera values.
+expect_grep "^mvtrack_up 0$" "$OUT/metrics_stale.txt"
+expect_grep "^mvtrack_health 3$" "$OUT/metrics_stale.txt"
+! grep -q "^mvtrack_camera_received_total" "$OUT/metrics_stale.txt" ||
+  fail "/metrics exported a stopped daemon's camera counters"
 
 # /events: Server-Sent Events whose data lines are the documented JSON objects.
 "$PY" - "$OUT/events.txt" << 'EOF' || fail "/events did not carry tracks and status objects"

@@ -202,7 +202,7 @@ TEST_CASE("metrics: Prometheus text of the status, per camera, and the web count
   WebCounters w;
   w.tracks_messages = 7;
   w.clients_dropped = 1;
-  const std::string none = PrometheusText(std::nullopt, 0.0, w);
+  const std::string none = PrometheusText(std::nullopt, 0.0, 5.0, w);
   CHECK_THAT(none, Catch::Contains("\nmvtrack_up 0\n") || Catch::StartsWith("# HELP mvtrack_up"));
   CHECK_THAT(none, Catch::Contains("mvtrack_web_tracks_messages_total 7\n"));
   CHECK_THAT(none, !Catch::Contains("mvtrack_camera_"));
@@ -212,7 +212,7 @@ TEST_CASE("metrics: Prometheus text of the status, per camera, and the web count
   s.latency_p99_us = 25000;
   s.gallery_bytes = 2048;
   s.cameras[1].embeddings_dropped = 3;
-  const std::string text = PrometheusText(s, 0.5, w);
+  const std::string text = PrometheusText(s, 0.5, 5.0, w);
   CHECK_THAT(text, Catch::Contains("mvtrack_up 1\n"));
   CHECK_THAT(text, Catch::Contains("mvtrack_status_age_seconds 0.5\n"));
   CHECK_THAT(text, Catch::Contains("mvtrack_health 1\n"));
@@ -224,6 +224,16 @@ TEST_CASE("metrics: Prometheus text of the status, per camera, and the web count
   CHECK_THAT(text, Catch::Contains("mvtrack_web_clients_dropped_total 1\n"));
   CHECK_THAT(text, Catch::Contains("mvtrack_gallery_bytes 2048\n"));
   CHECK_THAT(text, Catch::Contains("mvtrack_camera_embeddings_dropped_total{camera=\"1\"} 3\n"));
+  // A status older than the staleness period (the daemon died): down, UNKNOWN, no stale values
+  // (issue 39: mvtrack_up stayed 1 and mvtrack_health kept its last value forever).
+  const std::string stale = PrometheusText(s, 5.5, 5.0, w);
+  CHECK_THAT(stale, Catch::Contains("mvtrack_up 0\n"));
+  CHECK_THAT(stale, Catch::Contains("mvtrack_status_age_seconds 5.5\n"));
+  CHECK_THAT(stale, Catch::Contains("mvtrack_health 3\n"));
+  CHECK_THAT(stale, !Catch::Contains("mvtrack_active_tracks"));
+  CHECK_THAT(stale, !Catch::Contains("mvtrack_camera_"));
+  CHECK_THAT(stale, Catch::Contains("mvtrack_web_tracks_messages_total 7\n"));
+  CHECK_THAT(PrometheusText(s, 5.0, 5.0, w), Catch::Contains("mvtrack_up 1\n"));
   // Every sample line belongs to a family declared with HELP and TYPE before it.
   std::string family;
   std::size_t pos = 0;
