@@ -2,7 +2,10 @@
 // no script, style or font from elsewhere (a store network may have no internet access). It
 // reads /floor.json and /layouts.json once, then the /events stream (EventSource reconnects by
 // itself when the server restarts), and keeps a DOM table of the latest tracks (ids and
-// positions, read by the browser test) next to the canvas drawing.
+// positions, read by the browser test) next to the canvas drawing. It ages what it shows with
+// the server's staleness rule (`stale_after_s` of /floor.json, --stale-after): no status within
+// it turns the badge UNKNOWN with the reason, tracks not published within it are greyed out
+// with how long ago they were (issue 39: a stopped daemon looked healthy, "live", forever).
 
 #include <string>
 
@@ -31,6 +34,7 @@ const std::string& IndexPage() {
   th { background: #eee; } td.flags { text-align: left; color: #a30; } td.ok { color: #2a7; }
   section h2 { font-size: 1em; margin: 0 0 0.3em 0; }
   #reasons { color: #fdd; }
+  #tracks.stale td { color: #999; } #tracks-note { color: #a30; }
 </style>
 </head>
 <body>
@@ -57,7 +61,7 @@ const std::string& IndexPage() {
         <th>flags</th></tr></thead><tbody></tbody></table>
     </section>
     <section>
-      <h2>Tracks</h2>
+      <h2>Tracks <span id="tracks-note"></span></h2>
       <table id="tracks"><thead><tr><th>id</th><th>state</th><th>x m</th><th>y m</th>
         <th>cameras</th></tr></thead><tbody></tbody></table>
     </section>
@@ -76,6 +80,10 @@ const latencies = [];         // page latency samples, ms (publish -> shown)
 let messages = 0;
 const arrivals = [];          // [t_ms, frame] of the last tracks messages
 let drawPending = false;
+let staleAfterMs = 5000;      // /floor.json's stale_after_s (the server's --stale-after)
+let lastStatusMs = null;      // performance.now() of the latest status / tracks event
+let lastTracksMs = null;
+let statusStale = false, tracksStale = false;
 
 function text(id, v) { document.getElementById(id).textContent = v; }
 
@@ -135,7 +143,7 @@ function draw() {
       if (!ja || !jb || ja[0] === null || jb[0] === null) continue;
       ctx.beginPath(); ctx.moveTo(px(ja[0]), py(ja[1])); ctx.lineTo(px(jb[0]), py(jb[1])); ctx.stroke();
     }
-    ctx.fillStyle = t.state === "confirmed" ? "#c33" : "#e90";
+    ctx.fillStyle = tracksStale ? "#999" : t.state === "confirmed" ? "#c33" : "#e90";
     ctx.beginPath(); ctx.arc(px(t.position[0]), py(t.position[1]), 6, 0, 2 * Math.PI); ctx.fill();
     ctx.fillStyle = "#000"; ctx.fillText(String(t.id), px(t.position[0]) + 8, py(t.position[1]) + 4);
   }
@@ -143,10 +151,29 @@ function draw() {
 
 function scheduleDraw() { if (!drawPending) { drawPending = true; requestAnimationFrame(draw); } }
 
+// Ages the page's state (every 250 ms and on every event): the server's staleness rule.
+function checkStale() {
+  const now = performance.now();
+  const seconds = (t) => ((now - t) / 1000).toFixed(1);
+  statusStale = lastStatusMs !== null && now - lastStatusMs > staleAfterMs;
+  tracksStale = lastTracksMs !== null && now - lastTracksMs > staleAfterMs;
+  if (statusStale) {
+    const h = document.getElementById("health");
+    h.textContent = "UNKNOWN"; h.className = "UNKNOWN";
+    text("reasons", "no status message for " + seconds(lastStatusMs) + " s: the tracker stopped publishing");
+    text("connection", "stale");
+  }
+  document.getElementById("tracks").classList.toggle("stale", tracksStale);
+  text("tracks-note", tracksStale ? "not published for " + seconds(lastTracksMs) + " s (frame " +
+       (latest ? latest.frame : "-") + ")" : "");
+  document.body.dataset.stale = (statusStale ? "status" : "") + (tracksStale ? " tracks" : "");
+}
+
 function onTracks(e) {
   latest = e;
   messages++;
   const now = performance.now();
+  lastTracksMs = now;
   const seen = new Set();
   for (const t of e.tracks) {
     seen.add(t.id);
@@ -187,10 +214,14 @@ function onTracks(e) {
   text("web-latency-p50-ms", sorted[Math.floor((sorted.length - 1) / 2)].toFixed(1));
   text("web-latency-max-ms", sorted[sorted.length - 1].toFixed(1));
   text("web-latency-count", latencies.length);
+  checkStale();
   scheduleDraw();
 }
 
 function onStatus(s) {
+  lastStatusMs = performance.now();
+  if (statusStale) text("connection", "live");
+  checkStale();
   const h = document.getElementById("health");
   h.textContent = s.health; h.className = s.health;
   text("reasons", s.reasons.join("; "));
@@ -220,10 +251,14 @@ function connect() {
 }
 
 Promise.all([fetch("/floor.json").then((r) => r.json()), fetch("/layouts.json").then((r) => r.json())])
-  .then(([f, l]) => { floor = f; layouts = l; scheduleDraw(); })
+  .then(([f, l]) => {
+    floor = f; layouts = l;
+    if (f.stale_after_s > 0) staleAfterMs = 1000 * f.stale_after_s;
+    scheduleDraw();
+  })
   .catch(() => {})
   .finally(connect);
-setInterval(scheduleDraw, 250);   // trails fade even without messages
+setInterval(() => { checkStale(); scheduleDraw(); }, 250);  // trails fade, state ages, without messages
 </script>
 </body>
 </html>

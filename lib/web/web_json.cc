@@ -115,7 +115,7 @@ std::string StatusEventJson(const transport::TrackerStatus& s) {
   return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);
 }
 
-std::string FloorJson(const std::vector<geometry::CameraModel>& cameras) {
+std::string FloorJson(const std::vector<geometry::CameraModel>& cameras, double stale_after_s) {
   constexpr double kMaxRange = 25.0;
   constexpr int kPerEdge = 8;
   json out_cameras = json::array();
@@ -162,7 +162,9 @@ std::string FloorJson(const std::vector<geometry::CameraModel>& cameras) {
     const double m = std::max(2.0, 0.25 * std::max(bx1 - bx0, by1 - by0));
     bounds = json::array({bx0 - m, by0 - m, bx1 + m, by1 + m});
   }
-  const json o = {{"cameras", std::move(out_cameras)}, {"bounds", std::move(bounds)}};
+  const json o = {{"cameras", std::move(out_cameras)},
+                  {"bounds", std::move(bounds)},
+                  {"stale_after_s", stale_after_s}};
   return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);
 }
 

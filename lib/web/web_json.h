@@ -27,8 +27,10 @@ std::string StatusEventJson(const transport::TrackerStatus& status);
 /// {"cameras":[{"id", "position":[x,y,z], "fov":[[x,y], ...]}], "bounds":[x_min, y_min, x_max,
 /// y_max]}: each camera's centre and the polygon its image covers on the floor z = 0 (the rays
 /// through the image border, cut at 25 m from the camera where they do not reach the floor);
-/// bounds: the cameras' positions with a margin of a quarter of their spread, at least 2 m.
-/// Empty cameras: {"cameras":[], "bounds":null}.
-std::string FloorJson(const std::vector<geometry::CameraModel>& cameras);
+/// bounds: the cameras' positions with a margin of a quarter of their spread, at least 2 m;
+/// stale_after_s: the server's staleness period, which the page ages its state with.
+/// Empty cameras: {"cameras":[], "bounds":null, "stale_after_s": ...}.
+std::string FloorJson(const std::vector<geometry::CameraModel>& cameras,
+                      double stale_after_s = 5.0);
 
 }  // namespace mvtrack::web

@@ -148,7 +148,7 @@ class WebServer::Impl {
   explicit Impl(WebOptions options)
       : options_(std::move(options)),
         hub_(options_.client_queue_events, options_.client_queue_bytes),
-        floor_json_(FloorJson(options_.cameras)),
+        floor_json_(FloorJson(options_.cameras, options_.stale_after_s)),
         layouts_json_(LayoutsJson()) {}
 
   bool Init(std::string* why) {

@@ -1,12 +1,13 @@
 #!/usr/bin/python3
 """Drives a headless Chromium through the DevTools protocol (python3-websocket): opens URL once,
-then for each MESSAGES_i in turn waits until the page has shown that many tracks messages,
+then for each MESSAGES_i in turn waits until the page has shown that many tracks messages (or,
+for a phase written @FILE, until FILE exists, e.g. when the daemon stopped a while ago),
 prints one JSON line with what the page's DOM shows (frame, tracks as id/x/y from the track
 table's data attributes, messages, the page's latency figures, health, connection, camera rows)
 and creates the file PHASE_PREFIX.i (so a test can act between phases, e.g. restart the daemon
 while the same page stays open). A PNG screenshot is saved after the first phase.
 
-Usage: page_probe.py DEVTOOLS_PORT URL TIMEOUT_S SCREENSHOT.png PHASE_PREFIX MESSAGES_1 [...]
+Usage: page_probe.py DEVTOOLS_PORT URL TIMEOUT_S SCREENSHOT.png PHASE_PREFIX MESSAGES_1|@FILE [...]
 Exit status 0 when every phase was reached within TIMEOUT_S (each), 1 otherwise."""
 import base64
 import json
@@ -17,7 +18,7 @@ import urllib.request
 import websocket
 
 port, url, timeout_s, shot, phase_prefix = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4], sys.argv[5]
-phases = [int(n) for n in sys.argv[6:]]
+phases = sys.argv[6:]
 
 deadline = time.time() + timeout_s
 targets = None
@@ -55,24 +56,31 @@ PROBE = """JSON.stringify({
   latency_max_ms: Number(document.getElementById('web-latency-max-ms').textContent),
   latency_count: Number(document.getElementById('web-latency-count').textContent),
   health: document.getElementById('health').textContent,
+  reasons: document.getElementById('reasons').textContent,
   connection: document.getElementById('connection').textContent,
+  stale: document.body.dataset.stale || '',
+  tracks_note: document.getElementById('tracks-note').textContent,
   cameras: [...document.querySelectorAll('#cameras tbody tr')].map(r => r.dataset.camera)
 })"""
 
 call("Page.enable")
 call("Page.navigate", url=url)
 ok = True
-for i, wanted in enumerate(phases, start=1):
+import os
+
+for i, phase in enumerate(phases, start=1):
     deadline = time.time() + timeout_s
     state = {}
+    wait_file = phase[1:] if phase.startswith("@") else None
+    wanted = 0 if wait_file else int(phase)
     while time.time() < deadline:
         result = call("Runtime.evaluate", expression=PROBE, returnByValue=True)["result"]
         if "value" in result:  # else the page is still loading (its elements do not exist yet)
             state = json.loads(result["value"])
-            if state["messages"] >= wanted:
+            if (os.path.exists(wait_file) if wait_file else state["messages"] >= wanted):
                 break
         time.sleep(0.05)
-    reached = state.get("messages", 0) >= wanted
+    reached = os.path.exists(wait_file) if wait_file else state.get("messages", 0) >= wanted
     ok = ok and reached
     if i == 1:
         with open(shot, "wb") as f:

@@ -3,8 +3,9 @@
 # network): mvtrackd plays the bundled demo recording in real time and publishes over udpm://,
 # `mvtrack web` serves it, a real headless Chromium (DevTools protocol, page_probe.py) loads the
 # page. Checked: /healthz, /metrics, /events (schema), the page's DOM shows the daemon's tracks
-# with the right ids and positions, the page keeps working when the daemon stops and a new one
-# starts, /healthz turns 503 while no status arrives, and a client that never reads is
+# with the right ids and positions, the page turns UNKNOWN and greys its tracks out once the
+# daemon has been stopped longer than --stale-after and keeps working when a new one starts,
+# /healthz turns 503 and /metrics mvtrack_up 0 while no status arrives, and a client that never reads is
 # disconnected and counted without holding anybody up. The screenshot is kept as
 # OUT/page.png (docs/images/web_view.png is made from it). Skipped (77) without a namespace,
 # Chromium or python3-websocket, unless CI is set (then a failure).
@@ -48,9 +49,10 @@ unshare -n bash -euc '
   for _ in $(seq 100); do grep -q "serving http" "$OUT/web.log" && break; sleep 0.1; done
   curl -s -o "$OUT/healthz_before.txt" -w "%{http_code}\n" http://127.0.0.1:18080/healthz \
     > "$OUT/healthz_before.code" || true
-  # The page: phase 1 after 150 tracks messages, phase 2 once 100 more came from a new daemon.
+  # The page: phase 1 after 150 tracks messages, phase 2 once the daemon has been stopped for
+  # longer than --stale-after, phase 3 once 100 more came from a new daemon.
   "$PY" "$SRC/tests/web/page_probe.py" 19222 http://127.0.0.1:18080/ 30 "$OUT/page.png" \
-    "$OUT/phase" 150 400 > "$OUT/probe.jsonl" 2> "$OUT/probe.err" &
+    "$OUT/phase" 150 "@$OUT/stopped" 400 > "$OUT/probe.jsonl" 2> "$OUT/probe.err" &
   PROBE=$!
   sleep 1
   # A client that connects to /events and never reads (a stuck browser), with a tiny buffer.
@@ -79,6 +81,8 @@ time.sleep(14)
   curl -s -o "$OUT/healthz_stale.txt" -w "%{http_code}\n" http://127.0.0.1:18080/healthz \
     > "$OUT/healthz_stale.code"
   curl -s http://127.0.0.1:18080/metrics > "$OUT/metrics_stale.txt"
+  touch "$OUT/stopped"
+  for _ in $(seq 100); do [ -e "$OUT/phase.2" ] && break; sleep 0.05; done
   daemon second &
   SECOND=$!
   wait $PROBE || echo "probe failed" > "$OUT/probe.failed"
@@ -159,11 +163,22 @@ assert first["health"] == "OK" and first["cameras"] == ["0", "1", "2"], first
 assert first["latency_count"] >= 150
 # Sanity only (timing belongs to benchmarks): a live page shows a frame within a second.
 assert first["latency_p50_ms"] < 1000, first
-second = phases[1]
+# The daemon stopped longer ago than --stale-after (issue 39: the page stayed green and "live"
+# with its last people standing still): UNKNOWN with the reason, tracks greyed out with how long
+# ago they were published.
+stopped = phases[1]
+assert first["stale"] == "" and first["tracks_note"] == "", first
+assert stopped["health"] == "UNKNOWN" and stopped["connection"] == "stale", stopped
+assert "the tracker stopped publishing" in stopped["reasons"], stopped
+assert stopped["stale"] == "status tracks", stopped
+assert stopped["tracks_note"].startswith("not published for "), stopped
+second = phases[2]
 assert second["messages"] >= 400 and second["connection"] == "live", second
+assert second["stale"] == "" and second["health"] != "UNKNOWN", second
 print(f"page: frame {first['frame']} with tracks {sorted(got)} as published; publish -> DOM "
       f"latency p50 {first['latency_p50_ms']} ms, max {first['latency_max_ms']} ms over "
-      f"{first['latency_count']} messages; {second['messages']} messages after a daemon restart")
+      f"{first['latency_count']} messages; stopped: {stopped['health']}, tracks "
+      f"{stopped['tracks_note']}; {second['messages']} messages after a daemon restart")
 EOF
 
 # The stuck client was disconnected and counted; the page got every message meanwhile.
