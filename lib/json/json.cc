@@ -427,8 +427,9 @@ bool Checker::Members(const Value& v,
     if (!known) {
       std::string list;
       for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      return FailAt(
-          m.key_column, Join(path, m.key), "unknown key \"" + m.key + "\" (allowed: " + list + ")");
+      return FailAt(m.key_column,
+                    Join(path, m.key),
+                    "unknown key \"" + Shown(m.key) + "\" (allowed: " + list + ")");
     }
     (*out)[m.key] = m.value.get();
   }
@@ -441,7 +442,18 @@ bool Checker::Members(const Value& v,
 }
 
 std::string Checker::Join(const std::string& path, std::string_view key) {
-  return path.empty() ? std::string(key) : path + "." + std::string(key);
+  return path.empty() ? Shown(key) : path + "." + Shown(key);
+}
+
+std::string Checker::Shown(std::string_view text) {
+  constexpr std::size_t kMaxShown = 64;
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < kMaxShown; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    out += c >= 0x20 && c < 0x7f ? static_cast<char>(c) : '?';  // no terminal control bytes
+  }
+  if (text.size() > kMaxShown) out += "... (" + std::to_string(text.size()) + " characters)";
+  return out;
 }
 
 std::string Checker::Index(const std::string& path, std::size_t i) {

@@ -139,8 +139,12 @@ class Checker {
                const std::vector<std::string_view>& required,
                std::map<std::string, const Value*>* out);
 
-  /// `path.key` ("key" for the root).
+  /// `path.key` ("key" for the root), the key as Shown.
   static std::string Join(const std::string& path, std::string_view key);
+  /// Text from the input as an error message shows it: at most 64 characters (then "...
+  /// (N characters)"), bytes that are not printable ASCII as '?' (a key of 100,000 characters or
+  /// with terminal control bytes is not echoed whole).
+  static std::string Shown(std::string_view text);
   /// `path[i]`.
   static std::string Index(const std::string& path, std::size_t i);
 

@@ -95,6 +95,9 @@ void ParseCameras(const MapRef& root,
   try {
     all = config::LoadCalibration(c->calibration_path);
   } catch (const ConfigError& e) {
+    // A calibration given instead of the file's (--calibration) is not this file's fault: its
+    // error names the calibration's own file, line and key alone.
+    if (!override_path.empty()) throw;
     cal_node.Fail(std::string("calibration: ") + e.what());
   }
   if (const std::optional<NodeRef> ids_node = cams.Find("ids")) {

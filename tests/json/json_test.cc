@@ -358,5 +358,26 @@ TEST_CASE("json: Checker reports kinds, ranges and keys with the value's positio
   CHECK(members.size() == 5);
 }
 
+TEST_CASE("json: an unknown key is not echoed whole (length, control bytes)", "[unit]") {
+  // Issue 39: a 100,000-character key came back twice in the error message.
+  const std::string key(100000, 'k');
+  const std::string text = "{\"" + key + "\": 1}";
+  Error error;
+  const auto root = Parse(text, 4, &error);
+  REQUIRE(root.has_value());
+  Checker c;
+  std::map<std::string, const Value*> members;
+  CHECK_FALSE(c.Members(*root, "", {"n"}, {}, &members));
+  const std::string shown = std::string(64, 'k') + "... (100000 characters)";
+  CHECK(c.error().reason == "unknown key \"" + shown + "\" (allowed: n)");
+  CHECK(c.error().path == shown);
+  CHECK(c.error().column == 2);
+  const auto escape = Parse("{\"esc\\u001b[2J\": 2}", 4, &error);
+  REQUIRE(escape.has_value());
+  CHECK_FALSE(c.Members(*escape, "", {"n"}, {}, &members));
+  CHECK(c.error().reason == "unknown key \"esc?[2J\" (allowed: n)");
+  CHECK(Checker::Shown("ok") == "ok");
+}
+
 }  // namespace
 }  // namespace mvtrack::json

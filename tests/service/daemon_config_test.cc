@@ -166,6 +166,21 @@ TEST_CASE("daemon config: calibration override, detection and hash", "[unit]") {
   const DaemonConfig c = LoadDaemonConfigFile(path, cal);
   CHECK(c.calibration_path == cal);
   CHECK(c.cameras.size() == 3);
+  // A broken override is blamed on its own file and line, not on d.yaml's cameras.calibration
+  // line (issue 39).
+  std::string broken_text = cal_text;
+  const std::size_t k = broken_text.find("K: [[");
+  REQUIRE(k != std::string::npos);
+  broken_text.replace(k, 5, "K: [[-");
+  const std::string broken = dir.Write("broken_cal.yaml", broken_text);
+  try {
+    LoadDaemonConfigFile(path, broken);
+    FAIL("a broken calibration was accepted");
+  } catch (const config::ConfigError& e) {
+    const std::string what = e.what();
+    CHECK(what.rfind(broken + ":", 0) == 0);
+    CHECK(what.find("d.yaml") == std::string::npos);
+  }
 
   CHECK(LooksLikeDaemonConfig(Minimal()));
   CHECK_FALSE(LooksLikeDaemonConfig("tracker:\n  window_size: 30\n"));
