@@ -315,6 +315,7 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
       t.kind = CameraTransition::Kind::kRestart;
       result.transitions.push_back(t);
       UpdateNow();
+      DropAhead(index);
     }
     if (result.resynced || cam.order_rejections % r == 0) {
       result.reason.clear();
@@ -492,6 +493,36 @@ void FrameSynchronizer::ReleaseOldest(std::vector<SyncAction>* actions) {
     a.frame = std::move(*g.members[c]);
     a.frame.frame = index;
     actions->push_back(std::move(a));
+  }
+}
+
+void FrameSynchronizer::DropAhead(int camera_index) {
+  // The camera's pending camera-frames farther ahead of the stream's time than the far-future
+  // rule allows (accepted before the stream had a time, e.g. a first message an hour ahead)
+  // belong to the timeline it left: none of the others will reach them, and releasing them
+  // would publish a frame stamped in that future. Counted as far future, as they would have
+  // been had the stream's time been known.
+  const bool by_frame = options_.mode == SyncMode::kFrameIndex;
+  Camera& cam = cameras_[static_cast<std::size_t>(camera_index)];
+  const auto ci = static_cast<std::size_t>(camera_index);
+  for (auto it = pending_.begin(); it != pending_.end();) {
+    const bool ahead = by_frame
+                           ? now_frame_ && it->first > SatAdd(*now_frame_, options_.max_frame_ahead)
+                           : now_utime_ && it->first > SatAdd(*now_utime_, options_.max_future_us);
+    std::optional<core::CameraFrame>& member = it->second.members[ci];
+    if (ahead && member.has_value()) {
+      ++cam.status.far_future;
+      cam.status.detections_rejected += static_cast<std::int64_t>(member->detections.size());
+      member.reset();
+      const bool empty = std::none_of(it->second.members.begin(),
+                                      it->second.members.end(),
+                                      [](const auto& m) { return m.has_value(); });
+      if (empty) {
+        it = pending_.erase(it);
+        continue;
+      }
+    }
+    ++it;
   }
 }
 

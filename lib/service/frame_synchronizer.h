@@ -208,6 +208,9 @@ class FrameSynchronizer {
   void UpdateNow();
   // The stream restarted: release everything, end the tracker's stream, forget time.
   void Resync(SyncResult* result);
+  // Camera `camera_index` restarted alone: drops (and counts as far future) its pending
+  // camera-frames ahead of the stream's time.
+  void DropAhead(int camera_index);
   void Accept(core::CameraFrame frame, int camera_index, std::int64_t key, SyncResult* result);
   void Release(std::vector<SyncAction>* actions, bool force_all);
   void ReleaseOldest(std::vector<SyncAction>* actions);
