@@ -52,3 +52,37 @@ count_value() {
   grep "^$2=" "$1" | sed 's/.*=//'
 }
 
+
+# require_netns: exit 77 (skipped, with a message) where separate processes cannot talk over
+# udpm:// inside a private network namespace (no lcm-logplayer, no ip tool, no unshare).
+require_netns() {
+  if ! command -v lcm-logplayer > /dev/null || ! command -v lcm-logger > /dev/null; then
+    echo "SKIP: lcm-logplayer/lcm-logger not installed (liblcm-bin)"
+    exit 77
+  fi
+  if ! command -v ip > /dev/null; then
+    echo "SKIP: the ip tool (iproute2) is not installed"
+    exit 77
+  fi
+  if ! unshare -n true 2> /dev/null; then
+    echo "SKIP: cannot create a private network namespace (needs root and unshare)"
+    exit 77
+  fi
+}
+
+# write_udpm_config FILE URL: a daemon config for the simulated pose recording reading URL
+# live, blocking (not dropping) when a camera queue is full.
+write_udpm_config() {
+  {
+    echo "format: mvtrack.daemon/1"
+    echo "cameras:"
+    echo "  calibration: $P/calibration.yaml"
+    echo "input:"
+    echo "  lcm_url: \"$2\""
+    echo "queues:"
+    echo "  camera_overflow: block"
+    echo "tracker:"
+    echo "  mode: poses"
+    echo "  layout: coco17"
+  } > "$1"
+}

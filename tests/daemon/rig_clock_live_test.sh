@@ -7,32 +7,10 @@
 # (exit 77, with a message) where no namespace can be created.
 source "$(dirname "$0")/common.sh"
 [ -x "$MAKE_CLOCK_LOG" ] || fail "the clock-fault log writer is missing ($MAKE_CLOCK_LOG)"
-if ! command -v lcm-logplayer > /dev/null; then
-  echo "SKIP: lcm-logplayer not installed (liblcm-bin)"
-  exit 77
-fi
-if ! command -v ip > /dev/null; then
-  echo "SKIP: the ip tool (iproute2) is not installed"
-  exit 77
-fi
-if ! unshare -n true 2> /dev/null; then
-  echo "SKIP: cannot create a private network namespace (needs root and unshare)"
-  exit 77
-fi
+require_netns
 "$MAKE_CLOCK_LOG" "$P/detections.lcmlog" "$OUT/step.lcmlog" rig_skew:-2000000
 URL="udpm://239.255.76.67:7667?ttl=0"
-{
-  echo "format: mvtrack.daemon/1"
-  echo "cameras:"
-  echo "  calibration: $P/calibration.yaml"
-  echo "input:"
-  echo "  lcm_url: \"$URL\""
-  echo "queues:"
-  echo "  camera_overflow: block"
-  echo "tracker:"
-  echo "  mode: poses"
-  echo "  layout: coco17"
-} > "$OUT/daemon.yaml"
+write_udpm_config "$OUT/daemon.yaml" "$URL"
 export MVTRACKD OUT P URL
 unshare -n bash -euc '
   ip link set lo up

@@ -6,33 +6,11 @@
 # overflow the socket buffer) the captured tracks equal `mvtrack replay`'s exactly. Skipped
 # (exit 77, with a message) where no namespace can be created.
 source "$(dirname "$0")/common.sh"
-if ! command -v lcm-logplayer > /dev/null || ! command -v lcm-logger > /dev/null; then
-  echo "SKIP: lcm-logplayer/lcm-logger not installed (liblcm-bin)"
-  exit 77
-fi
-if ! command -v ip > /dev/null; then
-  echo "SKIP: the ip tool (iproute2) is not installed"
-  exit 77
-fi
-if ! unshare -n true 2> /dev/null; then
-  echo "SKIP: cannot create a private network namespace (needs root and unshare)"
-  exit 77
-fi
+require_netns
 expect_exit 0 "$OUT/replay.log" "$MVTRACK" replay --quiet --calibration "$P/calibration.yaml" \
   --mode poses --out "$OUT/replay.lcmlog" "$P/detections.lcmlog"
 URL="udpm://239.255.76.67:7667?ttl=0"
-{
-  echo "format: mvtrack.daemon/1"
-  echo "cameras:"
-  echo "  calibration: $P/calibration.yaml"
-  echo "input:"
-  echo "  lcm_url: \"$URL\""
-  echo "queues:"
-  echo "  camera_overflow: block"
-  echo "tracker:"
-  echo "  mode: poses"
-  echo "  layout: coco17"
-} > "$OUT/daemon.yaml"
+write_udpm_config "$OUT/daemon.yaml" "$URL"
 export MVTRACKD OUT P URL
 unshare -n bash -euc '
   ip link set lo up
