@@ -74,6 +74,13 @@ FrameSynchronizer::FrameSynchronizer(std::vector<CameraId> camera_ids, const Syn
   }
 }
 
+bool FrameSynchronizer::OutOfStep(const Camera& c) const {
+  const int vote = std::min(options_.resync_after_rejections, kStreamVoteRejections);
+  if (c.time_rejections >= vote) return true;
+  return c.time_rejections >= std::min(vote, kStreamVoteMinRejections) &&
+         SatSub(c.last_rejected_utime, c.first_rejected_utime) >= kStreamVoteSpanUs;
+}
+
 bool FrameSynchronizer::InQuorum(const Camera& c) const {
   // A camera whose newest camera-frames were rejected for their time is out of step: its last
   // accepted time is stale, and judging the others against it would flag them.
@@ -283,11 +290,13 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
                                why == SyncRejection::kFarFuture;
   const bool time_rejection = order_rejection || why == SyncRejection::kClockOffset;
   const int r = options_.resync_after_rejections;
-  const int vote = std::min(r, kStreamVoteRejections);
   if (order_rejection) ++cam.order_rejections;
-  if (time_rejection) ++cam.time_rejections;
-  if (time_rejection &&
-      (cam.time_rejections % vote == 0 || (order_rejection && cam.order_rejections % r == 0))) {
+  if (time_rejection) {
+    if (cam.time_rejections == 0) cam.first_rejected_utime = frame.utime;
+    cam.last_rejected_utime = frame.utime;
+    ++cam.time_rejections;
+  }
+  if (time_rejection && (OutOfStep(cam) || (order_rejection && cam.order_rejections % r == 0))) {
     // This camera restarted (its clock or frame counter was reset, or jumped). When more than
     // half of the cameras with data (or restarting) did, the stream restarted: release what is
     // pending, end the tracker's stream and start over with this camera-frame. A camera whose
@@ -298,7 +307,7 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
     int restarted = 0;
     int pool = 0;
     for (const Camera& c : cameras_) {
-      const bool restarting = c.time_rejections >= vote;
+      const bool restarting = OutOfStep(c);
       if (!c.status.has_data && !restarting) continue;
       ++pool;
       if (restarting) ++restarted;

@@ -144,6 +144,11 @@ class FrameSynchronizer {
   /// the clock flag needs samples, so a whole rig whose time stepped (an NTP step, a reboot
   /// with reset frame counters) restarts the stream within that many of its frames.
   static constexpr int kStreamVoteRejections = 8;
+  /// ... or, for a slow camera, kStreamVoteMinRejections of them spanning this much of its own
+  /// capture time, µs: at 2 fps 8 frames would take 4 s, 3 frames over 1 s restart within 1.5 s.
+  static constexpr std::int64_t kStreamVoteSpanUs = 1'000'000;
+  /// See kStreamVoteSpanUs.
+  static constexpr int kStreamVoteMinRejections = 3;
 
   /// `camera_ids`: the configured cameras (any order, distinct); `options` valid (as parsed).
   FrameSynchronizer(std::vector<CameraId> camera_ids, const SyncOptions& options);
@@ -170,6 +175,9 @@ class FrameSynchronizer {
     // Consecutive rejections for time (order rejections and clock offset): the stream restart
     // vote (a whole rig whose time stepped first gets its clocks flagged against the old time).
     int time_rejections = 0;
+    // Capture time of the first and of the newest camera-frame of that run of rejections.
+    Utime first_rejected_utime = 0;
+    Utime last_rejected_utime = 0;
     // The other cameras' quorum utime when it last delivered (its own utime without one):
     // silence is judged on the others' clocks, so a camera ahead cannot silence the rest and a
     // dead one is noticed however few cameras there are.
@@ -197,6 +205,9 @@ class FrameSynchronizer {
                       int camera_index,
                       std::string* reason,
                       std::int64_t* key) const;
+  // Whether camera `c` counts as restarted in the stream restart vote (kStreamVoteRejections,
+  // kStreamVoteSpanUs).
+  bool OutOfStep(const Camera& c) const;
   // Whether camera `c` counts for the quorum (with data, not silent, clock not flagged).
   bool InQuorum(const Camera& c) const;
   // Lower median of the newest utime / frame of the quorum's cameras other than `skip` (-1:

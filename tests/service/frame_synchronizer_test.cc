@@ -387,6 +387,32 @@ TEST_CASE("clock model: a step of the whole rig's time restarts the stream withi
   }
 }
 
+TEST_CASE("clock model: a slow rig's time step restarts the stream within 1.5 s", "[unit]") {
+  // Four cameras at 2 fps (WILDTRACK's rate): 8 frames would be 4 s; 3 frames spanning 1 s of
+  // the cameras' own capture time are enough (FrameSynchronizer::kStreamVoteSpanUs).
+  constexpr std::int64_t kSlow = 500000;
+  SyncOptions o = Options();
+  o.resync_after_rejections = 30;
+  o.deadline_us = 3 * kSlow;
+  o.silent_after_us = 10 * kSlow;
+  o.max_future_us = 100 * kSlow;
+  o.min_frame_interval_us = 0;
+  FrameSynchronizer sync({0, 1, 2, 3}, o);
+  int resync_frame = -1;
+  for (FrameIndex f = 0; f < 40; ++f) {
+    for (CameraId cam = 0; cam < 4; ++cam) {
+      Utime utime = 1000000 + f * kSlow + cam * 100;
+      if (f >= 20) utime -= 2000000;  // every clock steps back 2 s
+      if (sync.Add(Frame(cam, f, utime)).resynced && resync_frame < 0) {
+        resync_frame = static_cast<int>(f);
+      }
+    }
+  }
+  CHECK(sync.Status().resyncs == 1);
+  CHECK(resync_frame >= 20);
+  CHECK((resync_frame - 20) * kSlow <= 1500000);
+}
+
 TEST_CASE("clock model: one camera stuck on a bogus time does not get the others flagged",
           "[unit]") {
   // Camera 0's first message is an hour ahead; its real frames are then backwards until it
