@@ -1,5 +1,8 @@
 #include "web/web_server.h"
 
+// cpp-httplib (header-only, compiled in this translation unit only) listens with a backlog of 5
+// by default: a burst of connections beyond the pool was refused by the kernel (issue 39).
+#define CPPHTTPLIB_LISTEN_BACKLOG 128
 #include <httplib.h>
 
 #include <cerrno>
@@ -168,6 +171,9 @@ class WebServer::Impl {
       return new httplib::ThreadPool(static_cast<size_t>(threads));
     };
     server_.set_write_timeout(10, 0);  // a stuck client is dropped by its queue first
+    // Only GET exists: a request that announces a body is answered 413 without reading it (a
+    // 200 MB POST took the process from 12 to 506 MB before, issue 39).
+    server_.set_payload_max_length(0);
     // A client's unread data in the kernel stays small (accepted sockets inherit the listening
     // socket's send buffer), so a client that stops reading soon fills its own queue and is
     // disconnected instead of pinning megabytes of socket buffer.

@@ -71,6 +71,14 @@ time.sleep(14)
   curl -s -o "$OUT/healthz_live.txt" -w "%{http_code}\n" http://127.0.0.1:18080/healthz \
     > "$OUT/healthz_live.code"
   curl -s http://127.0.0.1:18080/metrics > "$OUT/metrics_live.txt"
+  # A request with a body (only GET exists) is refused unread: 413, memory unchanged.
+  head -c 50000000 /dev/zero > "$OUT/big.bin"
+  rss_before=$(awk "/VmRSS/ {print \$2}" /proc/$WEB/status)
+  curl -s -o /dev/null -w "%{http_code}\n" -X POST --data-binary @"$OUT/big.bin" \
+    http://127.0.0.1:18080/healthz > "$OUT/post.code" || true
+  rss_after=$(awk "/VmRSS/ {print \$2}" /proc/$WEB/status)
+  echo "$rss_before $rss_after" > "$OUT/post_rss.txt"
+  rm -f "$OUT/big.bin"
   curl -s -N --max-time 2 http://127.0.0.1:18080/events > "$OUT/events.txt" || true
   st=0; "$MVTRACK" status --url "$URL" --timeout 3 > "$OUT/status_live.txt" || st=$?
   echo $st > "$OUT/status_live.code"
@@ -104,6 +112,12 @@ expect_eq "$(cat "$OUT/healthz_live.code")" 200 "/healthz while tracking"
 expect_grep "^OK" "$OUT/healthz_live.txt"
 expect_eq "$(cat "$OUT/healthz_stale.code")" 503 "/healthz after the daemon stopped"
 expect_grep "^UNKNOWN: the latest status is .* s old" "$OUT/healthz_stale.txt"
+
+# A 50 MB POST (issue 39: 200 MB took mvtrack web from 12 to 506 MB): refused, RSS within 8 MB.
+expect_eq "$(cat "$OUT/post.code")" 413 "a request with a body"
+read -r rss_before rss_after < "$OUT/post_rss.txt"
+[ $(( rss_after - rss_before )) -le 8192 ] ||
+  fail "mvtrack web grew from $rss_before kB to $rss_after kB on a refused 50 MB POST"
 
 # mvtrack status: OK (exit 0) with the cameras while tracking, UNKNOWN (exit 3) without a status.
 expect_eq "$(cat "$OUT/status_live.code")" 0 "mvtrack status while tracking"
