@@ -207,6 +207,14 @@ SyncRejection FrameSynchronizer::Check(const core::CameraFrame& f,
                 std::to_string(*last_released_key_) + ")";
       return SyncRejection::kLate;
     }
+    // A camera that restarted alone may send a frame index it already delivered to a pending
+    // frame; accepting it would overwrite that camera-frame (accepted, then in no counter).
+    const auto pending = pending_.find(f.frame);
+    if (pending != pending_.end() &&
+        pending->second.members[static_cast<std::size_t>(camera_index)].has_value()) {
+      *reason = who + " falls in a frame the camera already delivered to";
+      return SyncRejection::kDuplicate;
+    }
     return SyncRejection::kNone;
   }
   // By utime: the closest pending frame within the tolerance, else a new frame.
@@ -520,6 +528,7 @@ void FrameSynchronizer::DropAhead(int camera_index) {
                            : now_utime_ && it->first > SatAdd(*now_utime_, options_.max_future_us);
     std::optional<core::CameraFrame>& member = it->second.members[ci];
     if (ahead && member.has_value()) {
+      --cam.status.accepted;  // each camera-frame is in exactly one counter
       ++cam.status.far_future;
       cam.status.detections_rejected += static_cast<std::int64_t>(member->detections.size());
       member.reset();

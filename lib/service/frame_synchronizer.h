@@ -103,7 +103,7 @@ struct SyncCameraStatus {
   /// silent_after_us of capture time has passed since the stream's first camera-frame.
   bool excluded = false;
   Utime last_utime = 0;           ///< newest accepted capture utime (0 before any)
-  std::int64_t accepted = 0;      ///< camera-frames accepted
+  std::int64_t accepted = 0;      ///< camera-frames accepted (and submitted, or pending)
   std::int64_t backwards = 0;     ///< rejected: time backwards
   std::int64_t duplicates = 0;    ///< rejected: duplicate
   std::int64_t far_future = 0;    ///< rejected: far future

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -434,6 +435,53 @@ TEST_CASE("clock model: one camera stuck on a bogus time does not get the others
   CHECK(st.cameras[2].clock_offset == 0);
   CHECK_FALSE(st.cameras[1].clock_flagged);
   CHECK_FALSE(st.cameras[2].clock_flagged);
+}
+
+TEST_CASE("synchronizer: every camera-frame is submitted or in exactly one rejection counter",
+          "[unit]") {
+  // Issue 39: after a camera restarted alone, a few accepted camera-frames appeared in no
+  // counter. Random time faults (restarts, jumps, repeats, stale bursts) in both modes.
+  for (const SyncMode mode : {SyncMode::kFrameIndex, SyncMode::kUtime}) {
+    for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+      INFO((mode == SyncMode::kUtime ? "utime" : "frame_index") << " seed " << seed);
+      SyncOptions o = Options();
+      o.mode = mode;
+      FrameSynchronizer sync({0, 1, 2}, o);
+      std::mt19937 rng(seed);
+      std::uniform_int_distribution<int> pick(0, 99);
+      std::map<CameraId, std::int64_t> added, submitted;
+      std::map<CameraId, FrameIndex> frame{{0, 0}, {1, 0}, {2, 0}};
+      const auto count = [&](const std::vector<SyncAction>& actions) {
+        for (const SyncAction& a : actions) {
+          if (a.kind == SyncAction::Kind::kSubmit) ++submitted[a.frame.camera_id];
+        }
+      };
+      for (int step = 0; step < 600; ++step) {
+        const CameraId cam = static_cast<CameraId>(pick(rng) % 3);
+        const int fault = pick(rng);
+        FrameIndex& f = frame[cam];
+        if (fault < 3) {
+          f = std::max<FrameIndex>(0, f - 20);  // a restart: the counter and clock go back
+        } else if (fault < 5) {
+          f += 50;  // a jump ahead
+        } else if (fault < 10) {
+          // a repeat of its previous frame (no advance)
+        } else {
+          ++f;
+        }
+        ++added[cam];
+        count(sync.Add(At(cam, f)).actions);
+      }
+      count(sync.Flush());
+      const SyncStatus st = sync.Status();
+      for (const SyncCameraStatus& c : st.cameras) {
+        INFO("camera " << c.camera_id);
+        CHECK(c.accepted == submitted[c.camera_id]);
+        CHECK(added[c.camera_id] == c.accepted + c.backwards + c.duplicates + c.far_future +
+                                        c.late + c.flood + c.clock_offset);
+      }
+    }
+  }
 }
 
 TEST_CASE("clock model: a frame counter running fast is caught", "[unit]") {
