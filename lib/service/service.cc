@@ -612,7 +612,13 @@ std::vector<std::uint8_t> Service::BuildStatus() {
       cs.queue_capacity = config_.camera_queue_capacity;
       std::int64_t f = 0;
       if (in.received == 0) f |= mvtrack::camera_status_t::FLAG_NO_DATA;
-      if (in.received > 0 && sc.excluded) f |= mvtrack::camera_status_t::FLAG_STALE;
+      // Silent by the synchronizer's rule (capture time), or nothing received for as long on the
+      // wall clock: when every camera stops, capture time stops too and only the wall clock
+      // tells (issue 39: a daemon whose cameras all went silent reported them delivering).
+      const bool silent_now = now - in.last_receive_us > config_.sync.silent_after_us;
+      if (in.received > 0 && (sc.excluded || silent_now)) {
+        f |= mvtrack::camera_status_t::FLAG_STALE;
+      }
       if (cs.late > in.late_at_period_start) f |= mvtrack::camera_status_t::FLAG_LATE;
       if (cs.dropped > in.dropped_at_period_start) f |= mvtrack::camera_status_t::FLAG_DROPPING;
       if (cs.rejected > in.rejected_at_period_start) f |= mvtrack::camera_status_t::FLAG_REJECTING;

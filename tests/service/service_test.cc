@@ -461,9 +461,23 @@ TEST_CASE("service: NO_OUTPUT when cameras deliver and nothing is published for 
     INFO("at " << k * 100 << " ms");
     CHECK(flagged == (k * 100'000 >= service::kNoOutputAfterUs));
   }
-  // Input stops too: not NO_OUTPUT any more (the cameras' own flags tell that story).
+  // Input stops too: not NO_OUTPUT any more, the cameras' own flags tell that story: nothing
+  // received for silent_after_us of wall clock is STALE even though capture time stopped with
+  // them, so the health is CRITICAL (issue 39: every camera still counted as delivering).
   clock.SetMicros(clock.NowMicros() + 3'000'000);
-  CHECK((flags() & mvtrack::tracker_status_t::FLAG_NO_OUTPUT) == 0);
+  mvtrack::tracker_status_t st;
+  const std::vector<std::uint8_t> bytes = s->BuildStatus();
+  REQUIRE(st.decode(bytes.data(), 0, static_cast<int>(bytes.size())) ==
+          static_cast<int>(bytes.size()));
+  CHECK((st.flags & mvtrack::tracker_status_t::FLAG_NO_OUTPUT) == 0);
+  CHECK((st.flags & mvtrack::tracker_status_t::FLAG_CAMERA_MISSING) != 0);
+  for (const mvtrack::camera_status_t& c : st.cameras) {
+    CHECK((c.flags & mvtrack::camera_status_t::FLAG_STALE) != 0);
+  }
+  const transport::StatusDecodeResult decoded =
+      transport::DecodeTrackerStatus(bytes.data(), bytes.size());
+  REQUIRE(decoded.ok());
+  CHECK(service::AssessStatus(decoded.message).health == service::Health::kCritical);
   s->Stop();
 }
 

@@ -5,6 +5,7 @@
 # page. Checked: /healthz, /metrics, /events (schema), the page's DOM shows the daemon's tracks
 # with the right ids and positions, the page turns UNKNOWN and greys its tracks out once the
 # daemon has been stopped longer than --stale-after and keeps working when a new one starts,
+# says CRITICAL with greyed-out tracks when a live daemon's cameras all went silent,
 # /healthz turns 503 and /metrics mvtrack_up 0 while no status arrives, and a client that never reads is
 # disconnected and counted without holding anybody up. The screenshot is kept as
 # OUT/page.png (docs/images/web_view.png is made from it). Skipped (77) without a namespace,
@@ -23,6 +24,7 @@ skip() {
 PY=/usr/bin/python3
 command -v chromium > /dev/null || skip "chromium is not installed (tools/dev/install_deps.sh)"
 command -v curl > /dev/null || skip "curl is not installed"
+command -v lcm-logplayer > /dev/null || skip "lcm-logplayer is not installed (liblcm-bin)"
 "$PY" -c "import websocket" 2> /dev/null || skip "python3-websocket is not installed"
 command -v ip > /dev/null || skip "the ip tool (iproute2) is not installed"
 unshare -n true 2> /dev/null || skip "cannot create a private network namespace (needs root)"
@@ -32,6 +34,8 @@ DEMO=$SRC/examples/demo
 URL="udpm://239.255.76.67:7667?ttl=0"
 sed -e "s|calibration: calibration.yaml|calibration: $DEMO/calibration.yaml|" \
   "$DEMO/mvtrackd.yaml" > "$OUT/daemon.yaml"
+# The same daemon reading udpm:// live, for the cameras that go silent.
+sed -e "s|lcm_url: \"memq://\"|lcm_url: \"$URL\"|" "$OUT/daemon.yaml" > "$OUT/daemon_live.yaml"
 export MVTRACKD MVTRACK SRC OUT DEMO URL PY
 unshare -n bash -euc '
   ip link set lo up
@@ -50,9 +54,11 @@ unshare -n bash -euc '
   curl -s -o "$OUT/healthz_before.txt" -w "%{http_code}\n" http://127.0.0.1:18080/healthz \
     > "$OUT/healthz_before.code" || true
   # The page: phase 1 after 150 tracks messages, phase 2 once the daemon has been stopped for
-  # longer than --stale-after, phase 3 once 100 more came from a new daemon.
+  # longer than --stale-after, phase 3 once 100 more came from a new daemon, phase 4 once a
+  # live daemon has had its cameras silent for longer than --stale-after.
   "$PY" "$SRC/tests/web/page_probe.py" 19222 http://127.0.0.1:18080/ 30 "$OUT/page.png" \
-    "$OUT/phase" 150 "@$OUT/stopped" 400 > "$OUT/probe.jsonl" 2> "$OUT/probe.err" &
+    "$OUT/phase" 150 "@$OUT/stopped" 400 "@$OUT/silent" > "$OUT/probe.jsonl" \
+    2> "$OUT/probe.err" &
   PROBE=$!
   sleep 1
   # A client that connects to /events and never reads (a stuck browser), with a tiny buffer.
@@ -93,11 +99,21 @@ time.sleep(14)
   for _ in $(seq 100); do [ -e "$OUT/phase.2" ] && break; sleep 0.05; done
   daemon second &
   SECOND=$!
-  wait $PROBE || echo "probe failed" > "$OUT/probe.failed"
+  for _ in $(seq 600); do [ -e "$OUT/phase.3" ] && break; sleep 0.05; done
   wait $STUCK || true
   curl -s http://127.0.0.1:18080/metrics > "$OUT/metrics_end.txt"
   kill -TERM $SECOND 2> /dev/null || true
   wait $SECOND || true
+  # A live daemon whose cameras go silent: it keeps publishing status, no tracks.
+  "$MVTRACKD" --config "$OUT/daemon_live.yaml" > "$OUT/live.log" 2>&1 &
+  LIVE=$!
+  for _ in $(seq 100); do grep -q "input udpm" "$OUT/live.log" && break; sleep 0.1; done
+  lcm-logplayer --lcm-url="$URL" -s 2 "$DEMO/detections.lcmlog"
+  sleep 4  # the cameras silent for longer than --stale-after (plus a status period)
+  touch "$OUT/silent"
+  wait $PROBE || echo "probe failed" > "$OUT/probe.failed"
+  kill -TERM $LIVE 2> /dev/null || true
+  wait $LIVE || true
   kill -TERM $WEB $BROWSER
   wait $WEB || echo "web exit $?" > "$OUT/web.failed"
   wait $BROWSER || true
@@ -189,6 +205,12 @@ assert stopped["tracks_note"].startswith("not published for "), stopped
 second = phases[2]
 assert second["messages"] >= 400 and second["connection"] == "live", second
 assert second["stale"] == "" and second["health"] != "UNKNOWN", second
+# A live daemon whose cameras all went silent: its status keeps coming and says CRITICAL (no
+# camera delivers), its tracks are greyed out as not published.
+silent = phases[3]
+assert silent["health"] == "CRITICAL" and silent["stale"] == " tracks", silent
+assert "cameras deliver" in silent["reasons"], silent
+assert silent["tracks_note"].startswith("not published for "), silent
 print(f"page: frame {first['frame']} with tracks {sorted(got)} as published; publish -> DOM "
       f"latency p50 {first['latency_p50_ms']} ms, max {first['latency_max_ms']} ms over "
       f"{first['latency_count']} messages; stopped: {stopped['health']}, tracks "
