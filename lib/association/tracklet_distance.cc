@@ -1,6 +1,5 @@
 #include "association/tracklet_distance.h"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,7 +9,6 @@
 #include "core/appearance.h"
 #include "core/check.h"
 #include "geometry/epipolar.h"
-#include "geometry/floor_homography.h"
 
 namespace mvtrack::association {
 namespace {
@@ -28,39 +26,23 @@ bool Usable(const core::Observation2D& o, std::size_t k, double min_confidence) 
 /// two one-way normalized distances: see DECISIONS "Feet on the floor".
 constexpr double kFloorTermWeight = 0.5;
 
-/// Carries undistorted pixels of one camera over the floor plane z = h into another camera.
-class FloorTransfer {
- public:
-  FloorTransfer(const Mat34& from, const Mat34& to, double h) : from_(from), to_(to), h_(h) {
-    Mat3 g;  // floor point (x, y, 1) -> pixel of `from`
-    g.col(0) = from.col(0);
-    g.col(1) = from.col(1);
-    g.col(2) = h * from.col(2) + from.col(3);
-    pixel_to_floor_ = g.inverse();  // not finite when `from` is on the plane: no transfer
-  }
-  /// The pixel of `to` that sees the floor point seen by `from`'s pixel x; nullopt when x's ray
-  /// does not meet the floor in front of `from` or the floor point is behind `to`.
-  std::optional<Vec2> operator()(double x, double y) const {
-    const std::optional<Vec2> on_floor = geometry::ImageToFloor(pixel_to_floor_, Vec2(x, y));
-    if (!on_floor) return std::nullopt;
-    const Eigen::Vector4d floor(on_floor->x(), on_floor->y(), h_, 1.0);
-    const Vec3 u = to_ * floor;
-    if (!(from_.row(2).dot(floor) > 0.0) || !(u.z() > 0.0)) return std::nullopt;
-    const Vec2 out(u.x() / u.z(), u.y() / u.z());
-    if (!out.allFinite()) return std::nullopt;
-    return out;
-  }
+/// The pixel of camera `to` that sees the floor point (z = h) seen by undistorted pixel `x` of
+/// camera `from`; nullopt when x's ray does not meet the floor in front of `from`, or the floor
+/// point is behind `to`.
+std::optional<Vec2> CarryOverFloor(const geometry::CameraModel& from,
+                                   const geometry::CameraModel& to,
+                                   double h,
+                                   const Vec2& x) {
+  const std::optional<Vec3> on_floor = from.PointOnRayAtHeight(x, h);
+  if (!on_floor) return std::nullopt;
+  return to.ProjectUndistorted(*on_floor);
+}
 
- private:
-  Mat34 from_, to_;
-  double h_;
-  Mat3 pixel_to_floor_;
-};
-
-/// The cameras of a pair, for the floor point: a's pixels into b and b's into a.
+/// The cameras of a pair and the floor height, for the floor point.
 struct FloorPair {
-  FloorTransfer a_to_b;
-  FloorTransfer b_to_a;
+  const geometry::CameraModel* a = nullptr;
+  const geometry::CameraModel* b = nullptr;
+  double h = 0.0;
 };
 
 /// Eq. 2 averaged over the points usable in both observations; nullopt if there is none.
@@ -83,8 +65,8 @@ std::optional<double> FrameDistance(const core::Observation2D& a,
     const Vec2& xb = b.points_px[k];
     double d = 0.0;
     if (static_cast<int>(k) == options.floor_point) {
-      const std::optional<Vec2> ta = floor->a_to_b(xa.x(), xa.y());
-      const std::optional<Vec2> tb = floor->b_to_a(xb.x(), xb.y());
+      const std::optional<Vec2> ta = CarryOverFloor(*floor->a, *floor->b, floor->h, xa);
+      const std::optional<Vec2> tb = CarryOverFloor(*floor->b, *floor->a, floor->h, xb);
       if (!ta || !tb) continue;
       d = kFloorTermWeight *
           ((*tb - xa).norm() / std::abs(a.scale_px) + (*ta - xb).norm() / std::abs(b.scale_px));
@@ -216,6 +198,21 @@ class AllPairs {
         }
       }
     }
+    // The floor point of every observation on the floor, once (ComputeFloorTransfers projects
+    // it into each other camera).
+    if (options.floor_point >= 0) {
+      const auto k = static_cast<std::size_t>(options.floor_point);
+      on_floor_.resize(frame_begin_[n_]);
+      for (std::size_t s = 0; s < n_; ++s) {
+        if (k >= num_points_[s]) continue;
+        const geometry::CameraModel& camera = rig.camera(camera_index[order_[s]]);
+        for (std::size_t f = frame_begin_[s]; f < frame_begin_[s + 1]; ++f) {
+          const std::size_t p = point_begin_[s] + (f - frame_begin_[s]) * num_points_[s] + k;
+          if (std::isnan(px_[p])) continue;
+          on_floor_[f] = camera.PointOnRayAtHeight(Vec2(px_[p], py_[p]), options.floor_height_m);
+        }
+      }
+    }
     // Camera groups [group_begin_[g], group_begin_[g + 1]) in flat order.
     for (std::size_t s = 0; s < n_; ++s) {
       if (s == 0 || camera_index[order_[s]] != camera_index[order_[s - 1]]) {
@@ -289,11 +286,10 @@ class AllPairs {
   }
 
   /// Replaces the line of every floor point (AssociationOptions::floor_point) of group g by the
-  /// point carried over the floor into rig camera `to`, stored as (x, y, NaN); (NaN, NaN, NaN)
-  /// when there is none (FloorTransfer).
+  /// point carried over the floor into rig camera `to` (CarryOverFloor, with the floor points
+  /// found once in the constructor), stored as (x, y, NaN); (NaN, NaN, NaN) when there is none.
   void ComputeFloorTransfers(std::size_t g, int to, std::vector<double>* lines) const {
-    const FloorTransfer transfer(
-        rig_.projection(group_camera_[g]), rig_.projection(to), options_.floor_height_m);
+    const geometry::CameraModel& camera = rig_.camera(to);
     const std::size_t base = point_begin_[group_begin_[g]];
     const auto k = static_cast<std::size_t>(options_.floor_point);
     for (std::size_t s = group_begin_[g]; s < group_begin_[g + 1]; ++s) {
@@ -302,7 +298,8 @@ class AllPairs {
         const std::size_t p = point_begin_[s] + (f - frame_begin_[s]) * num_points_[s] + k;
         if (std::isnan(px_[p])) continue;  // unusable point; never read
         double* out = lines->data() + 3 * (p - base);
-        const std::optional<Vec2> t = transfer(px_[p], py_[p]);
+        const std::optional<Vec2> t =
+            on_floor_[f] ? camera.ProjectUndistorted(*on_floor_[f]) : std::nullopt;
         out[0] = t ? t->x() : std::numeric_limits<double>::quiet_NaN();
         out[1] = t ? t->y() : std::numeric_limits<double>::quiet_NaN();
         out[2] = std::numeric_limits<double>::quiet_NaN();
@@ -416,7 +413,9 @@ class AllPairs {
   std::vector<std::size_t> num_points_;   ///< points per observation slot of a flat tracklet
   std::vector<FrameIndex> frames_;
   std::vector<double> inv_scale_;
-  std::vector<double> px_, py_;            ///< px_ is NaN for an unusable point
+  std::vector<double> px_, py_;  ///< px_ is NaN for an unusable point
+  /// Per flat observation, its floor point on the floor (AssociationOptions::floor_point).
+  std::vector<std::optional<Vec3>> on_floor_;
   std::vector<std::size_t> group_begin_;   ///< flat tracklet ranges of one camera each (+ end)
   std::vector<int> group_camera_;          ///< rig index of each group
   std::vector<double> lines_a_, lines_b_;  ///< normalized lines of the two current groups
@@ -523,13 +522,9 @@ TrackletDistance ComputeTrackletDistance(const geometry::CameraRig& rig,
   MVTRACK_CHECK_MSG(ia.has_value() && ib.has_value(),
                     "ComputeTrackletDistance: a tracklet's camera is not in the rig");
   if (*ia == *ib) return PairDistance(a, b, Mat3::Zero(), nullptr, options);
-  std::optional<FloorPair> floor;
-  if (options.floor_point >= 0) {
-    floor.emplace(
-        FloorPair{FloorTransfer(rig.projection(*ia), rig.projection(*ib), options.floor_height_m),
-                  FloorTransfer(rig.projection(*ib), rig.projection(*ia), options.floor_height_m)});
-  }
-  return PairDistance(a, b, rig.fundamental(*ia, *ib), floor ? &*floor : nullptr, options);
+  const FloorPair floor{&rig.camera(*ia), &rig.camera(*ib), options.floor_height_m};
+  return PairDistance(
+      a, b, rig.fundamental(*ia, *ib), options.floor_point >= 0 ? &floor : nullptr, options);
 }
 
 double ExpectedLookDistance(int count_a, double length_a, int count_b, double length_b) {
