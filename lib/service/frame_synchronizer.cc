@@ -320,9 +320,11 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
       ++pool;
       if (restarting) ++restarted;
     }
+    bool restarted_alone = false;
     if (2 * restarted > pool) {
       Resync(&result);
     } else if (order_rejection && cam.order_rejections % r == 0) {
+      restarted_alone = true;
       cam.status.has_data = false;
       cam.status.last_utime = 0;
       cam.last_frame = 0;
@@ -334,7 +336,7 @@ SyncResult FrameSynchronizer::Add(core::CameraFrame frame) {
       UpdateNow();
       DropAhead(index);
     }
-    if (result.resynced || cam.order_rejections % r == 0) {
+    if (result.resynced || restarted_alone) {
       result.reason.clear();
       why = Check(frame, index, &result.reason, &key);
     }
