@@ -1,14 +1,16 @@
 #include "web/web_server.h"
 
-// cpp-httplib (header-only, compiled in this translation unit only) listens with a backlog of 5
-// by default: a burst of connections beyond the pool was refused by the kernel (issue 39).
-#define CPPHTTPLIB_LISTEN_BACKLOG 128
-#include <httplib.h>
+#include <arpa/inet.h>
+#include <civetweb.h>
+#include <netdb.h>
+#include <sys/socket.h>
 
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <filesystem>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <mutex>
@@ -55,6 +57,14 @@ class EventHub {
     }
     clients_.push_back(c);
     return c;
+  }
+
+  // `c` stopped reading (a write to it timed out): counted as dropped like a full queue.
+  void Dropped(const std::shared_ptr<Client>& c) {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (c->dropped) return;
+    c->dropped = true;
+    ++dropped_;
   }
 
   void Disconnect(const std::shared_ptr<Client>& c) {
@@ -144,6 +154,87 @@ std::string LayoutsJson() {
   return json::Dump(o);
 }
 
+// HTTP server limits (issue 39, docs/DECISIONS.md "mvtrack web's HTTP server"). civetweb serves
+// each connection on one of a fixed pool of threads; a request must arrive whole, headers
+// included, within kRequestDeadlineMs of its first byte (a whole-request deadline, not a timeout
+// between bytes that a slow sender resets byte by byte), and within kMaxRequestBytes.
+constexpr int kShortRequestThreads = 64;  // threads beyond the /events clients' ones
+constexpr int kRequestDeadlineMs = 2000;  // also the longest a write may block
+constexpr int kMaxRequestBytes = 8192;    // request line and headers
+constexpr int kListenBacklog = 1024;
+
+// civetweb listens on numeric addresses only: "ADDR:PORT" or "[ADDR6]:PORT" for `host`, which
+// may also be a name (localhost). IPv4 first. std::nullopt when the name does not resolve.
+std::optional<std::string> ListeningPort(const std::string& host, int port) {
+  for (const int family : {AF_INET, AF_UNSPEC}) {
+    addrinfo hints{};
+    hints.ai_family = family;
+    hints.ai_socktype = SOCK_STREAM;
+    hints.ai_flags = AI_PASSIVE;
+    addrinfo* found = nullptr;
+    if (getaddrinfo(host.c_str(), nullptr, &hints, &found) != 0 || found == nullptr) continue;
+    char text[INET6_ADDRSTRLEN] = {};
+    std::string address;
+    if (found->ai_family == AF_INET &&
+        inet_ntop(AF_INET,
+                  &reinterpret_cast<const sockaddr_in*>(found->ai_addr)->sin_addr,
+                  text,
+                  sizeof(text)) != nullptr) {
+      address = text;
+    } else if (found->ai_family == AF_INET6 &&
+               inet_ntop(AF_INET6,
+                         &reinterpret_cast<const sockaddr_in6*>(found->ai_addr)->sin6_addr,
+                         text,
+                         sizeof(text)) != nullptr) {
+      address = "[" + std::string(text) + "]";
+    }
+    freeaddrinfo(found);
+    if (!address.empty()) return address + ":" + std::to_string(port);
+  }
+  return std::nullopt;
+}
+
+// The listening socket of `port` in this process, -1 if none: civetweb does not hand it out, and
+// its send buffer size is what the accepted sockets inherit.
+int FindListeningSocket(int port) {
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc/self/fd", error)) {
+    const std::string name = entry.path().filename().string();
+    int fd = -1;
+    if (std::from_chars(name.data(), name.data() + name.size(), fd).ec != std::errc()) continue;
+    int listening = 0;
+    socklen_t length = sizeof(listening);
+    if (getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &length) != 0 || listening == 0) {
+      continue;
+    }
+    sockaddr_storage address{};
+    socklen_t address_length = sizeof(address);
+    if (getsockname(fd, reinterpret_cast<sockaddr*>(&address), &address_length) != 0) continue;
+    int bound = -1;
+    if (address.ss_family == AF_INET) {
+      bound = ntohs(reinterpret_cast<const sockaddr_in*>(&address)->sin_port);
+    } else if (address.ss_family == AF_INET6) {
+      bound = ntohs(reinterpret_cast<const sockaddr_in6*>(&address)->sin6_port);
+    }
+    if (bound == port) return fd;
+  }
+  return -1;
+}
+
+// A whole response with a body (or its headers only, for HEAD).
+void Reply(mg_connection* conn,
+           int status,
+           const std::string& content_type,
+           const std::string& body,
+           bool head) {
+  mg_response_header_start(conn, status);
+  mg_response_header_add(conn, "Content-Type", content_type.c_str(), -1);
+  mg_response_header_add(conn, "Content-Length", std::to_string(body.size()).c_str(), -1);
+  mg_response_header_add(conn, "Cache-Control", "no-cache", -1);
+  mg_response_header_send(conn);
+  if (!head && !body.empty()) mg_write(conn, body.data(), body.size());
+}
+
 }  // namespace
 
 class WebServer::Impl {
@@ -153,6 +244,8 @@ class WebServer::Impl {
         hub_(options_.client_queue_events, options_.client_queue_bytes),
         floor_json_(FloorJson(options_.cameras, options_.stale_after_s)),
         layouts_json_(LayoutsJson()) {}
+
+  ~Impl() { StopHttp(); }
 
   bool Init(std::string* why) {
     lcm_ = std::make_unique<lcm::LCM>(options_.lcm_url);
@@ -165,33 +258,63 @@ class WebServer::Impl {
       *why = "cannot subscribe to " + options_.tracks_channel + " and " + options_.status_channel;
       return false;
     }
-    Routes();
-    const int threads = options_.max_clients + 4;  // /events clients plus the short requests
-    server_.new_task_queue = [threads] {
-      return new httplib::ThreadPool(static_cast<size_t>(threads));
-    };
-    server_.set_write_timeout(10, 0);  // a stuck client is dropped by its queue first
-    // Only GET exists: a request that announces a body is answered 413 without reading it (a
-    // 200 MB POST took the process from 12 to 506 MB before, issue 39).
-    server_.set_payload_max_length(0);
-    // A client's unread data in the kernel stays small (accepted sockets inherit the listening
-    // socket's send buffer), so a client that stops reading soon fills its own queue and is
-    // disconnected instead of pinning megabytes of socket buffer.
-    server_.set_socket_options([](socket_t sock) {
-      int yes = 1;
-      setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
-      int send_buffer = 128 * 1024;
-      setsockopt(sock, SOL_SOCKET, SO_SNDBUF, &send_buffer, sizeof(send_buffer));
-    });
-    if (options_.port == 0) {
-      port_ = server_.bind_to_any_port(options_.host);
-      if (port_ < 0) port_ = 0;
-    } else if (server_.bind_to_port(options_.host, options_.port)) {
-      port_ = options_.port;
-    }
-    if (port_ <= 0) {
+    const std::optional<std::string> listening = ListeningPort(options_.host, options_.port);
+    if (!listening) {
       *why = "cannot listen on " + options_.host + ":" + std::to_string(options_.port) +
-             " (address in use, or not an address of this host)";
+             " (not an address or a name of this host)";
+      return false;
+    }
+    const std::string threads = std::to_string(options_.max_clients + kShortRequestThreads);
+    const std::string deadline = std::to_string(kRequestDeadlineMs);
+    const std::string max_request = std::to_string(kMaxRequestBytes);
+    const std::string backlog = std::to_string(kListenBacklog);
+    const char* config[] = {"listening_ports",
+                            listening->c_str(),
+                            "num_threads",
+                            threads.c_str(),
+                            "request_timeout_ms",
+                            deadline.c_str(),
+                            "max_request_size",
+                            max_request.c_str(),
+                            "listen_backlog",
+                            backlog.c_str(),
+                            "enable_keep_alive",
+                            "no",
+                            nullptr};
+    mg_callbacks callbacks{};
+    callbacks.begin_request = &Impl::OnRequest;  // every request: nothing is served from files
+    mg_init_data init{};
+    init.callbacks = &callbacks;
+    init.user_data = this;
+    init.configuration_options = config;
+    char error_text[256] = {};
+    unsigned error_code = 0;
+    mg_error_data error{};
+    error.code = &error_code;
+    error.text = error_text;
+    error.text_buffer_size = sizeof(error_text);
+    mg_init_library(0);
+    library_initialized_ = true;
+    http_ = mg_start2(&init, &error);
+    if (http_ == nullptr) {
+      *why = "cannot listen on " + *listening + " (" +
+             (error_text[0] != '\0' ? std::string(error_text) : "address in use?") + ")";
+      return false;
+    }
+    mg_server_port ports[1] = {};
+    if (mg_get_server_ports(http_, 1, ports) < 1 || ports[0].port <= 0) {
+      *why = "cannot find the port listened on";
+      return false;
+    }
+    port_ = ports[0].port;
+    // A client's unread data in the kernel stays small, so a client that stops reading soon
+    // blocks its writes and is disconnected (counted as dropped) instead of pinning megabytes
+    // of socket buffer (Linux's accepted sockets inherit the listening socket's send buffer).
+    const int listener = FindListeningSocket(port_);
+    const int send_buffer = 128 * 1024;
+    if (listener < 0 ||
+        setsockopt(listener, SOL_SOCKET, SO_SNDBUF, &send_buffer, sizeof(send_buffer)) != 0) {
+      *why = "cannot size the send buffer of port " + std::to_string(port_);
       return false;
     }
     return true;
@@ -200,7 +323,6 @@ class WebServer::Impl {
   int port() const { return port_; }
 
   bool Run(std::string* why) {
-    std::thread http([this] { server_.listen_after_bind(); });
     bool ok = true;
     while (!stop_.load()) {
       errno = 0;
@@ -212,9 +334,7 @@ class WebServer::Impl {
         break;
       }
     }
-    hub_.Close();
-    server_.stop();
-    http.join();
+    StopHttp();
     return ok;
   }
 
@@ -233,6 +353,19 @@ class WebServer::Impl {
   }
 
  private:
+  // Ends the /events streams (their threads return), then stops civetweb (joins its threads).
+  void StopHttp() {
+    hub_.Close();
+    if (http_ != nullptr) {
+      mg_stop(http_);
+      http_ = nullptr;
+    }
+    if (library_initialized_) {
+      mg_exit_library();
+      library_initialized_ = false;
+    }
+  }
+
   static void OnTracks(const lcm::ReceiveBuffer* rbuf, const std::string&, Impl* self) {
     const transport::TracksDecodeResult d = transport::DecodeTracks(rbuf->data, rbuf->data_size);
     {
@@ -266,86 +399,116 @@ class WebServer::Impl {
     return std::make_pair(*status_, age);
   }
 
-  void Routes() {
-    server_.Get("/", [](const httplib::Request&, httplib::Response& res) {
-      res.set_content(IndexPage(), "text/html; charset=utf-8");
-    });
-    server_.Get("/floor.json", [this](const httplib::Request&, httplib::Response& res) {
-      res.set_content(floor_json_, "application/json");
-    });
-    server_.Get("/layouts.json", [this](const httplib::Request&, httplib::Response& res) {
-      res.set_content(layouts_json_, "application/json");
-    });
-    auto latest = [this](bool status) {
-      return [this, status](const httplib::Request&, httplib::Response& res) {
-        const std::shared_ptr<const std::string> e = hub_.last(status);
-        if (!e) {
-          res.status = 404;
-          res.set_content(
+  // civetweb's begin_request: every request, on one of its threads. Returns the status sent.
+  static int OnRequest(mg_connection* conn) {
+    const mg_request_info* request = mg_get_request_info(conn);
+    Impl* self = static_cast<Impl*>(request->user_data);
+    const std::string method = request->request_method != nullptr ? request->request_method : "";
+    const std::string path = request->local_uri != nullptr ? request->local_uri : "";
+    const bool head = method == "HEAD";
+    // Only GET exists: a request that announces a body is answered 413 without reading it (a
+    // 200 MB POST took the process from 12 to 506 MB before, issue 39).
+    if (request->content_length > 0 || mg_get_header(conn, "Transfer-Encoding") != nullptr) {
+      Reply(conn, 413, "text/plain", "a request body is not accepted\n", head);
+      return 413;
+    }
+    if (method != "GET" && !head) {
+      Reply(conn, 405, "text/plain", "only GET exists\n", false);
+      return 405;
+    }
+    return self->Serve(conn, path, head);
+  }
+
+  int Serve(mg_connection* conn, const std::string& path, bool head) {
+    if (path == "/") return Ok(conn, IndexPage(), "text/html; charset=utf-8", head);
+    if (path == "/floor.json") return Ok(conn, floor_json_, "application/json", head);
+    if (path == "/layouts.json") return Ok(conn, layouts_json_, "application/json", head);
+    if (path == "/status.json" || path == "/tracks.json") {
+      const bool status = path == "/status.json";
+      const std::shared_ptr<const std::string> e = hub_.last(status);
+      if (!e) {
+        Reply(conn,
+              404,
+              "text/plain",
               std::string("no ") + (status ? "status" : "tracks") + " message received yet\n",
-              "text/plain");
-          return;
-        }
-        res.set_content(*e, "application/json");
-      };
-    };
-    server_.Get("/status.json", latest(true));
-    server_.Get("/tracks.json", latest(false));
-    server_.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
-      const auto s = LatestStatus();
-      res.set_content(PrometheusText(s ? std::optional(s->first) : std::nullopt,
-                                     s ? s->second : 0.0,
-                                     options_.stale_after_s,
-                                     Counters()),
-                      "text/plain; version=0.0.4");
-    });
-    server_.Get("/healthz", [this](const httplib::Request&, httplib::Response& res) {
-      const auto s = LatestStatus();
-      if (!s) {
-        res.status = 503;
-        res.set_content("UNKNOWN: no status message received yet on " + options_.status_channel +
-                            " (" + options_.lcm_url + ")\n",
-                        "text/plain");
-        return;
+              head);
+        return 404;
       }
-      if (s->second > options_.stale_after_s) {
-        res.status = 503;
-        res.set_content("UNKNOWN: the latest status is " + std::to_string(s->second) +
-                            " s old (the tracker stopped publishing)\n",
-                        "text/plain");
-        return;
-      }
+      return Ok(conn, *e, "application/json", head);
+    }
+    if (path == "/metrics") {
+      const auto s = LatestStatus();
+      return Ok(conn,
+                PrometheusText(s ? std::optional(s->first) : std::nullopt,
+                               s ? s->second : 0.0,
+                               options_.stale_after_s,
+                               Counters()),
+                "text/plain; version=0.0.4",
+                head);
+    }
+    if (path == "/healthz") return Health(conn, head);
+    if (path == "/events" && !head) return Events(conn);
+    Reply(conn, 404, "text/plain", "not found: " + path + "\n", head);
+    return 404;
+  }
+
+  static int Ok(mg_connection* conn, const std::string& body, const char* type, bool head) {
+    Reply(conn, 200, type, body, head);
+    return 200;
+  }
+
+  int Health(mg_connection* conn, bool head) {
+    const auto s = LatestStatus();
+    int status = 503;
+    std::string text;
+    if (!s) {
+      text = "UNKNOWN: no status message received yet on " + options_.status_channel + " (" +
+             options_.lcm_url + ")\n";
+    } else if (s->second > options_.stale_after_s) {
+      text = "UNKNOWN: the latest status is " + std::to_string(s->second) +
+             " s old (the tracker stopped publishing)\n";
+    } else {
       const service::HealthReport h = service::AssessStatus(s->first);
-      res.status = h.health == service::Health::kCritical ? 503 : 200;
-      res.set_content(service::HealthLine(h) + "\n", "text/plain");
-    });
-    server_.Get("/events", [this](const httplib::Request&, httplib::Response& res) {
-      std::shared_ptr<EventHub::Client> client = hub_.Connect(options_.max_clients);
-      if (!client) {
-        res.status = 503;
-        res.set_content(
+      status = h.health == service::Health::kCritical ? 503 : 200;
+      text = service::HealthLine(h) + "\n";
+    }
+    Reply(conn, status, "text/plain", text, head);
+    return status;
+  }
+
+  // Server-Sent Events until the client goes, is dropped by its queue, or the server stops.
+  int Events(mg_connection* conn) {
+    const std::shared_ptr<EventHub::Client> client = hub_.Connect(options_.max_clients);
+    if (!client) {
+      Reply(conn,
+            503,
+            "text/plain",
             "too many /events clients (max_clients " + std::to_string(options_.max_clients) + ")\n",
-            "text/plain");
-        return;
+            false);
+      return 503;
+    }
+    mg_response_header_start(conn, 200);
+    mg_response_header_add(conn, "Content-Type", "text/event-stream", -1);
+    mg_response_header_add(conn, "Cache-Control", "no-cache", -1);
+    mg_response_header_send(conn);
+    // Reconnect after 1 s when the stream breaks (EventSource's retry).
+    constexpr char kRetry[] = "retry: 1000\n\n";
+    bool open = mg_write(conn, kRetry, sizeof(kRetry) - 1) > 0;
+    while (open) {
+      std::shared_ptr<const std::string> e;
+      if (!hub_.Next(client, std::chrono::milliseconds(1000), &e)) break;
+      const std::string chunk = e ? "data: " + *e + "\n\n" : ": keep-alive\n\n";
+      const SteadyClock::time_point start = SteadyClock::now();
+      open = mg_write(conn, chunk.data(), chunk.size()) == static_cast<int>(chunk.size());
+      if (open && e) events_sent_.fetch_add(1);
+      // A write that failed after blocking for the whole deadline: the client stopped reading
+      // (its socket buffers are full), not a client that went away.
+      if (!open && SteadyClock::now() - start >= std::chrono::milliseconds(kRequestDeadlineMs)) {
+        hub_.Dropped(client);
       }
-      res.set_header("Cache-Control", "no-cache");
-      res.set_chunked_content_provider(
-          "text/event-stream",
-          [this, client, first = true](std::size_t, httplib::DataSink& sink) mutable {
-            if (first) {  // reconnect after 1 s when the stream breaks (EventSource's retry)
-              first = false;
-              constexpr char kRetry[] = "retry: 1000\n\n";
-              return sink.write(kRetry, sizeof(kRetry) - 1);
-            }
-            std::shared_ptr<const std::string> e;
-            if (!hub_.Next(client, std::chrono::milliseconds(1000), &e)) return false;
-            const std::string chunk = e ? "data: " + *e + "\n\n" : ": keep-alive\n\n";
-            if (!sink.write(chunk.data(), chunk.size())) return false;
-            if (e) events_sent_.fetch_add(1);
-            return true;
-          },
-          [this, client](bool) { hub_.Disconnect(client); });
-    });
+    }
+    hub_.Disconnect(client);
+    return 200;
   }
 
   WebOptions options_;
@@ -353,7 +516,8 @@ class WebServer::Impl {
   const std::string floor_json_;
   const std::string layouts_json_;
   std::unique_ptr<lcm::LCM> lcm_;
-  httplib::Server server_;
+  mg_context* http_ = nullptr;
+  bool library_initialized_ = false;
   int port_ = 0;
   std::atomic<bool> stop_{false};
   std::atomic<std::int64_t> events_sent_{0};

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `mvtrack web` (issue 15): a small HTTP server (cpp-httplib) that subscribes to the daemon's
+/// `mvtrack web` (issue 15): a small HTTP server (civetweb) that subscribes to the daemon's
 /// tracks and status channels over LCM and serves
 ///   /             the live floor view (page.cc; everything it needs is in the page itself),
 ///   /events       Server-Sent Events: one JSON object per tracks and per status message

@@ -36,7 +36,7 @@
 #
 # Dependencies: dpkg-shlibdeps (Debian package dpkg-dev) computes each package's Depends from its
 # own ELF files' shared libraries (mvtrackd: liblcm1, libspdlog, libsystemd0, libyaml-cpp, the
-# C/C++ runtime; mvtrack-tools: also OpenCV and cpp-httplib); the Depends written here are the
+# C/C++ runtime; mvtrack-tools: also OpenCV and civetweb); the Depends written here are the
 # ones no ELF file shows (Java for mvtrack-spy, python3, liblcm-dev).
 #
 # Man pages: help2man writes them at build time from the programs' own --help and --version

@@ -13,7 +13,7 @@ packages=(
   libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-videoio-dev
   libyaml-cpp-dev libspdlog-dev libsystemd-dev
   # mvtrack web: HTTP server and JSON
-  libcpp-httplib-dev nlohmann-json3-dev
+  libcivetweb-dev nlohmann-json3-dev
   # LCM: C/C++ library, lcm-gen and the logger, Java bindings; lcm.pc needs glib
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev
   # Java types jar and lcm-spy (jchart2d draws its plots)
