@@ -9,6 +9,7 @@
 #include <exception>
 #include <mvtrack/camera_status_t.hpp>
 #include <mvtrack/tracker_status_t.hpp>
+#include <random>
 #include <utility>
 
 #include "config/tracker_options.h"
@@ -21,6 +22,18 @@
 
 namespace mvtrack::service {
 namespace {
+
+// 16 lowercase hex digits from the system's entropy source: the instance id of
+// tracker_status_t, different for every start of a daemon.
+std::string RandomInstanceId() {
+  std::random_device entropy;
+  const std::uint64_t value = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
+  constexpr char kHex[] = "0123456789abcdef";
+  std::string id(16, '0');
+  for (int i = 0; i < 16; ++i)
+    id[static_cast<std::size_t>(i)] = kHex[(value >> (60 - 4 * i)) & 0xF];
+  return id;
+}
 
 // Bounds on bookkeeping that grows with the input (memory stays bounded whatever arrives).
 constexpr std::size_t kMaxReleaseTimes = 4096;
@@ -112,6 +125,7 @@ Service::Service(DaemonConfig config, ServiceHooks hooks)
       config_hash_(DaemonConfigHash(config_)),
       wall_clock_(hooks_.wall_clock != nullptr ? hooks_.wall_clock : &system_clock_),
       start_us_(wall_clock_->NowMicros()),
+      instance_id_(RandomInstanceId()),
       sync_(CameraIds(config_), config_.sync),
       limiter_(Seconds(config_.log_repeat_interval_s)) {
   for (std::size_t i = 0; i < config_.cameras.size(); ++i) {
@@ -579,6 +593,9 @@ std::vector<std::uint8_t> Service::BuildStatus() {
     msg.utime = now;
     msg.period_us = now - period_start_us_;
     msg.uptime_us = now - start_us_;
+    msg.instance_id = instance_id_;
+    msg.start_utime = start_us_;
+    msg.sequence = status_sequence_++;
     msg.version = hooks_.version;
     msg.config_hash = config_hash_;
     msg.last_frame = last_frame_;

@@ -205,6 +205,7 @@ class Service {
   const pipeline::Clock* wall_clock_;
   pipeline::SteadyClock steady_clock_;
   const std::int64_t start_us_;
+  const std::string instance_id_;  // tracker_status_t.instance_id
   core::KeypointLayoutId output_layout_ = core::KeypointLayoutId::kNone;
 
   // Control thread only.
@@ -219,6 +220,7 @@ class Service {
   bool idle_flushed_ = true;
   std::int64_t next_status_us_ = 0;
   std::int64_t period_start_us_ = 0;
+  std::int64_t status_sequence_ = 0;  // tracker_status_t.sequence of the next status (under mu_)
   bool stopped_ = false;
 
   RateLimiter limiter_;

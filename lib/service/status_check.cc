@@ -1,5 +1,6 @@
 #include "service/status_check.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -13,6 +14,16 @@ std::string Join(const std::vector<std::string>& words, const char* sep) {
   std::string out;
   for (const std::string& w : words) out += (out.empty() ? "" : sep) + w;
   return out;
+}
+
+// An instance id from the network, for a reason: at most 32 printable characters.
+std::string Printable(const std::string& id) {
+  if (id.empty()) return "(none)";
+  std::string out = id.substr(0, 32);
+  for (char& c : out) {
+    if (c < 0x20 || c > 0x7e) c = '?';
+  }
+  return id.size() > out.size() ? out + "..." : out;
 }
 
 bool Delivers(const transport::CameraStatus& c) {
@@ -110,6 +121,80 @@ std::string HealthLine(const HealthReport& report) {
   std::string line = ToString(report.health);
   if (!report.reasons.empty()) line += ": " + Join(report.reasons, "; ");
   return line;
+}
+
+HealthReport Combine(HealthReport a, const HealthReport& b) {
+  auto rank = [](Health h) {
+    switch (h) {
+      case Health::kOk:
+        return 0;
+      case Health::kWarning:
+        return 1;
+      case Health::kUnknown:
+        return 2;
+      case Health::kCritical:
+        return 3;
+    }
+    return 2;
+  };
+  if (rank(b.health) > rank(a.health)) {
+    HealthReport out = b;
+    out.reasons.insert(out.reasons.end(), a.reasons.begin(), a.reasons.end());
+    return out;
+  }
+  a.reasons.insert(a.reasons.end(), b.reasons.begin(), b.reasons.end());
+  return a;
+}
+
+void StatusSourceWatch::Add(const TrackerStatusSource& source, double now_s) {
+  const std::string& id = source.instance_id;
+  auto it = std::find_if(
+      instances_.begin(), instances_.end(), [&](const Instance& i) { return i.id == id; });
+  const Instance* previous = instances_.empty() ? nullptr : &instances_.back();
+  if (it == instances_.end()) {
+    if (previous != nullptr) {
+      restart_ = {now_s,
+                  "the tracker restarted: instance " + Printable(id) + " replaced " +
+                      Printable(previous->id)};
+    }
+    if (instances_.size() >= kMaxInstances) instances_.erase(instances_.begin());
+    instances_.push_back({id, source.sequence, now_s});
+    return;
+  }
+  if (&*it != previous) {
+    conflict_ = {now_s,
+                 "two tracker instances publish statuses on this channel (" + Printable(id) +
+                     " and " + Printable(previous->id) +
+                     "): a second daemon, or forged status messages"};
+  }
+  if (source.sequence <= it->last_sequence) {
+    backwards_ = {now_s,
+                  "the status sequence of instance " + Printable(id) + " went backwards (" +
+                      std::to_string(source.sequence) + " after " +
+                      std::to_string(it->last_sequence) + "): replayed or forged status messages"};
+  }
+  Instance updated = *it;
+  updated.last_sequence = std::max(updated.last_sequence, source.sequence);
+  updated.last_seen_s = now_s;
+  instances_.erase(it);
+  instances_.push_back(std::move(updated));
+}
+
+HealthReport StatusSourceWatch::Assess(double now_s) const {
+  HealthReport r;
+  r.health = Health::kOk;
+  for (const Event* e : {&conflict_, &backwards_}) {
+    if (now_s - e->at_s <= window_s_) {
+      r.health = Health::kCritical;
+      r.reasons.push_back(e->what);
+    }
+  }
+  // A "restart" seen while two instances interleave was the second instance's start.
+  if (now_s - restart_.at_s <= window_s_ && now_s - conflict_.at_s > window_s_) {
+    if (r.health == Health::kOk) r.health = Health::kWarning;
+    r.reasons.push_back(restart_.what);
+  }
+  return r;
 }
 
 std::string NotifyStatusLine(const transport::TrackerStatus& status, double frames_per_second) {

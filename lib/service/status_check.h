@@ -14,6 +14,12 @@
 
 namespace mvtrack::service {
 
+/// The sender of a status message: tracker_status_t's instance_id and sequence.
+struct TrackerStatusSource {
+  std::string instance_id;
+  std::int64_t sequence = 0;
+};
+
 /// Monitoring-plugin levels; the values are `mvtrack status`'s exit codes.
 enum class Health { kOk = 0, kWarning = 1, kCritical = 2, kUnknown = 3 };
 
@@ -61,6 +67,51 @@ class FrameRateMeter {
  private:
   std::int64_t horizon_us_;
   std::vector<std::pair<std::int64_t, std::int64_t>> history_;  // (utime, last_frame)
+};
+
+/// The worse of two verdicts, with the reasons of the worse one first (UNKNOWN counts as worse
+/// than OK and WARNING, better than CRITICAL: a CRITICAL fact stays CRITICAL).
+HealthReport Combine(HealthReport a, const HealthReport& b);
+
+/// Who sends the status messages of one channel (issue 39). Every daemon draws a random
+/// instance_id at start and numbers its statuses (sequence), so a consumer that keeps receiving
+/// them tells apart
+///   - a restart: a new instance follows the old one, which is not heard again: WARNING for the
+///     window ("the tracker restarted: instance B replaced A"),
+///   - two instances at once: an instance is heard again after another one was (a second
+///     daemon publishing on the channel, or forged statuses): CRITICAL for the window (and
+///     the "restart" it looked like at first is not reported),
+///   - a sequence going backwards (or repeating) within an instance: a replayed or forged
+///     status: CRITICAL for the window.
+/// It cannot tell a forger who copies an instance id and keeps its sequence increasing while
+/// the real daemon is silent (docs/OPERATING.md "Who can talk to it"). Single-threaded;
+/// `now_s` is the consumer's steady clock, seconds. Memory: at most kMaxInstances instances.
+class StatusSourceWatch {
+ public:
+  static constexpr std::size_t kMaxInstances = 16;
+  /// Evidence older than `window_s` no longer counts (the consumer's staleness period).
+  explicit StatusSourceWatch(double window_s) : window_s_(window_s) {}
+  /// A status received at `now_s`.
+  void Add(const TrackerStatusSource& source, double now_s);
+  void Add(const transport::TrackerStatus& status, double now_s) {
+    Add(TrackerStatusSource{status.instance_id, status.sequence}, now_s);
+  }
+  /// The verdict at `now_s`: OK without reasons when none of the above happened in the window.
+  HealthReport Assess(double now_s) const;
+
+ private:
+  struct Instance {
+    std::string id;
+    std::int64_t last_sequence = 0;
+    double last_seen_s = 0.0;
+  };
+  struct Event {
+    double at_s = -1e300;
+    std::string what;
+  };
+  double window_s_;
+  std::vector<Instance> instances_;  // least recently heard first
+  Event restart_, conflict_, backwards_;
 };
 
 /// The daemon's systemd status line, e.g. "tracking: 3/3 cameras, 30.0 fps, 4 tracks (3

@@ -203,6 +203,9 @@ struct TrackerStatus {
   std::int64_t utime = 0;
   std::int64_t period_us = 0;
   std::int64_t uptime_us = 0;
+  std::string instance_id;  ///< the sending daemon's random id (status_check.h StatusSourceWatch)
+  std::int64_t start_utime = 0;
+  std::int64_t sequence = 0;  ///< of this status within its instance, from 0
   std::string version;
   std::string config_hash;
   std::int64_t flags = 0;  ///< tracker_status_t::FLAG_* bits (TrackerFlagNames spells them)

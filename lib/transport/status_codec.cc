@@ -31,6 +31,8 @@ bool WalkStatus(WireWalker* w, const DecodeLimits& limits) {
   }
   w->Skip("utime, period_us, uptime_us", 3 * kInt64Bytes);
   std::string_view text;
+  if (!w->ReadString("instance_id", limits.max_string, &text)) return false;
+  w->Skip("start_utime, sequence", 2 * kInt64Bytes);
   if (!w->ReadString("version", limits.max_string, &text)) return false;
   if (!w->ReadString("config_hash", limits.max_string, &text)) return false;
   w->Skip("flags, last_frame", 2 * kInt64Bytes);
@@ -89,6 +91,9 @@ void CopyStatusFields(const From& msg, To* out) {
   out->utime = msg.utime;
   out->period_us = msg.period_us;
   out->uptime_us = msg.uptime_us;
+  out->instance_id = msg.instance_id;
+  out->start_utime = msg.start_utime;
+  out->sequence = msg.sequence;
   out->version = msg.version;
   out->config_hash = msg.config_hash;
   out->flags = msg.flags;

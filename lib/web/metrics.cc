@@ -61,7 +61,8 @@ void FlagSamples(Exposition* e,
 std::string PrometheusText(const std::optional<transport::TrackerStatus>& status,
                            double status_age_s,
                            double stale_after_s,
-                           const WebCounters& web) {
+                           const WebCounters& web,
+                           const service::HealthReport& source) {
   Exposition e;
   const bool fresh = status && !(status_age_s > stale_after_s);
   e.Family("mvtrack_up",
@@ -94,9 +95,14 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
     e.Sample(static_cast<double>(static_cast<int>(service::Health::kUnknown)));
     return e.text();
   }
-  e.Sample(static_cast<double>(static_cast<int>(service::AssessStatus(s).health)));
+  e.Sample(static_cast<double>(
+      static_cast<int>(service::Combine(service::AssessStatus(s), source).health)));
   e.Family("mvtrack_uptime_seconds", "gauge", "tracker uptime");
   e.Sample(D(s.uptime_us) / 1e6);
+  e.Family("mvtrack_start_time_seconds",
+           "gauge",
+           "when the tracker instance started, seconds since the Unix epoch (changes on restart)");
+  e.Sample(D(s.start_utime) / 1e6);
   e.Family("mvtrack_last_frame", "gauge", "frame index of the latest published tracks");
   e.Sample(D(s.last_frame));
   e.Family("mvtrack_frames_per_second", "gauge", "tracks messages per second in the period");

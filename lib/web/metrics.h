@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "service/status_check.h"
 #include "transport/codec.h"
 
 namespace mvtrack::web {
@@ -25,10 +26,12 @@ struct WebCounters {
 /// counters; `status_age_s` is the time since the latest status arrived. A status older than
 /// `stale_after_s` (the tracker stopped publishing: /healthz's staleness rule) is not reported
 /// as if it were current: mvtrack_up 0, mvtrack_health 3 (UNKNOWN), its age, and none of the
-/// tracker's or the cameras' values.
+/// tracker's or the cameras' values. `source`: what the status messages say about who sends
+/// them (service::StatusSourceWatch), combined into mvtrack_health.
 std::string PrometheusText(const std::optional<transport::TrackerStatus>& status,
                            double status_age_s,
                            double stale_after_s,
-                           const WebCounters& web);
+                           const WebCounters& web,
+                           const service::HealthReport& source = {service::Health::kOk, {}});
 
 }  // namespace mvtrack::web

@@ -65,8 +65,9 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
   return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);
 }
 
-std::string StatusEventJson(const transport::TrackerStatus& s) {
-  const service::HealthReport health = service::AssessStatus(s);
+std::string StatusEventJson(const transport::TrackerStatus& s,
+                            const service::HealthReport& source) {
+  const service::HealthReport health = service::Combine(service::AssessStatus(s), source);
   json cameras = json::array();
   for (const transport::CameraStatus& c : s.cameras) {
     cameras.push_back({{"camera_id", c.camera_id},
@@ -89,6 +90,9 @@ std::string StatusEventJson(const transport::TrackerStatus& s) {
                   {"utime", s.utime},
                   {"period_us", s.period_us},
                   {"uptime_us", s.uptime_us},
+                  {"instance_id", s.instance_id},
+                  {"start_utime", s.start_utime},
+                  {"sequence", s.sequence},
                   {"version", s.version},
                   {"config_hash", s.config_hash},
                   {"flags", Names(transport::TrackerFlagNames(s.flags))},

@@ -21,8 +21,10 @@ std::string TracksEventJson(const transport::TracksMessage& message);
 
 /// {"type":"status", every tracker_status_t field, "flags":[names], "health", "reasons":[...],
 /// "cameras_delivering", "fps", "cameras":[{every camera_status_t field, "flags":[names]}]} on
-/// one line (`health` and `reasons` from service::AssessStatus).
-std::string StatusEventJson(const transport::TrackerStatus& status);
+/// one line (`health` and `reasons`: service::AssessStatus combined with `source`, what the
+/// status messages say about who sends them, service::StatusSourceWatch).
+std::string StatusEventJson(const transport::TrackerStatus& status,
+                            const service::HealthReport& source = {service::Health::kOk, {}});
 
 /// {"cameras":[{"id", "position":[x,y,z], "fov":[[x,y], ...]}], "bounds":[x_min, y_min, x_max,
 /// y_max]}: each camera's centre and the polygon its image covers on the floor z = 0 (the rays

@@ -378,6 +378,7 @@ class WebServer::Impl {
   static void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&, Impl* self) {
     const transport::StatusDecodeResult d =
         transport::DecodeTrackerStatus(rbuf->data, rbuf->data_size);
+    service::HealthReport source;
     {
       std::lock_guard<std::mutex> lock(self->mu_);
       if (!d.ok()) {
@@ -387,16 +388,29 @@ class WebServer::Impl {
       ++self->counters_.status_messages;
       self->status_ = d.message;
       self->status_at_ = SteadyClock::now();
+      self->source_.Add(d.message, Seconds(self->status_at_));
+      source = self->source_.Assess(Seconds(self->status_at_));
     }
-    self->hub_.Publish(StatusEventJson(d.message), true);
+    self->hub_.Publish(StatusEventJson(d.message, source), true);
   }
 
-  // The latest status and its age, seconds.
-  std::optional<std::pair<transport::TrackerStatus, double>> LatestStatus() const {
+  static double Seconds(SteadyClock::time_point t) {
+    return std::chrono::duration<double>(t.time_since_epoch()).count();
+  }
+
+  // The latest status, its age (seconds) and what the statuses say about who sends them.
+  struct Latest {
+    transport::TrackerStatus status;
+    double age_s = 0.0;
+    service::HealthReport source;
+  };
+  std::optional<Latest> LatestStatus() const {
     std::lock_guard<std::mutex> lock(mu_);
     if (!status_) return std::nullopt;
-    const double age = std::chrono::duration<double>(SteadyClock::now() - status_at_).count();
-    return std::make_pair(*status_, age);
+    const SteadyClock::time_point now = SteadyClock::now();
+    return Latest{*status_,
+                  std::chrono::duration<double>(now - status_at_).count(),
+                  source_.Assess(Seconds(now))};
   }
 
   // civetweb's begin_request: every request, on one of its threads. Returns the status sent.
@@ -439,10 +453,11 @@ class WebServer::Impl {
     if (path == "/metrics") {
       const auto s = LatestStatus();
       return Ok(conn,
-                PrometheusText(s ? std::optional(s->first) : std::nullopt,
-                               s ? s->second : 0.0,
+                PrometheusText(s ? std::optional(s->status) : std::nullopt,
+                               s ? s->age_s : 0.0,
                                options_.stale_after_s,
-                               Counters()),
+                               Counters(),
+                               s ? s->source : service::HealthReport{service::Health::kOk, {}}),
                 "text/plain; version=0.0.4",
                 head);
     }
@@ -464,11 +479,11 @@ class WebServer::Impl {
     if (!s) {
       text = "UNKNOWN: no status message received yet on " + options_.status_channel + " (" +
              options_.lcm_url + ")\n";
-    } else if (s->second > options_.stale_after_s) {
-      text = "UNKNOWN: the latest status is " + std::to_string(s->second) +
+    } else if (s->age_s > options_.stale_after_s) {
+      text = "UNKNOWN: the latest status is " + std::to_string(s->age_s) +
              " s old (the tracker stopped publishing)\n";
     } else {
-      const service::HealthReport h = service::AssessStatus(s->first);
+      const service::HealthReport h = service::Combine(service::AssessStatus(s->status), s->source);
       status = h.health == service::Health::kCritical ? 503 : 200;
       text = service::HealthLine(h) + "\n";
     }
@@ -525,6 +540,7 @@ class WebServer::Impl {
   WebCounters counters_;
   std::optional<transport::TrackerStatus> status_;
   SteadyClock::time_point status_at_;
+  service::StatusSourceWatch source_{options_.stale_after_s};
 };
 
 WebServer::WebServer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

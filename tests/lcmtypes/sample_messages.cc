@@ -291,6 +291,9 @@ tracker_status_t MakeTrackerStatus(std::uint32_t seed, int num_cameras) {
   status.utime = kBaseUtime + gen.UniformInt64(0, 60'000'000);
   status.period_us = 1'000'000;
   status.uptime_us = gen.UniformInt64(1'000'000, 100'000'000'000);
+  status.instance_id = "9f2c4e61b07ad358";
+  status.start_utime = status.utime - status.uptime_us;
+  status.sequence = gen.UniformInt64(0, 100'000);
   status.version = "0.1.0+g1a2b3c4";
   status.config_hash = "5f4dcc3b5aa765d61d8327deb882cf99";
   status.flags = tracker_status_t::FLAG_INPUT_LOSS | tracker_status_t::FLAG_LATENCY_HIGH;
@@ -412,6 +415,9 @@ std::string Dump(const tracker_status_t& msg, const std::string& prefix) {
   f.Int("utime", msg.utime);
   f.Int("period_us", msg.period_us);
   f.Int("uptime_us", msg.uptime_us);
+  f.Str("instance_id", msg.instance_id);
+  f.Int("start_utime", msg.start_utime);
+  f.Int("sequence", msg.sequence);
   f.Str("version", msg.version);
   f.Str("config_hash", msg.config_hash);
   f.Int("flags", msg.flags);

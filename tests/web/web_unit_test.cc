@@ -76,6 +76,73 @@ TEST_CASE("health: OK, WARNING with the flags named, CRITICAL below two cameras"
         std::vector<std::string>{"LATENCY_HIGH", "NO_OUTPUT"});
 }
 
+TEST_CASE("status source: a restart, two instances at once, a sequence going backwards", "[unit]") {
+  using service::Health;
+  service::StatusSourceWatch w(5.0);
+  auto add = [&](const char* id, std::int64_t seq, double t) { w.Add({id, seq}, t); };
+  // One daemon, statuses once a second: nothing to say.
+  for (int i = 0; i < 5; ++i) add("aaaa", i, i);
+  CHECK(w.Assess(4.0).health == Health::kOk);
+  CHECK(w.Assess(4.0).reasons.empty());
+  // It restarts: a new instance, the old one is not heard again. WARNING for the window.
+  add("bbbb", 0, 5.0);
+  add("bbbb", 1, 6.0);
+  service::HealthReport h = w.Assess(6.0);
+  CHECK(h.health == Health::kWarning);
+  CHECK(h.reasons ==
+        std::vector<std::string>{"the tracker restarted: instance bbbb replaced aaaa"});
+  CHECK(w.Assess(10.1).health == Health::kOk);  // the window passed
+  // A second daemon on the channel (or forged statuses): the instances interleave.
+  add("cccc", 0, 11.0);  // first heard: looks like a restart
+  CHECK(w.Assess(11.0).health == Health::kWarning);
+  add("bbbb", 7, 11.5);  // the "replaced" one is heard again: two at once
+  h = w.Assess(11.5);
+  CHECK(h.health == Health::kCritical);
+  CHECK(h.reasons ==
+        std::vector<std::string>{"two tracker instances publish statuses on this channel (bbbb and "
+                                 "cccc): a second daemon, or forged status messages"});
+  CHECK(w.Assess(16.4).health == Health::kCritical);
+  // A replayed status of the live instance: its sequence goes backwards (or repeats).
+  service::StatusSourceWatch r(5.0);
+  r.Add({"dddd", 10}, 0.0);
+  r.Add({"dddd", 11}, 1.0);
+  CHECK(r.Assess(1.0).health == Health::kOk);
+  r.Add({"dddd", 11}, 1.5);
+  h = r.Assess(1.5);
+  CHECK(h.health == Health::kCritical);
+  CHECK(h.reasons == std::vector<std::string>{"the status sequence of instance dddd went "
+                                              "backwards (11 after 11): replayed or forged "
+                                              "status messages"});
+  r.Add({"dddd", 12}, 2.0);  // the real one goes on: still CRITICAL for the window
+  CHECK(r.Assess(6.4).health == Health::kCritical);
+  CHECK(r.Assess(6.6).health == Health::kOk);
+  // Hostile ids: bounded memory, printable and short in the reasons.
+  service::StatusSourceWatch f(5.0);
+  for (int i = 0; i < 1000; ++i) f.Add({std::string(100, 'x') + std::to_string(i), 0}, 0.0);
+  f.Add({std::string("\x01\n") + std::string(40, 'y'), 0}, 0.1);
+  h = f.Assess(0.1);
+  REQUIRE(h.reasons.size() == 1);
+  CHECK(h.reasons[0].find('\n') == std::string::npos);
+  CHECK(h.reasons[0].size() < 120);
+
+  // Combined with the status's own verdict: the worse first.
+  transport::TrackerStatus s = Healthy();
+  s.flags = 8;  // LATENCY_HIGH: WARNING
+  h = service::Combine(service::AssessStatus(s), r.Assess(1.5));
+  CHECK(h.health == Health::kCritical);
+  CHECK(h.reasons.size() == 2);
+  CHECK(h.reasons.back() == "LATENCY_HIGH");
+  h = service::Combine(service::AssessStatus(s), {Health::kOk, {}});
+  CHECK(h.health == Health::kWarning);
+  CHECK(h.reasons == std::vector<std::string>{"LATENCY_HIGH"});
+  // ... in the status event and the metrics.
+  const json e = json::parse(StatusEventJson(s, r.Assess(1.5)));
+  CHECK(e["health"] == "CRITICAL");
+  CHECK(e["reasons"].size() == 2);
+  CHECK_THAT(PrometheusText(s, 0.5, 5.0, WebCounters{}, r.Assess(1.5)),
+             Catch::Contains("mvtrack_health 2\n"));
+}
+
 TEST_CASE("frame rate over a horizon, not one bursty status period", "[unit]") {
   service::FrameRateMeter meter(5'000'000);
   transport::TrackerStatus s = Healthy();
@@ -143,8 +210,14 @@ TEST_CASE("status event: health, flag names and every camera field", "[unit]") {
   s.gallery_bytes = 65'536;
   s.cameras[2].embeddings_dropped = 7;
   s.cameras[2].flags = 256;
+  s.instance_id = "0123456789abcdef";
+  s.start_utime = 1'000'000;
+  s.sequence = 17;
   const json e = json::parse(StatusEventJson(s));
   CHECK(e["type"] == "status");
+  CHECK(e["instance_id"] == "0123456789abcdef");
+  CHECK(e["start_utime"] == 1'000'000);
+  CHECK(e["sequence"] == 17);
   CHECK(e["health"] == "WARNING");
   CHECK(e["reasons"] == json::array({"camera 0 LOSING", "camera 2 BAD_EMBEDDINGS"}));
   CHECK(e["fps"] == 30.0);

@@ -2,6 +2,7 @@
 // monitoring-plugin code (0 OK, 1 WARNING, 2 CRITICAL, 3 UNKNOWN) so cron, Nagios or a systemd
 // timer can use it (docs/OPERATING.md).
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,17 +18,25 @@
 namespace mvtrack::cli {
 namespace {
 
+double SteadySeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 struct Received {
-  std::optional<transport::TrackerStatus> status;
+  explicit Received(double window_s) : source(window_s) {}
+  std::optional<transport::TrackerStatus> status;  // the latest
+  int count = 0;
   std::string error;  // the last decode error
+  service::StatusSourceWatch source;
 };
 
 void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&, Received* out) {
-  if (out->status) return;
   const transport::StatusDecodeResult d =
       transport::DecodeTrackerStatus(rbuf->data, rbuf->data_size);
   if (d.ok()) {
     out->status = d.message;
+    ++out->count;
+    out->source.Add(d.message, SteadySeconds());
   } else {
     out->error = d.reason;
   }
@@ -53,10 +62,12 @@ std::string Join(const std::vector<std::string>& words) {
 
 void Print(const transport::TrackerStatus& s, const service::HealthReport& h) {
   std::printf("mvtrack status: %s\n", service::HealthLine(h).c_str());
-  std::printf("tracker %s, configuration %s, up %s\n",
+  std::printf("tracker %s, configuration %s, up %s, instance %s, status #%lld\n",
               s.version.c_str(),
               s.config_hash.c_str(),
-              Seconds(static_cast<double>(s.uptime_us) / 1e6).c_str());
+              Seconds(static_cast<double>(s.uptime_us) / 1e6).c_str(),
+              s.instance_id.empty() ? "-" : s.instance_id.c_str(),
+              static_cast<long long>(s.sequence));
   std::printf(
       "frame %lld, %.1f frames/s, %d active tracks (%d confirmed), latency p50 %s ms, "
       "p99 %s ms, max %s ms\n",
@@ -149,7 +160,10 @@ int RunStatus(int argc, char** argv) {
                   "Waits for one status message of the tracker daemon and prints it: health with\n"
                   "its reasons, frame rate, tracks, latency, and per camera the rate, the age of\n"
                   "its last message, its transport latency, clock offset, losses and flags in\n"
-                  "words (docs/OPERATING.md says what each flag means and what to do).\n"
+                  "words (docs/OPERATING.md says what each flag means and what to do). It\n"
+                  "listens one and a half status periods more, to see the next status: a second\n"
+                  "daemon on the channel, or a status sequence going backwards (replayed or\n"
+                  "forged statuses), is CRITICAL; a restart seen meanwhile is a WARNING.\n"
                   "Exit status (the monitoring-plugin convention): 0 OK, 1 WARNING, 2 CRITICAL,\n"
                   "3 UNKNOWN (no status within the timeout, or LCM failed).")) {
     return 0;
@@ -163,16 +177,28 @@ int RunStatus(int argc, char** argv) {
     std::printf("mvtrack status: UNKNOWN: cannot open LCM %s\n", args.Get("url").c_str());
     return 3;
   }
-  Received received;
+  Received received(timeout_s);
   if (lcm.subscribeFunction(args.Get("channel"), &OnStatus, &received) == nullptr) {
     std::printf("mvtrack status: UNKNOWN: cannot subscribe to %s\n", args.Get("channel").c_str());
     return 3;
   }
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::microseconds(static_cast<std::int64_t>(timeout_s * 1e6));
-  while (!received.status) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
+  // Until the first status, then for one and a half of its periods more (within the timeout):
+  // the statuses that follow show a second instance on the channel or a sequence going
+  // backwards (service::StatusSourceWatch).
+  auto until = deadline;
+  bool listening_on = false;
+  while (true) {
+    const auto now = std::chrono::steady_clock::now();
+    if (received.status && !listening_on) {
+      listening_on = true;
+      const double period_s =
+          std::clamp(static_cast<double>(received.status->period_us) / 1e6, 0.2, 5.0);
+      until = std::min(
+          deadline, now + std::chrono::microseconds(static_cast<std::int64_t>(1.5e6 * period_s)));
+    }
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - now);
     if (left.count() <= 0) break;
     if (lcm.handleTimeout(static_cast<int>(std::min<std::int64_t>(left.count(), 1000))) < 0) {
       std::printf("mvtrack status: UNKNOWN: LCM receive failed on %s\n", args.Get("url").c_str());
@@ -187,7 +213,8 @@ int RunStatus(int argc, char** argv) {
                 received.error.empty() ? "" : ("; undecodable: " + received.error).c_str());
     return 3;
   }
-  const service::HealthReport h = service::AssessStatus(*received.status);
+  const service::HealthReport h = service::Combine(service::AssessStatus(*received.status),
+                                                   received.source.Assess(SteadySeconds()));
   Print(*received.status, h);
   return static_cast<int>(h.health);
 }
