@@ -486,6 +486,8 @@ std::vector<Field> MakeFields() {
       [](auto& o) -> auto& { return o.refinement.smooth_max_views; },
       0,
       kIntMax));
+  f.push_back(BoolField(
+      "refinement", "fit_skeleton", [](auto& o) -> auto& { return o.refinement.fit_skeleton; }));
   f.push_back(IntField(
       "refinement",
       "max_fill_gap",

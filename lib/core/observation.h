@@ -69,6 +69,12 @@ struct TrackletMember {
   int num_observations = 0;    ///< observations inside the window
 };
 
+/// One camera's observation of a 3D tracklet's person at one of its frames.
+struct PersonView {
+  int camera_index = 0;  ///< rig index of the camera
+  Observation2D observation;
+};
+
 /// A short-term 3D tracklet of one person in one window (U_{k,p}).
 struct Tracklet3D {
   std::vector<FrameIndex> frames;  ///< strictly increasing
@@ -84,6 +90,10 @@ struct Tracklet3D {
   /// embeddings that mean averages.
   std::vector<float> appearance;
   int appearance_count = 0;
+  /// Pose mode: per frame (parallel to frames), the observations of its 2D tracklets at that
+  /// frame, by rig index (filled by tracker::ProcessWindowJob): what the skeleton fit
+  /// (body::FitJoints) fits the joints to. Empty otherwise.
+  std::vector<std::vector<PersonView>> views;
 
   int IndexOf(FrameIndex frame) const {
     auto it = std::lower_bound(frames.begin(), frames.end(), frame);

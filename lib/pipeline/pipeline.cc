@@ -69,7 +69,7 @@ Pipeline::Pipeline(geometry::CameraRig rig,
       reorder_(static_cast<std::size_t>(pipeline_options_.reorder_capacity)),
       builder_(rig_, options_),
       steps_(static_cast<std::size_t>(pipeline_options_.finalizer_queue_capacity)),
-      finalizer_(options_) {
+      finalizer_(rig_, options_) {
   for (int c = 0; c < rig_.size(); ++c) {
     camera_queues_.push_back(std::make_unique<CameraQueue>(pipeline_options_.camera_queue_capacity,
                                                            pipeline_options_.camera_overflow));

@@ -26,7 +26,7 @@ Tracker::Tracker(geometry::CameraRig rig, TrackerOptions options)
       gate_(rig_, options_),
       builder_(rig_, options_),
       workspace_(options_.triangulation),
-      finalizer_(options_) {
+      finalizer_(rig_, options_) {
   cameras_.reserve(static_cast<std::size_t>(rig_.size()));
   for (int i = 0; i < rig_.size(); ++i) cameras_.emplace_back(rig_.camera(i), i, options_);
   gallery_memory_ = GalleryMemory(cameras_.size());

@@ -40,12 +40,18 @@ linking::LinkerOptions MakeLinkerOptions(const TrackerOptions& options) {
 
 }  // namespace
 
-WindowFinalizer::WindowFinalizer(const TrackerOptions& options)
+WindowFinalizer::WindowFinalizer(const geometry::CameraRig& rig, const TrackerOptions& options)
     : mode_(options.mode),
       ground_height_m_(options.ground_height_m),
       num_points_(NumPoints(options)),
       linker_(MakeLinkerOptions(options), MakeLinkerContext(options), options.appearance),
-      bridge_max_gap_s_(options.bridge_max_gap_s) {}
+      bridge_max_gap_s_(options.bridge_max_gap_s),
+      fit_skeleton_(options.mode == InputMode::kPoses && options.refinement.fit_skeleton) {
+  if (!fit_skeleton_) return;
+  for (int c = 0; c < rig.size(); ++c) projections_.push_back(rig.camera(c).ProjectionMatrix());
+  layout_ = core::GetKeypointLayout(options.layout);
+  fit_options_.min_confidence = options.triangulation.min_confidence;
+}
 
 void WindowFinalizer::AddClosedFrame(const ClosedFrame& frame) {
   pending_[frame.frame] = PendingFrame{frame.frame, frame.utime, {}, false};
@@ -116,6 +122,30 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
     std::vector<Placed> frames;
   };
   std::map<TrackId3D, TrackFrames> placed;
+  // The skeleton fit: each track's bone lengths with the samples of this window's finalized
+  // frames (a person linked as a duplicate is not sampled: it may be a fragment), then the
+  // fitted joints of the frames placed below, by (track, frame).
+  std::map<std::pair<TrackId3D, FrameIndex>, std::vector<std::optional<Vec3>>> fitted;
+  const std::vector<std::optional<double>> unknown_lengths(layout_.bones.size());
+  if (fit_skeleton_) {
+    std::vector<TrackId3D> sampled;
+    for (std::size_t i = 0; i < result.persons.size(); ++i) {
+      const TrackId3D id = link.track_of_tracklet[i];
+      if (id == 0 || link.link_kind[i] == linking::LinkKind::kDuplicate) continue;
+      const core::Tracklet3D& person = result.persons[i];
+      body::BoneLengths& lengths = bone_lengths_.try_emplace(id, layout_).first->second;
+      for (std::size_t f = 0; f < person.frames.size(); ++f) {
+        if (person.frames[f] < result.finalize_from || person.frames[f] >= result.finalize_to) {
+          continue;
+        }
+        lengths.AddFrame(person.points[f],
+                         f < person.views.size() ? &person.views[f] : nullptr,
+                         fit_options_.min_confidence);
+      }
+      sampled.push_back(id);
+    }
+    for (const TrackId3D id : sampled) bone_lengths_.at(id).Update();
+  }
   // Places `person`'s frames of this window under track `id`; `fill` (a duplicate or a single
   // camera's view): only frames the track does not have yet.
   const auto place = [&](const core::Tracklet3D& person, TrackId3D id, bool fill) {
@@ -138,17 +168,36 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
                               [&](const Track3D& t) { return t.id == id; })) {
         continue;
       }
-      const auto& points = person.points[f];
+      const std::vector<std::optional<Vec3>>* points = &person.points[f];
       int valid = 0;
-      for (const auto& p : points) valid += p ? 1 : 0;
+      for (const auto& p : *points) valid += p ? 1 : 0;
       if (valid == 0) continue;
-      Track3D track = MakeTrack(id, points, frame, first->second, it->state);
+      if (fit_skeleton_ && f < person.views.size()) {
+        // Near the track's previous frame when that is the frame just before.
+        const std::vector<std::optional<Vec3>>* previous = nullptr;
+        if (const auto before = fitted.find({id, frame - 1}); before != fitted.end()) {
+          previous = &before->second;
+        } else if (const auto last = last_output_.find(id);
+                   last != last_output_.end() && last->second.frame == frame - 1) {
+          previous = &last->second.points;
+        }
+        const auto lengths = bone_lengths_.find(id);
+        points = &(fitted[{id, frame}] = body::FitJoints(
+                       *points,
+                       person.views[f],
+                       projections_,
+                       layout_.bones,
+                       lengths != bone_lengths_.end() ? lengths->second.lengths() : unknown_lengths,
+                       previous,
+                       fit_options_));
+      }
+      Track3D track = MakeTrack(id, *points, frame, first->second, it->state);
       track.cameras = person.cameras;
       // All of a frame's tracks come from the one window that finalizes it: at most one per
       // person of that window.
       if (pending->second.tracks.empty()) pending->second.tracks.reserve(result.persons.size());
       pending->second.tracks.push_back(std::move(track));
-      mine.frames.push_back(Placed{frame, &points});
+      mine.frames.push_back(Placed{frame, points});
     }
   };
   for (const std::size_t i : order) {
@@ -209,6 +258,7 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
   for (TrackId3D id : link.died) {
     first_frame_of_track_.erase(id);
     last_output_.erase(id);
+    bone_lengths_.erase(id);
   }
   for (auto& [frame, p] : pending_) {
     if (frame >= result.finalize_from && frame < result.finalize_to) p.final = true;
@@ -223,6 +273,7 @@ void WindowFinalizer::EndStream(std::vector<Frame3D>* out) {
   for (const linking::EndedTrack& ended : linker_.EndStream()) {
     first_frame_of_track_.erase(ended.id);
     last_output_.erase(ended.id);
+    bone_lengths_.erase(ended.id);
   }
   if (pending_.empty()) return;
   EmitFinal(pending_.rbegin()->first + 1, out);

@@ -10,7 +10,9 @@
 #include <optional>
 #include <vector>
 
+#include "body/skeleton.h"
 #include "core/types.h"
+#include "geometry/camera_rig.h"
 #include "linking/window_linker.h"
 #include "tracker/options.h"
 #include "tracker/types.h"
@@ -35,6 +37,10 @@ struct FinalizerCounters {
 /// "Tracker facade"): it holds the confirmed tracks of that window's persons at that frame.
 /// A confirmed track missing for at most TrackerOptions::bridge_max_gap_s gets the frames of the
 /// gap that are not output yet interpolated (its points on both sides, linearly; no cameras).
+/// Pose mode with refinement.fit_skeleton: every output frame's joints are fitted to the 2D
+/// keypoints of the person's views (body::FitJoints) with its track's bone lengths
+/// (body::BoneLengths, from the triangulated joints of the frames its windows finalized, the
+/// current window's included) and near the track's previous frame.
 /// Footprint (linking::FrameFootprint over tracker::FootprintPoints): box mode the
 /// triangulated box point (center_ends: the centre) dropped onto z = ground_height_m; pose mode
 /// the hip midpoint (else the centroid of the triangulated joints) dropped onto the floor.
@@ -42,8 +48,9 @@ struct FinalizerCounters {
 /// Single-owner, single-threaded; deterministic.
 class WindowFinalizer {
  public:
-  /// `options` must be valid (checked by the caller: Tracker::Create / Pipeline::Create).
-  explicit WindowFinalizer(const TrackerOptions& options);
+  /// `options` must be valid (checked by the caller: Tracker::Create / Pipeline::Create);
+  /// `rig`: the cameras the window jobs' rig indices refer to.
+  WindowFinalizer(const geometry::CameraRig& rig, const TrackerOptions& options);
 
   /// Registers a closed frame (a ClosedFrame of the builder's output).
   void AddClosedFrame(const ClosedFrame& frame);
@@ -93,6 +100,12 @@ class WindowFinalizer {
   double bridge_max_gap_s_ = 0.0;                // TrackerOptions::bridge_max_gap_s
   std::map<FrameIndex, PendingFrame> pending_;   // closed frames not yet emitted
   FinalizerCounters counters_;
+  // The skeleton fit (pose mode with refinement.fit_skeleton).
+  bool fit_skeleton_ = false;
+  std::vector<Mat34> projections_;  // by rig index, undistorted pixels
+  core::KeypointLayout layout_;
+  body::FitOptions fit_options_;
+  std::map<TrackId3D, body::BoneLengths> bone_lengths_;  // of the tracks alive
 };
 
 }  // namespace mvtrack::tracker

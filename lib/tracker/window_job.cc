@@ -455,6 +455,22 @@ void MergeCutPersons(const geometry::CameraRig& rig,
   KeepAlive(alive, clusters, persons);
 }
 
+// Pose mode: fills person->views, per frame the observations of its source tracklets there
+// (for the skeleton fit, body::FitJoints).
+void SetViews(const geometry::CameraRig& rig, const WindowJob& job, core::Tracklet3D* person) {
+  person->views.assign(person->frames.size(), {});
+  for (int i : person->source_tracklets) {
+    const core::Tracklet2D& t = job.tracklets[static_cast<std::size_t>(i)];
+    const std::optional<int> camera = rig.IndexOf(t.camera_id);
+    if (!camera) continue;
+    for (std::size_t f = 0; f < person->frames.size(); ++f) {
+      const int at = t.IndexOf(person->frames[f]);
+      if (at < 0) continue;
+      person->views[f].push_back({*camera, t.observations[static_cast<std::size_t>(at)]});
+    }
+  }
+}
+
 // Fills person->members from its source tracklets (sorted by camera, then 2D track), each
 // with its observations inside the person's frame span.
 void SetMembers(const WindowJob& job, core::Tracklet3D* person) {
@@ -657,6 +673,9 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
   }
   for (core::Tracklet3D& person : r.persons) {
     SetMembers(job, &person);
+    if (options.mode == InputMode::kPoses && options.refinement.fit_skeleton) {
+      SetViews(rig, job, &person);
+    }
     if (options.appearance.enabled) SetAppearance(job, &person);
   }
   if (options.mode == InputMode::kBoxes && options.linking.monocular_max_s > 0.0) {

@@ -125,6 +125,13 @@ struct RefinementOptions {
   /// Completion: a frame needs at least this many triangulated points to be completed
   /// (a frame with fewer carries too little evidence of the body's pose); >= 1.
   int min_points_to_fill = 4;
+  /// Pose mode: after linking, every output frame's joints are fitted to the 2D keypoints of
+  /// the views that see the person, with the bone lengths of its track (body::FitJoints,
+  /// tracker::WindowFinalizer; docs/DECISIONS.md "Bodies"). Off by default until it is both
+  /// better on every dataset and fast (measured in docs/ACCURACY.md "Bodies"): Campus at the
+  /// hard level gains 0.3 PCP over seeds 2-10, Panoptic loses 1-2 mm MPJPE, and each fit costs
+  /// ~0.3 ms (Shelf replay 3.5x slower).
+  bool fit_skeleton = false;
 
   /// Checks ranges: merge_distance_m and box_merge_distance_m finite and >= 0,
   /// box_min_height_m < box_max_height_m, both finite, box_split_residual finite and >= 0,

@@ -444,8 +444,8 @@ TEST_CASE("ToYaml lists every option and the example documents exactly those", "
   std::set<std::string> written;
   CollectKeyPaths(YAML::Load(TrackerOptionsToYaml(TrackerOptions{})), "", &written);
   // 86 before issue 38; linking.unshared_link_distance_m removed (it changed no output on any
-  // benchmark).
-  CHECK(written.size() == 85);
+  // benchmark); refinement.fit_skeleton added (issue 40: the skeleton fit's ablation switch).
+  CHECK(written.size() == 86);
   CHECK_THROWS_WITH(
       ParseTrackerOptions("tracker:\n  linking:\n    unshared_link_distance_m: 0.25\n", "r.yaml"),
       Catch::Contains("unshared_link_distance_m"));

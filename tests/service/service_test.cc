@@ -438,9 +438,11 @@ TEST_CASE("service: NO_OUTPUT when cameras deliver and nothing is published for 
   };
   // 40 frames over 1.6 s: the first window is published (by the pipeline's threads), no flag.
   Feed(s.get(), &clock, 0, 40);
-  // Wait until the first window's frames are all out (the count stays put for 200 ms).
+  // Wait until the first window's frames are all out (the count stays put for 1 s: under the
+  // load of a parallel test run 200 ms were not enough, and a late publish moves the time the
+  // flag is due).
   std::int64_t published = 0;
-  for (int wait = 0, stable = 0; wait < 1000 && (published == 0 || stable < 4); ++wait) {
+  for (int wait = 0, stable = 0; wait < 1000 && (published == 0 || stable < 20); ++wait) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     const std::int64_t now_published = s->Counters().frames_published;
     stable = now_published == published ? stable + 1 : 0;

@@ -308,7 +308,7 @@ TEST_CASE("windows processed out of order on one reused workspace give the Track
     }
   }
   REQUIRE(results.size() >= 7);
-  tracker::WindowFinalizer finalizer(options);
+  tracker::WindowFinalizer finalizer(rig, options);
   std::vector<tracker::Frame3D> frames;
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     if (const auto* closed = std::get_if<tracker::ClosedFrame>(&outputs[i])) {
@@ -418,7 +418,7 @@ std::vector<FrameIndex> FrameRange(FrameIndex first, FrameIndex last) {
 TEST_CASE("WindowFinalizer bridges a gap that the person's duplicate tracklet ends",
           "[unit][tracker]") {
   tracker::TrackerOptions options;  // box mode, bridge_max_gap_s 0.6 (18 frames at 30 fps)
-  tracker::WindowFinalizer finalizer(options);
+  tracker::WindowFinalizer finalizer(geometry::CameraRig(), options);
   for (FrameIndex f = 0; f < 50; ++f) finalizer.AddClosedFrame({f, 1000 * f});
   std::vector<tracker::Frame3D> frames;
   tracker::WindowResult w0 = WindowOf(0, 0, 0, 25);

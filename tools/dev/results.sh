@@ -185,7 +185,8 @@ done
 
 # ---- Ablations of the multi-frame stages (issue 17) on Shelf, Campus (default, hard seeds
 # 1-10) and Panoptic (5 and 10 cameras).
-for v in refinement_no_smoothing refinement_smooth_every_joint linking_no_gap_bridging \
+for v in refinement_no_smoothing refinement_smooth_every_joint refinement_fit_skeleton \
+         linking_no_gap_bridging \
          linking_no_duplicate_detection; do
   experiment "shelf_$v" shelf poses body25 $ab/$v.yaml $shelf_eval
   experiment "campus_$v" campus poses shelf14 $ab/$v.yaml $campus_eval

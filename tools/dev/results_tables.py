@@ -80,6 +80,8 @@ REFINEMENT = [("default", "**defaults**"),
               ("refinement_no_smoothing", "no temporal smoothing (`smooth_half_window: 0`)"),
               ("refinement_smooth_every_joint",
                "smoothing every joint, not only two-view ones (`smooth_max_views: 1000`)"),
+              ("refinement_fit_skeleton",
+               "skeleton fit with the track's bone lengths (`fit_skeleton: true`, issue 40)"),
               ("linking_no_gap_bridging", "no gap bridging (`bridge_max_gap_s: 0`)"),
               ("linking_no_duplicate_detection",
                "no duplicate detection (`linking.duplicate_distance_m: 0`)")]

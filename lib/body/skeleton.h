@@ -1,0 +1,86 @@
+#pragma once
+/// @file
+/// Bodies, not point clouds (issue 40): a person's bone lengths, estimated per track from its
+/// triangulated frames, and the per-frame fit of its joints to the 2D keypoints of every view
+/// that sees it, with those bone lengths, near its previous frame (docs/DECISIONS.md "Bodies").
+/// Pure: no I/O, deterministic (Ceres Solver, single-threaded).
+
+#include <optional>
+#include <vector>
+
+#include "core/keypoint_layout.h"
+#include "core/observation.h"
+#include "core/types.h"
+
+namespace mvtrack::body {
+
+/// A track's bone lengths, one per bone of its layout (core::KeypointLayout::bones): the weighted
+/// median of the lengths measured in its triangulated frames, a bone and its mirror image (l_
+/// and r_) pooled, from the first kMaxSamples frames that measure it (then constant). A bone
+/// measured in fewer than kMinSamples frames has no length (it is not constrained).
+/// Single-owner.
+class BoneLengths {
+ public:
+  static constexpr int kMaxSamples = 50;
+  static constexpr int kMinSamples = 5;
+  /// Shortest and longest plausible bone, metres: lengths outside are not samples (the crossing
+  /// of two people's rays, a joint completed far off).
+  static constexpr double kMinLengthM = 0.03;
+  static constexpr double kMaxLengthM = 1.0;
+
+  explicit BoneLengths(const core::KeypointLayout& layout);
+
+  /// One frame's triangulated joints (layout order): a sample per bone with both ends, weighted
+  /// by how many of `views` see both ends with at least `min_confidence`, less one (a joint two
+  /// views triangulate carries their pixel noise into 3D; more views average it out); a bone
+  /// seen by fewer than two views is not sampled. Without `views` every sample weighs 1.
+  void AddFrame(const std::vector<std::optional<Vec3>>& joints,
+                const std::vector<core::PersonView>* views = nullptr,
+                double min_confidence = 0.0);
+  /// Recomputes the lengths from the samples so far (a window's frames added, then this).
+  void Update();
+  /// Per bone of the layout; nullopt where not measured enough.
+  const std::vector<std::optional<double>>& lengths() const { return lengths_; }
+
+ private:
+  std::vector<std::pair<int, int>> bones_;
+  std::vector<int> pool_;                     // per bone: the pooled group (bone and mirror)
+  std::vector<std::vector<std::pair<double, double>>> samples_;  // per group: (length, weight)
+  std::vector<int> samples_per_bone_;         // per bone, capped at kMaxSamples
+  std::vector<std::optional<double>> lengths_;
+};
+
+/// Weights of the fit, each a standard deviation of its residual.
+struct FitOptions {
+  /// Reprojection error of a joint, as a fraction of the person's box scale |w + h| (the 2D
+  /// detector's error grows with the person's size in the image), at confidence 1.
+  double reprojection_sigma = 0.015;
+  /// A keypoint whose starting joint reprojects further than this from it (a fraction of the
+  /// box scale) is not used.
+  double gate = 0.05;
+  /// Bone length, metres: small, the lengths are the track's.
+  double bone_sigma_m = 0.005;
+  /// Distance to the triangulated (or completed) joint the fit starts from, metres.
+  double anchor_sigma_m = 0.03;
+  /// Distance to the same joint in the previous frame, metres (only when the previous frame is
+  /// the one just before).
+  double smooth_sigma_m = 0.10;
+  /// Keypoints below this confidence are not used (TriangulationOptions::min_confidence).
+  double min_confidence = 0.1;
+  int max_iterations = 10;
+};
+
+/// Fits one frame's joints: minimises the confidence-weighted reprojection error of every view's
+/// keypoints (Cauchy loss: a keypoint on another person or a mirrored limb costs little),
+/// the deviation of each bone from `bone_lengths` (where known), and the distances to the
+/// starting joints and to `previous` (where given). Joints without a starting value stay
+/// missing; joints are never removed. `projections`: by rig index, undistorted pixels.
+std::vector<std::optional<Vec3>> FitJoints(const std::vector<std::optional<Vec3>>& start,
+                                           const std::vector<core::PersonView>& views,
+                                           const std::vector<Mat34>& projections,
+                                           const std::vector<std::pair<int, int>>& bones,
+                                           const std::vector<std::optional<double>>& bone_lengths,
+                                           const std::vector<std::optional<Vec3>>* previous,
+                                           const FitOptions& options);
+
+}  // namespace mvtrack::body

@@ -1,0 +1,148 @@
+// lib/body: bone lengths per track and the fit of one frame's joints to three views.
+
+#include "body/skeleton.h"
+
+#include <catch2/catch.hpp>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace mvtrack::body {
+namespace {
+
+// shelf14: legs, arms and head as separate bones (r_ankle 0 ... head_top 13).
+const core::KeypointLayout& Layout() { return core::GetKeypointLayout(core::KeypointLayoutId::kShelf14); }
+
+// A standing person at the origin, shelf14 order, metres.
+std::vector<Vec3> Person() {
+  return {{0.10, 0.0, 0.05},  {0.10, 0.0, 0.50},  {0.10, 0.0, 0.95},  {-0.10, 0.0, 0.95},
+          {-0.10, 0.0, 0.50}, {-0.10, 0.0, 0.05}, {0.25, 0.05, 0.95}, {0.22, 0.0, 1.20},
+          {0.20, 0.0, 1.45},  {-0.20, 0.0, 1.45}, {-0.22, 0.0, 1.20}, {-0.25, 0.05, 0.95},
+          {0.0, 0.0, 1.55},   {0.0, 0.0, 1.80}};
+}
+
+// A camera 4 m away at height 1.5 m looking at (0, 0, 1): K [R | t], f = 1000 px.
+Mat34 Camera(double azimuth) {
+  const Vec3 c(4.0 * std::cos(azimuth), 4.0 * std::sin(azimuth), 1.5);
+  const Vec3 z = (Vec3(0, 0, 1.0) - c).normalized();
+  const Vec3 x = z.cross(Vec3(0, 0, 1)).normalized();
+  const Vec3 y = z.cross(x);
+  Mat3 r;
+  r.row(0) = x.transpose();
+  r.row(1) = y.transpose();
+  r.row(2) = z.transpose();
+  Mat3 k;
+  k << 1000, 0, 640, 0, 1000, 360, 0, 0, 1;
+  Mat34 rt;
+  rt.leftCols<3>() = r;
+  rt.col(3) = -r * c;
+  return k * rt;
+}
+
+core::PersonView View(int camera, const Mat34& p, const std::vector<Vec3>& joints) {
+  core::PersonView v;
+  v.camera_index = camera;
+  v.observation.scale_px = 700.0;
+  for (const Vec3& j : joints) {
+    const Vec3 x = p * j.homogeneous();
+    v.observation.points_px.push_back(x.hnormalized());
+    v.observation.confidence.push_back(0.9);
+  }
+  return v;
+}
+
+double Length(const std::vector<std::optional<Vec3>>& j, std::pair<int, int> bone) {
+  return (*j[static_cast<std::size_t>(bone.first)] - *j[static_cast<std::size_t>(bone.second)])
+      .norm();
+}
+
+}  // namespace
+
+TEST_CASE("bone lengths: the median of a bone and its mirror image, once measured enough",
+          "[unit]") {
+  BoneLengths lengths(Layout());
+  std::vector<std::optional<Vec3>> frame(14);
+  frame[0] = Vec3(0, 0, 0.05);  // r_ankle
+  frame[1] = Vec3(0, 0, 0.50);  // r_knee: r_lower_leg 0.45
+  lengths.AddFrame(frame);
+  lengths.Update();
+  CHECK_FALSE(lengths.lengths()[0].has_value());  // one sample: not enough
+  for (int i = 0; i < 3; ++i) lengths.AddFrame(frame);
+  // The left lower leg (l_knee 4, l_ankle 5) measures 0.47 twice: pooled with the right one.
+  std::vector<std::optional<Vec3>> left(14);
+  left[4] = Vec3(0, 0, 0.52);
+  left[5] = Vec3(0, 0, 0.05);
+  lengths.AddFrame(left);
+  lengths.AddFrame(left);
+  // Implausible lengths are not samples.
+  std::vector<std::optional<Vec3>> crossing(14);
+  crossing[0] = Vec3(0, 0, 0);
+  crossing[1] = Vec3(0, 0, 3.0);
+  lengths.AddFrame(crossing);
+  lengths.Update();
+  const auto& bones = Layout().bones;
+  for (std::size_t i = 0; i < bones.size(); ++i) {
+    const bool lower_leg = bones[i] == std::pair<int, int>{0, 1} || bones[i] == std::pair<int, int>{4, 5};
+    if (lower_leg) {
+      REQUIRE(lengths.lengths()[i].has_value());
+      CHECK(*lengths.lengths()[i] == Approx(0.45));  // median of 0.45 x4, 0.47 x2
+    } else {
+      CHECK_FALSE(lengths.lengths()[i].has_value());
+    }
+  }
+  // Constant after kMaxSamples samples of a bone.
+  std::vector<std::optional<Vec3>> longer(14);
+  longer[0] = Vec3(0, 0, 0.0);
+  longer[1] = Vec3(0, 0, 0.6);
+  for (int i = 0; i < 2 * BoneLengths::kMaxSamples; ++i) lengths.AddFrame(longer);
+  lengths.Update();
+  const double settled = *lengths.lengths()[0];
+  for (int i = 0; i < 100; ++i) lengths.AddFrame(frame);
+  lengths.Update();
+  CHECK(*lengths.lengths()[0] == settled);
+}
+
+TEST_CASE("fit: joints move towards where three views see them, bones keep the track's lengths",
+          "[unit]") {
+  const std::vector<Vec3> truth = Person();
+  const std::vector<Mat34> cameras = {Camera(0.0), Camera(2.0), Camera(4.0)};
+  std::vector<core::PersonView> views;
+  for (int c = 0; c < 3; ++c) views.push_back(View(c, cameras[static_cast<std::size_t>(c)], truth));
+  // One view's right wrist is on somebody else (200 px off): the robust loss ignores it.
+  views[1].observation.points_px[6] += Vec2(200, -150);
+  // The start: the truth with 2 cm of noise (a triangulation); the head top missing.
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  std::vector<std::optional<Vec3>> start(truth.size());
+  for (std::size_t k = 0; k + 1 < truth.size(); ++k) {
+    start[k] = truth[k] + Vec3(noise(rng), noise(rng), noise(rng));
+  }
+  const auto& bones = Layout().bones;
+  std::vector<std::optional<double>> lengths;
+  for (const auto& b : bones) {
+    lengths.push_back(
+        (truth[static_cast<std::size_t>(b.first)] - truth[static_cast<std::size_t>(b.second)])
+            .norm());
+  }
+  const std::vector<std::optional<Vec3>> fitted =
+      FitJoints(start, views, cameras, bones, lengths, nullptr, FitOptions{});
+  REQUIRE(fitted.size() == truth.size());
+  CHECK_FALSE(fitted[13].has_value());  // no start: stays missing
+  double before = 0.0, after = 0.0;
+  for (std::size_t k = 0; k + 1 < truth.size(); ++k) {
+    REQUIRE(fitted[k].has_value());
+    before += (*start[k] - truth[k]).norm();
+    after += (*fitted[k] - truth[k]).norm();
+    CHECK((*fitted[k] - truth[k]).norm() < 0.03);
+  }
+  CHECK(after < 0.8 * before);  // a correction towards the views, not a new triangulation
+  for (std::size_t i = 0; i < bones.size(); ++i) {
+    if (bones[i].second == 13) continue;  // the head's top is missing
+    CHECK(Length(fitted, bones[i]) == Approx(*lengths[i]).margin(0.003));
+  }
+  // Without any view the start is kept as it is.
+  CHECK(FitJoints(start, {}, cameras, bones, lengths, nullptr, FitOptions{}) == start);
+}
+
+}  // namespace mvtrack::body
