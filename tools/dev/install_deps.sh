@@ -9,6 +9,8 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config git
   # algorithm and runtime libraries
   libeigen3-dev libopencv-core-dev libopencv-calib3d-dev
+  # the skeleton fit (lib/body)
+  libceres-dev
   # mvtrack view and calib check pictures (PNG, MP4) and OpenCV FileStorage calibrations
   libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-videoio-dev
   libyaml-cpp-dev libspdlog-dev libsystemd-dev
