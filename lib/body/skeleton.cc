@@ -2,9 +2,9 @@
 
 #include <ceres/ceres.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <Eigen/Geometry>
 #include <cmath>
 #include <string>
 

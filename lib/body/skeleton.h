@@ -44,9 +44,9 @@ class BoneLengths {
 
  private:
   std::vector<std::pair<int, int>> bones_;
-  std::vector<int> pool_;                     // per bone: the pooled group (bone and mirror)
+  std::vector<int> pool_;  // per bone: the pooled group (bone and mirror)
   std::vector<std::vector<std::pair<double, double>>> samples_;  // per group: (length, weight)
-  std::vector<int> samples_per_bone_;         // per bone, capped at kMaxSamples
+  std::vector<int> samples_per_bone_;                            // per bone, capped at kMaxSamples
   std::vector<std::optional<double>> lengths_;
 };
 

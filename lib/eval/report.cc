@@ -465,6 +465,45 @@ std::string PcpTable(const PcpResult& r) {
   return out;
 }
 
+std::string BonesTable(const BoneLengthStability& r) {
+  std::string out = "Bone lengths (tracks of >= " + std::to_string(r.min_frames) + " frames)\n";
+  std::vector<std::vector<std::string>> rows = {{"track", "frames", "CV mean%", "CV max%"}};
+  for (const BoneLengthTrack& t : r.tracks) {
+    rows.push_back({std::to_string(t.id),
+                    std::to_string(t.num_frames),
+                    Percent(t.cv_mean),
+                    Percent(t.cv_max)});
+  }
+  rows.push_back(
+      {"all", std::to_string(r.tracks.size()) + " tracks", Percent(r.cv_mean), Percent(r.cv_max)});
+  out += Columns(rows);
+  out += "  worst track CV mean " + Percent(r.cv_worst_track) + "%\n";
+  out += "  Protocol: " + r.protocol + "\n";
+  return out;
+}
+
+Json BonesJson(const BoneLengthStability& r) {
+  JsonObject o;
+  o.emplace_back("protocol", Str(r.protocol));
+  o.emplace_back("min_frames", Int(r.min_frames));
+  JsonArray limbs;
+  for (const std::string& l : r.limbs) limbs.push_back(Str(l));
+  o.emplace_back("limbs", Arr(std::move(limbs)));
+  JsonArray tracks;
+  for (const BoneLengthTrack& t : r.tracks) {
+    tracks.push_back(Obj({{"id", Int(t.id)},
+                          {"num_frames", Int(t.num_frames)},
+                          {"cv_mean", Num(t.cv_mean)},
+                          {"cv_max", Num(t.cv_max)}}));
+  }
+  o.emplace_back("tracks", Arr(std::move(tracks)));
+  o.emplace_back("num_tracks", Int(static_cast<std::int64_t>(r.tracks.size())));
+  o.emplace_back("cv_mean", Num(r.cv_mean));
+  o.emplace_back("cv_worst_track", Num(r.cv_worst_track));
+  o.emplace_back("cv_max", Num(r.cv_max));
+  return Obj(std::move(o));
+}
+
 std::string PointsTable(const PointComparison& r) {
   std::string out = "Footprints vs reference points (gate " + internal::FormatFixed(r.gate_m, 3) +
                     " m, frames " + DescribeFrameRanges(r.frame_ranges) + ")\n";
@@ -532,6 +571,10 @@ std::string FormatReportTable(const EvaluationReport& report) {
     if (!out.empty()) out += "\n";
     out += PointsTable(*report.points);
   }
+  if (report.bones.has_value()) {
+    if (!out.empty()) out += "\n";
+    out += BonesTable(*report.bones);
+  }
   if (out.empty()) out = "No evaluation results.\n";
   return out;
 }
@@ -542,6 +585,7 @@ std::string ReportToJson(const EvaluationReport& report, int precision) {
   if (report.tracking.has_value()) root.emplace_back("tracking", TrackingJson(*report.tracking));
   if (report.pcp.has_value()) root.emplace_back("pcp", PcpJson(*report.pcp));
   if (report.points.has_value()) root.emplace_back("points", PointsJson(*report.points));
+  if (report.bones.has_value()) root.emplace_back("bones", BonesJson(*report.bones));
   std::string out;
   Write(Obj(std::move(root)), std::clamp(precision, 0, 17), 0, &out);
   return out + "\n";

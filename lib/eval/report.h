@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "eval/bone_lengths.h"
 #include "eval/pcp.h"
 #include "eval/point_comparison.h"
 #include "eval/tracking_metrics.h"
@@ -19,6 +20,8 @@ struct EvaluationReport {
   std::optional<PcpResult> pcp;
   /// Footprints against reference points without identities (ComparePoints).
   std::optional<PointComparison> points;
+  /// Bone-length stability of the predicted poses (EvaluateBoneLengths).
+  std::optional<BoneLengthStability> bones;
 };
 
 /// A multi-line text table: CLEAR MOT / identity / MPJPE, then per-actor and per-group PCP,
@@ -30,7 +33,7 @@ std::string FormatReportTable(const EvaluationReport& report);
 /// The report as one JSON object, keys sorted at every level, numbers with exactly
 /// `precision` decimals (clamped to [0, 17]; integers as integers), NaN and infinities as
 /// null, 2-space indentation, newline-terminated. Top-level keys: "schema"
-/// ("mvtrack.eval/1"), and "tracking" / "pcp" / "points" when present. Ratios are
+/// ("mvtrack.eval/1"), and "tracking" / "pcp" / "points" / "bones" when present. Ratios are
 /// fractions (not %).
 std::string ReportToJson(const EvaluationReport& report, int precision = 6);
 

@@ -2,8 +2,8 @@
 
 #include "body/skeleton.h"
 
-#include <catch2/catch.hpp>
 #include <Eigen/Geometry>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -12,14 +12,26 @@ namespace mvtrack::body {
 namespace {
 
 // shelf14: legs, arms and head as separate bones (r_ankle 0 ... head_top 13).
-const core::KeypointLayout& Layout() { return core::GetKeypointLayout(core::KeypointLayoutId::kShelf14); }
+const core::KeypointLayout& Layout() {
+  return core::GetKeypointLayout(core::KeypointLayoutId::kShelf14);
+}
 
 // A standing person at the origin, shelf14 order, metres.
 std::vector<Vec3> Person() {
-  return {{0.10, 0.0, 0.05},  {0.10, 0.0, 0.50},  {0.10, 0.0, 0.95},  {-0.10, 0.0, 0.95},
-          {-0.10, 0.0, 0.50}, {-0.10, 0.0, 0.05}, {0.25, 0.05, 0.95}, {0.22, 0.0, 1.20},
-          {0.20, 0.0, 1.45},  {-0.20, 0.0, 1.45}, {-0.22, 0.0, 1.20}, {-0.25, 0.05, 0.95},
-          {0.0, 0.0, 1.55},   {0.0, 0.0, 1.80}};
+  return {{0.10, 0.0, 0.05},
+          {0.10, 0.0, 0.50},
+          {0.10, 0.0, 0.95},
+          {-0.10, 0.0, 0.95},
+          {-0.10, 0.0, 0.50},
+          {-0.10, 0.0, 0.05},
+          {0.25, 0.05, 0.95},
+          {0.22, 0.0, 1.20},
+          {0.20, 0.0, 1.45},
+          {-0.20, 0.0, 1.45},
+          {-0.22, 0.0, 1.20},
+          {-0.25, 0.05, 0.95},
+          {0.0, 0.0, 1.55},
+          {0.0, 0.0, 1.80}};
 }
 
 // A camera 4 m away at height 1.5 m looking at (0, 0, 1): K [R | t], f = 1000 px.
@@ -83,7 +95,8 @@ TEST_CASE("bone lengths: the median of a bone and its mirror image, once measure
   lengths.Update();
   const auto& bones = Layout().bones;
   for (std::size_t i = 0; i < bones.size(); ++i) {
-    const bool lower_leg = bones[i] == std::pair<int, int>{0, 1} || bones[i] == std::pair<int, int>{4, 5};
+    const bool lower_leg =
+        bones[i] == std::pair<int, int>{0, 1} || bones[i] == std::pair<int, int>{4, 5};
     if (lower_leg) {
       REQUIRE(lengths.lengths()[i].has_value());
       CHECK(*lengths.lengths()[i] == Approx(0.45));  // median of 0.45 x4, 0.47 x2

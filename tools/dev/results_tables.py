@@ -157,6 +157,10 @@ def metrics(report):
         out["pcp_actors"] = {str(a["actor_id"]): a["pcp"] for a in pc["actors"]}
         out["pcp_groups"] = dict(zip(pc["group_names"], pc["average_group_pcp"]))
         out["pcp_recall"] = pc["recall"]
+    bones = report.get("bones")
+    if bones and bones.get("num_tracks", 0) > 0:
+        out["bone_cv_mean"] = bones["cv_mean"]
+        out["bone_cv_worst_track"] = bones["cv_worst_track"]
     pt = report.get("points")
     if pt and pt.get("valid"):
         for k in ("num_frames", "num_reference", "num_predicted", "num_matched",
@@ -377,11 +381,16 @@ def render(out_dir, runs, info):
     md.append(table(hdr, rows))
 
     md.append("\n### Ablation: the multi-frame stages (issue 17)\n\n")
-    md.append("Each stage switched off (or widened) alone, the rest at the defaults. Campus hard: "
+    md.append("Each stage switched off (or widened) alone, the rest at the defaults. Bone CV: "
+              "per predicted track of at least 50 frames in the evaluated frames, the "
+              "coefficient of variation of each limb's length, mean over the 8 limbs (`mvtrack "
+              "eval --pcp`, \"Bone lengths\"); the mean over tracks / the worst track. Campus hard: "
               "the `hard` corruption level (docs/DECISIONS.md) at seeds 1-10 (`campus_hard` is "
               "seed 1, `campus_hard_sN` seed N), the mean of the ten average PCPs; Panoptic: "
               "average PCP over all bones, 160906_band1 / 160906_band2.\n\n")
-    hdr = ["variant", "Shelf Avg PCP", "Shelf Actor 2 (id 1)", "Shelf MPJPE mm", "Campus Avg PCP",
+    hdr = ["variant", "Shelf Avg PCP", "Shelf Actor 2 (id 1)", "Shelf MPJPE mm",
+           "Shelf bone CV % (mean / worst track)", "Campus Avg PCP",
+           "Campus bone CV % (mean / worst track)",
            "Campus hard mean PCP (seeds 1-10)", "Campus hard worst seed",
            "Campus hard mean MOTA", "Panoptic 5 cams",
            "Panoptic 10 cams", "runs"]
@@ -395,8 +404,11 @@ def render(out_dir, runs, info):
         sm = R["shelf" + suffix]["metrics"]
         pan = {n: " / ".join(pct(R[f"panoptic_{seq}_c{n}{suffix}"]["metrics"].get("pcp_average"))
                              for seq in ("band1", "band2")) for n in (5, 10)}
+        cm = R["campus" + suffix]["metrics"]
+        cv = lambda m: (pct(m.get("bone_cv_mean"), 2) + " / " +
+                        pct(m.get("bone_cv_worst_track"), 2))
         rows.append([label, pct(sm.get("pcp_average")), pct(actor_pcp(sm, 1)),
-                     mm(sm.get("mpjpe_m")), pct(R["campus" + suffix]["metrics"].get("pcp_average")),
+                     mm(sm.get("mpjpe_m")), cv(sm), pct(cm.get("pcp_average")), cv(cm),
                      pct(sum(hard) / len(hard), 2), pct(min(hard)), pct(hard_mota, 2), pan[5],
                      pan[10],
                      f"`shelf{suffix}`, `campus{suffix}`, `campus_hard{suffix}`, "

@@ -413,6 +413,10 @@ int RunEval(int argc, char** argv) {
       std::cerr << "mvtrack eval: PCP evaluation failed: " << report.pcp->error << "\n";
       return 1;
     }
+    // Bodies (issue 40): how much each predicted track's limbs change length, over the tracks
+    // of at least 2 s at 25 fps.
+    report.bones = eval::EvaluateBoneLengths(
+        pred_seq, core::GetKeypointLayout(eval_layout), 50, tracking_options.frame_ranges);
   }
   out << eval::FormatReportTable(report);
   if (args.Has("json")) WriteJsonReport(args, report);
