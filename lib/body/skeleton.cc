@@ -95,6 +95,7 @@ BoneLengths::BoneLengths(const core::KeypointLayout& layout) : bones_(layout.bon
   samples_.resize(static_cast<std::size_t>(groups));
   samples_per_bone_.assign(bones_.size(), 0);
   lengths_.assign(bones_.size(), std::nullopt);
+  uncertainties_.assign(bones_.size(), 0.0);
 }
 
 void BoneLengths::AddFrame(const std::vector<std::optional<Vec3>>& joints,
@@ -122,26 +123,46 @@ void BoneLengths::AddFrame(const std::vector<std::optional<Vec3>>& joints,
   }
 }
 
+namespace {
+
+// The weighted median of (value, weight) pairs sorted by value: the smallest value with at least
+// half the total weight at or below it.
+double WeightedMedian(const std::vector<std::pair<double, double>>& sorted) {
+  double total = 0.0;
+  for (const auto& [value, weight] : sorted) total += weight;
+  double below = 0.0;
+  for (const auto& [value, weight] : sorted) {
+    below += weight;
+    if (below >= 0.5 * total) return value;
+  }
+  return sorted.back().first;
+}
+
+}  // namespace
+
 void BoneLengths::Update() {
   for (std::size_t i = 0; i < bones_.size(); ++i) {
     std::vector<std::pair<double, double>> s = samples_[static_cast<std::size_t>(pool_[i])];
     if (static_cast<int>(s.size()) < kMinSamples) {
       lengths_[i] = std::nullopt;
+      uncertainties_[i] = 0.0;
       continue;
     }
-    // The weighted median: the smallest length with at least half the total weight at or
-    // below it.
     std::sort(s.begin(), s.end());
-    double total = 0.0;
-    for (const auto& [length, weight] : s) total += weight;
-    double below = 0.0;
+    const double median = WeightedMedian(s);
+    double sum = 0.0, sum2 = 0.0;
+    std::vector<std::pair<double, double>> deviations;
+    deviations.reserve(s.size());
     for (const auto& [length, weight] : s) {
-      below += weight;
-      if (below >= 0.5 * total) {
-        lengths_[i] = length;
-        break;
-      }
+      deviations.emplace_back(std::abs(length - median), weight);
+      sum += weight;
+      sum2 += weight * weight;
     }
+    std::sort(deviations.begin(), deviations.end());
+    const double spread = 1.4826 * WeightedMedian(deviations);
+    const double effective_samples = sum * sum / sum2;
+    lengths_[i] = median;
+    uncertainties_[i] = 1.253 * spread / std::sqrt(effective_samples);
   }
 }
 
@@ -151,7 +172,8 @@ std::vector<std::optional<Vec3>> FitJoints(const std::vector<std::optional<Vec3>
                                            const std::vector<std::pair<int, int>>& bones,
                                            const std::vector<std::optional<double>>& bone_lengths,
                                            const std::vector<std::optional<Vec3>>* previous,
-                                           const FitOptions& options) {
+                                           const FitOptions& options,
+                                           const std::vector<double>* bone_uncertainty_m) {
   MVTRACK_CHECK(bone_lengths.size() == bones.size());
   const std::size_t n = start.size();
   std::vector<std::array<double, 3>> x(n);
@@ -191,8 +213,12 @@ std::vector<std::optional<Vec3>> FitJoints(const std::vector<std::optional<Vec3>
     const auto a = static_cast<std::size_t>(bones[i].first);
     const auto b = static_cast<std::size_t>(bones[i].second);
     if (!bone_lengths[i] || a >= n || b >= n || !start[a] || !start[b]) continue;
+    const double u = bone_uncertainty_m != nullptr && i < bone_uncertainty_m->size()
+                         ? (*bone_uncertainty_m)[i]
+                         : 0.0;
+    const double sigma = std::sqrt(options.bone_sigma_m * options.bone_sigma_m + u * u);
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BoneError, 1, 3, 3>(
-                                 new BoneError(*bone_lengths[i], 1.0 / options.bone_sigma_m)),
+                                 new BoneError(*bone_lengths[i], 1.0 / sigma)),
                              nullptr,
                              x[a].data(),
                              x[b].data());

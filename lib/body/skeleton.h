@@ -41,6 +41,10 @@ class BoneLengths {
   void Update();
   /// Per bone of the layout; nullopt where not measured enough.
   const std::vector<std::optional<double>>& lengths() const { return lengths_; }
+  /// Per bone, metres: the standard error of its length (1.253 × the samples' robust spread,
+  /// 1.4826 × their weighted median absolute deviation, over √ of the effective sample count):
+  /// how far the length may still be from the person's; 0 where no length is known.
+  const std::vector<double>& uncertainties() const { return uncertainties_; }
 
  private:
   std::vector<std::pair<int, int>> bones_;
@@ -48,6 +52,7 @@ class BoneLengths {
   std::vector<std::vector<std::pair<double, double>>> samples_;  // per group: (length, weight)
   std::vector<int> samples_per_bone_;                            // per bone, capped at kMaxSamples
   std::vector<std::optional<double>> lengths_;
+  std::vector<double> uncertainties_;
 };
 
 /// Weights of the fit, each a standard deviation of its residual.
@@ -72,15 +77,18 @@ struct FitOptions {
 
 /// Fits one frame's joints: minimises the confidence-weighted reprojection error of every view's
 /// keypoints (Cauchy loss: a keypoint on another person or a mirrored limb costs little),
-/// the deviation of each bone from `bone_lengths` (where known), and the distances to the
-/// starting joints and to `previous` (where given). Joints without a starting value stay
-/// missing; joints are never removed. `projections`: by rig index, undistorted pixels.
+/// the deviation of each bone from `bone_lengths` (where known; its standard deviation
+/// FitOptions::bone_sigma_m combined with the length's `bone_uncertainty_m`, when given), and
+/// the distances to the starting joints and to `previous` (where given). Joints without a
+/// starting value stay missing; joints are never removed. `projections`: by rig index,
+/// undistorted pixels.
 std::vector<std::optional<Vec3>> FitJoints(const std::vector<std::optional<Vec3>>& start,
                                            const std::vector<core::PersonView>& views,
                                            const std::vector<Mat34>& projections,
                                            const std::vector<std::pair<int, int>>& bones,
                                            const std::vector<std::optional<double>>& bone_lengths,
                                            const std::vector<std::optional<Vec3>>* previous,
-                                           const FitOptions& options);
+                                           const FitOptions& options,
+                                           const std::vector<double>* bone_uncertainty_m = nullptr);
 
 }  // namespace mvtrack::body

@@ -24,11 +24,11 @@ struct BoneLengthTrack {
 /// The stability of every track with at least `min_frames` frames.
 struct BoneLengthStability {
   int min_frames = 0;
-  std::vector<std::string> limbs;  ///< "l_shoulder-l_elbow", ...: those the layout has
+  std::vector<std::string> limbs;       ///< "l_shoulder-l_elbow", ...: those the layout has
   std::vector<BoneLengthTrack> tracks;  ///< by id
-  double cv_mean = 0.0;         ///< mean of the tracks' cv_mean (0 without tracks)
-  double cv_worst_track = 0.0;  ///< largest cv_mean of a track
-  double cv_max = 0.0;          ///< largest cv_max of a track
+  double cv_mean = 0.0;                 ///< mean of the tracks' cv_mean (0 without tracks)
+  double cv_worst_track = 0.0;          ///< largest cv_mean of a track
+  double cv_max = 0.0;                  ///< largest cv_max of a track
   std::string protocol;
 };
 

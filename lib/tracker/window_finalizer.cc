@@ -182,14 +182,16 @@ linking::LinkResult WindowFinalizer::Finalize(const WindowResult& result,
           previous = &last->second.points;
         }
         const auto lengths = bone_lengths_.find(id);
-        points = &(fitted[{id, frame}] = body::FitJoints(
-                       *points,
-                       person.views[f],
-                       projections_,
-                       layout_.bones,
-                       lengths != bone_lengths_.end() ? lengths->second.lengths() : unknown_lengths,
-                       previous,
-                       fit_options_));
+        points =
+            &(fitted[{id, frame}] = body::FitJoints(
+                  *points,
+                  person.views[f],
+                  projections_,
+                  layout_.bones,
+                  lengths != bone_lengths_.end() ? lengths->second.lengths() : unknown_lengths,
+                  previous,
+                  fit_options_,
+                  lengths != bone_lengths_.end() ? &lengths->second.uncertainties() : nullptr));
       }
       Track3D track = MakeTrack(id, *points, frame, first->second, it->state);
       track.cameras = person.cameras;

@@ -24,9 +24,9 @@ EvalObject Body(std::int64_t id, double arm) {
   o.joints[3] = Vec3(-0.1, 0, 0.8);
   o.joints[4] = Vec3(-0.1, 0, 0.4);
   o.joints[5] = Vec3(-0.1, 0, 0.0);
-  o.joints[8] = Vec3(0.2, 0, 1.4);  // r_shoulder
-  o.joints[7] = Vec3(0.2, 0, 1.0);  // r_elbow
-  o.joints[6] = Vec3(0.2, 0, 0.6);  // r_wrist
+  o.joints[8] = Vec3(0.2, 0, 1.4);   // r_shoulder
+  o.joints[7] = Vec3(0.2, 0, 1.0);   // r_elbow
+  o.joints[6] = Vec3(0.2, 0, 0.6);   // r_wrist
   o.joints[9] = Vec3(-0.2, 0, 1.4);  // l_shoulder
   o.joints[10] = Vec3(-0.2, 0, 1.4 - arm);
   o.joints[11] = Vec3(-0.2, 0, 1.0 - arm);  // l_wrist: the lower arm stays 0.4 m
