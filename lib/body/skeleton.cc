@@ -1,8 +1,8 @@
 #include "body/skeleton.h"
 
-#include <ceres/ceres.h>
-
+#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -19,60 +19,6 @@ std::string Mirror(const std::string& name) {
   if (name.rfind("r_", 0) == 0) return "l_" + name.substr(2);
   return name;
 }
-
-// A joint seen by one camera: its pinhole projection against the keypoint, in units of the
-// keypoint's standard deviation.
-struct ReprojectionError {
-  ReprojectionError(const Mat34& projection, const Vec2& keypoint, double inverse_sigma)
-      : p(projection), u(keypoint.x()), v(keypoint.y()), w(inverse_sigma) {}
-
-  template <typename T>
-  bool operator()(const T* joint, T* residual) const {
-    T x[3];
-    for (int i = 0; i < 3; ++i) {
-      x[i] = p(i, 0) * joint[0] + p(i, 1) * joint[1] + p(i, 2) * joint[2] + p(i, 3);
-    }
-    if (x[2] <= T(1e-6)) {  // behind the camera: no information
-      residual[0] = T(0);
-      residual[1] = T(0);
-      return true;
-    }
-    residual[0] = (x[0] / x[2] - u) * w;
-    residual[1] = (x[1] / x[2] - v) * w;
-    return true;
-  }
-
-  Mat34 p;
-  double u, v, w;
-};
-
-// A bone's length against the track's.
-struct BoneError {
-  BoneError(double length, double inverse_sigma) : l(length), w(inverse_sigma) {}
-
-  template <typename T>
-  bool operator()(const T* a, const T* b, T* residual) const {
-    const T dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-    residual[0] = (ceres::sqrt(dx * dx + dy * dy + dz * dz + T(1e-12)) - l) * w;
-    return true;
-  }
-
-  double l, w;
-};
-
-// A joint's distance to a fixed point (its starting value, or the previous frame's).
-struct PointError {
-  PointError(const Vec3& point, double inverse_sigma) : q(point), w(inverse_sigma) {}
-
-  template <typename T>
-  bool operator()(const T* joint, T* residual) const {
-    for (int i = 0; i < 3; ++i) residual[i] = (joint[i] - q(i)) * w;
-    return true;
-  }
-
-  Vec3 q;
-  double w;
-};
 
 }  // namespace
 
@@ -166,49 +112,181 @@ void BoneLengths::Update() {
   }
 }
 
-std::vector<std::optional<Vec3>> FitJoints(const std::vector<std::optional<Vec3>>& start,
-                                           const std::vector<core::PersonView>& views,
-                                           const std::vector<Mat34>& projections,
-                                           const std::vector<std::pair<int, int>>& bones,
-                                           const std::vector<std::optional<double>>& bone_lengths,
-                                           const std::vector<std::optional<Vec3>>* previous,
-                                           const FitOptions& options,
-                                           const std::vector<double>* bone_uncertainty_m) {
-  MVTRACK_CHECK(bone_lengths.size() == bones.size());
-  const std::size_t n = start.size();
-  std::vector<std::array<double, 3>> x(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    if (start[k]) x[k] = {start[k]->x(), start[k]->y(), start[k]->z()};
+namespace {
+
+// An order to eliminate the unknowns of a block system coupled along `bones` in: leaves first
+// (an unknown with at most one neighbour left), so a tree or forest (every layout but coco17's
+// face and torso loops) is solved without fill-in; what is left when only cycles remain comes
+// last, solved together densely (SolveBlocks). -1 separates the two parts.
+std::vector<int> EliminationOrder(int m, const std::vector<FitProblem::Bone>& bones) {
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(m));
+  for (const FitProblem::Bone& b : bones) {
+    neighbours[static_cast<std::size_t>(b.slot_a)].push_back(b.slot_b);
+    neighbours[static_cast<std::size_t>(b.slot_b)].push_back(b.slot_a);
   }
-  ceres::Problem::Options problem_options;
-  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
-  ceres::CauchyLoss robust(2.0);
-  int observed = 0;
+  std::vector<int> degree(static_cast<std::size_t>(m));
+  std::vector<char> done(static_cast<std::size_t>(m), 0);
+  std::vector<int> leaves;
+  for (int i = 0; i < m; ++i) {
+    degree[static_cast<std::size_t>(i)] =
+        static_cast<int>(neighbours[static_cast<std::size_t>(i)].size());
+    if (degree[static_cast<std::size_t>(i)] <= 1) leaves.push_back(i);
+  }
+  std::vector<int> order;
+  while (!leaves.empty()) {
+    const int i = leaves.back();
+    leaves.pop_back();
+    if (done[static_cast<std::size_t>(i)]) continue;
+    done[static_cast<std::size_t>(i)] = 1;
+    order.push_back(i);
+    for (const int j : neighbours[static_cast<std::size_t>(i)]) {
+      if (done[static_cast<std::size_t>(j)]) continue;
+      if (--degree[static_cast<std::size_t>(j)] <= 1) leaves.push_back(j);
+    }
+  }
+  order.push_back(-1);
+  for (int i = 0; i < m; ++i) {
+    if (!done[static_cast<std::size_t>(i)]) order.push_back(i);
+  }
+  return order;
+}
+
+// Solves the symmetric block system (diagonal blocks `diagonal`, the block of bone k between its
+// two unknowns `coupling[k]`, symmetric) for `rhs` in place, in `order` (EliminationOrder):
+// each leaf is eliminated into its one remaining neighbour, the rest (cycles) is solved densely,
+// then the leaves are substituted back. False when a block is singular.
+// Each unknown's couplings: (neighbour, bone index).
+using Links = std::vector<std::vector<std::pair<int, int>>>;
+Links MakeLinks(std::size_t m, const std::vector<FitProblem::Bone>& bones) {
+  Links links(m);
+  for (std::size_t k = 0; k < bones.size(); ++k) {
+    links[static_cast<std::size_t>(bones[k].slot_a)].emplace_back(bones[k].slot_b,
+                                                                  static_cast<int>(k));
+    links[static_cast<std::size_t>(bones[k].slot_b)].emplace_back(bones[k].slot_a,
+                                                                  static_cast<int>(k));
+  }
+  return links;
+}
+
+bool SolveBlocks(const std::vector<int>& order,
+                 const Links& links,
+                 const std::vector<Eigen::Matrix3d>& coupling,
+                 std::vector<Eigen::Matrix3d>* diagonal,
+                 std::vector<Vec3>* rhs) {
+  const std::size_t m = diagonal->size();
+  std::vector<char> eliminated(m, 0);
+  struct Eliminated {
+    int unknown, neighbour, bone;
+    Eigen::Matrix3d inverse;
+  };
+  std::vector<Eliminated> stack;
+  std::size_t pos = 0;
+  for (; pos < order.size() && order[pos] >= 0; ++pos) {
+    const int i = order[pos];
+    const auto u = static_cast<std::size_t>(i);
+    bool invertible = false;
+    Eigen::Matrix3d inverse;
+    (*diagonal)[u].computeInverseWithCheck(inverse, invertible);
+    if (!invertible) return false;
+    int neighbour = -1, bone = -1;
+    for (const auto& [j, k] : links[u]) {
+      if (!eliminated[static_cast<std::size_t>(j)]) {
+        neighbour = j;
+        bone = k;
+      }
+    }
+    eliminated[u] = 1;
+    if (neighbour >= 0) {
+      const Eigen::Matrix3d& c = coupling[static_cast<std::size_t>(bone)];
+      const auto v = static_cast<std::size_t>(neighbour);
+      (*diagonal)[v].noalias() -= c * inverse * c;
+      (*rhs)[v].noalias() -= c * (inverse * (*rhs)[u]);
+    }
+    stack.push_back({i, neighbour, bone, inverse});
+  }
+  // What is left (cycles): densely.
+  std::vector<int> rest(
+      order.begin() + static_cast<std::ptrdiff_t>(std::min(pos + 1, order.size())), order.end());
+  if (!rest.empty()) {
+    std::vector<int> index(m, -1);
+    for (std::size_t r = 0; r < rest.size(); ++r)
+      index[static_cast<std::size_t>(rest[r])] = static_cast<int>(r);
+    const auto n = static_cast<Eigen::Index>(3 * rest.size());
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+    Eigen::VectorXd b(n);
+    for (std::size_t r = 0; r < rest.size(); ++r) {
+      const auto u = static_cast<std::size_t>(rest[r]);
+      const auto at = static_cast<Eigen::Index>(3 * r);
+      a.block<3, 3>(at, at) = (*diagonal)[u];
+      b.segment<3>(at) = (*rhs)[u];
+      for (const auto& [j, k] : links[u]) {
+        const int other = index[static_cast<std::size_t>(j)];
+        if (other < 0) continue;
+        a.block<3, 3>(at, 3 * other) = coupling[static_cast<std::size_t>(k)];
+      }
+    }
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
+    if (ldlt.info() != Eigen::Success) return false;
+    const Eigen::VectorXd x = ldlt.solve(b);
+    for (std::size_t r = 0; r < rest.size(); ++r) {
+      (*rhs)[static_cast<std::size_t>(rest[r])] = x.segment<3>(static_cast<Eigen::Index>(3 * r));
+    }
+  }
+  // Back-substitution, the last eliminated first: x_i = D_i^-1 (b_i - C x_neighbour).
+  for (auto it = stack.rbegin(); it != stack.rend(); ++it) {
+    const auto u = static_cast<std::size_t>(it->unknown);
+    Vec3 b = (*rhs)[u];
+    if (it->neighbour >= 0) {
+      b -= coupling[static_cast<std::size_t>(it->bone)] *
+           (*rhs)[static_cast<std::size_t>(it->neighbour)];
+    }
+    (*rhs)[u] = it->inverse * b;
+  }
+  return true;
+}
+
+}  // namespace
+
+FitProblem MakeFitProblem(const std::vector<std::optional<Vec3>>& start,
+                          const std::vector<core::PersonView>& views,
+                          const std::vector<Mat34>& projections,
+                          const std::vector<std::pair<int, int>>& bones,
+                          const std::vector<std::optional<double>>& bone_lengths,
+                          const std::vector<std::optional<Vec3>>* previous,
+                          const FitOptions& options,
+                          const std::vector<double>* bone_uncertainty_m) {
+  MVTRACK_CHECK(bone_lengths.size() == bones.size());
+  FitProblem problem;
+  problem.max_iterations = options.max_iterations;
+  const std::size_t n = start.size();
+  problem.slot_of_joint.assign(n, -1);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!start[k]) continue;
+    problem.slot_of_joint[k] = static_cast<int>(problem.joint_of_slot.size());
+    problem.joint_of_slot.push_back(static_cast<int>(k));
+  }
   for (const core::PersonView& view : views) {
     if (view.camera_index < 0 || static_cast<std::size_t>(view.camera_index) >= projections.size())
       continue;
     const Mat34& p = projections[static_cast<std::size_t>(view.camera_index)];
     const core::Observation2D& o = view.observation;
-    const double scale = std::max(o.scale_px, 1.0) * options.reprojection_sigma;
+    const double scale = std::max(o.scale_px, 1.0);
     for (std::size_t k = 0; k < n && k < o.points_px.size() && k < o.confidence.size(); ++k) {
       if (!start[k] || !(o.confidence[k] >= options.min_confidence)) continue;
       // Only keypoints the starting joint reprojects near: CMMT's clustering left out the
       // others (another person's limb, a left-right swap).
       const Vec3 h = p * start[k]->homogeneous();
-      if (!(h.z() > 0.0) ||
-          (h.hnormalized() - o.points_px[k]).norm() > options.gate * std::max(o.scale_px, 1.0)) {
+      if (!(h.z() > 0.0) || (h.hnormalized() - o.points_px[k]).norm() > options.gate * scale) {
         continue;
       }
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<ReprojectionError, 2, 3>(
-              new ReprojectionError(p, o.points_px[k], std::sqrt(o.confidence[k]) / scale)),
-          &robust,
-          x[k].data());
-      ++observed;
+      problem.reprojections.push_back(
+          {problem.slot_of_joint[k],
+           p,
+           o.points_px[k],
+           std::sqrt(o.confidence[k]) / (scale * options.reprojection_sigma)});
     }
   }
-  if (observed == 0) return start;
+  if (problem.reprojections.empty()) return problem;  // nothing to fit to
   for (std::size_t i = 0; i < bones.size(); ++i) {
     const auto a = static_cast<std::size_t>(bones[i].first);
     const auto b = static_cast<std::size_t>(bones[i].second);
@@ -217,39 +295,159 @@ std::vector<std::optional<Vec3>> FitJoints(const std::vector<std::optional<Vec3>
                          ? (*bone_uncertainty_m)[i]
                          : 0.0;
     const double sigma = std::sqrt(options.bone_sigma_m * options.bone_sigma_m + u * u);
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BoneError, 1, 3, 3>(
-                                 new BoneError(*bone_lengths[i], 1.0 / sigma)),
-                             nullptr,
-                             x[a].data(),
-                             x[b].data());
+    problem.bones.push_back(
+        {problem.slot_of_joint[a], problem.slot_of_joint[b], *bone_lengths[i], 1.0 / sigma});
   }
   for (std::size_t k = 0; k < n; ++k) {
     if (!start[k]) continue;
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointError, 3, 3>(
-                                 new PointError(*start[k], 1.0 / options.anchor_sigma_m)),
-                             nullptr,
-                             x[k].data());
+    problem.points.push_back({problem.slot_of_joint[k], *start[k], 1.0 / options.anchor_sigma_m});
     if (previous != nullptr && k < previous->size() && (*previous)[k]) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointError, 3, 3>(
-                                   new PointError(*(*previous)[k], 1.0 / options.smooth_sigma_m)),
-                               nullptr,
-                               x[k].data());
+      problem.points.push_back(
+          {problem.slot_of_joint[k], *(*previous)[k], 1.0 / options.smooth_sigma_m});
     }
   }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
-  solver.max_num_iterations = options.max_iterations;
-  solver.num_threads = 1;
-  solver.logging_type = ceres::SILENT;
-  solver.minimizer_progress_to_stdout = false;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-  std::vector<std::optional<Vec3>> out(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!start[k]) continue;
-    const Vec3 fitted(x[k][0], x[k][1], x[k][2]);
-    out[k] = fitted.allFinite() ? fitted : *start[k];
+  return problem;
+}
+
+double FitCost(const FitProblem& problem, const std::vector<Vec3>& x) {
+  const double c2 = problem.cauchy_scale * problem.cauchy_scale;
+  double cost = 0.0;
+  for (const FitProblem::Reprojection& r : problem.reprojections) {
+    const Vec3 h = r.projection * x[static_cast<std::size_t>(r.slot)].homogeneous();
+    if (!(h.z() > 1e-6)) continue;  // behind the camera: no information
+    const double s = ((h.hnormalized() - r.keypoint) * r.weight).squaredNorm();
+    cost += c2 * std::log1p(s / c2);
+  }
+  for (const FitProblem::Bone& b : problem.bones) {
+    const double d =
+        ((x[static_cast<std::size_t>(b.slot_a)] - x[static_cast<std::size_t>(b.slot_b)]).norm() -
+         b.length) *
+        b.weight;
+    cost += d * d;
+  }
+  for (const FitProblem::Point& p : problem.points) {
+    cost += ((x[static_cast<std::size_t>(p.slot)] - p.point) * p.weight).squaredNorm();
+  }
+  return cost;
+}
+
+namespace {
+
+// The Gauss-Newton normal equations of a FitProblem at one point: a 3x3 block per unknown, one
+// per bone (between its two unknowns), the gradient, and the cost (FitCost).
+struct Linearization {
+  std::vector<Eigen::Matrix3d> diagonal;
+  std::vector<Eigen::Matrix3d> coupling;  // by bone
+  std::vector<Vec3> gradient;
+  double cost = 0.0;
+};
+
+// Fills `out` at `x`; the reprojections are reweighted by the Cauchy loss's ρ'(s).
+void Linearize(const FitProblem& problem, const std::vector<Vec3>& x, Linearization* out) {
+  const double c2 = problem.cauchy_scale * problem.cauchy_scale;
+  out->diagonal.assign(x.size(), Eigen::Matrix3d::Zero());
+  out->gradient.assign(x.size(), Vec3::Zero());
+  out->coupling.resize(problem.bones.size());
+  out->cost = 0.0;
+  for (const FitProblem::Reprojection& r : problem.reprojections) {
+    const auto i = static_cast<std::size_t>(r.slot);
+    const Vec3 h = r.projection * x[i].homogeneous();
+    if (!(h.z() > 1e-6)) continue;  // behind the camera: no information
+    const Vec2 e = (h.hnormalized() - r.keypoint) * r.weight;
+    const double s = e.squaredNorm();
+    out->cost += c2 * std::log1p(s / c2);
+    const double omega = 1.0 / (1.0 + s / c2);
+    Eigen::Matrix<double, 2, 3> j;
+    j.row(0) = (r.projection.block<1, 3>(0, 0) - h.x() / h.z() * r.projection.block<1, 3>(2, 0)) /
+               h.z() * r.weight;
+    j.row(1) = (r.projection.block<1, 3>(1, 0) - h.y() / h.z() * r.projection.block<1, 3>(2, 0)) /
+               h.z() * r.weight;
+    out->diagonal[i].noalias() += omega * j.transpose() * j;
+    out->gradient[i].noalias() += omega * j.transpose() * e;
+  }
+  for (std::size_t k = 0; k < problem.bones.size(); ++k) {
+    const FitProblem::Bone& b = problem.bones[k];
+    const auto ia = static_cast<std::size_t>(b.slot_a), ib = static_cast<std::size_t>(b.slot_b);
+    const Vec3 d = x[ia] - x[ib];
+    const double length = std::max(d.norm(), 1e-9);
+    const Vec3 j = d / length * b.weight;  // the residual's gradient in x_a; in x_b it is -j
+    const double r = (length - b.length) * b.weight;
+    out->cost += r * r;
+    const Eigen::Matrix3d jj = j * j.transpose();
+    out->diagonal[ia] += jj;
+    out->diagonal[ib] += jj;
+    out->coupling[k] = -jj;
+    out->gradient[ia] += j * r;
+    out->gradient[ib] -= j * r;
+  }
+  for (const FitProblem::Point& p : problem.points) {
+    const auto i = static_cast<std::size_t>(p.slot);
+    const Vec3 d = x[i] - p.point;
+    out->cost += p.weight * p.weight * d.squaredNorm();
+    out->diagonal[i].diagonal().array() += p.weight * p.weight;
+    out->gradient[i] += p.weight * p.weight * d;
+  }
+}
+
+}  // namespace
+
+std::vector<Vec3> SolveFitProblem(const FitProblem& problem, std::vector<Vec3> x) {
+  const int m = static_cast<int>(x.size());
+  if (m == 0 || problem.reprojections.empty()) return x;
+  // The bones as a graph on the unknowns: its elimination order holds for every iteration.
+  const std::vector<int> order = EliminationOrder(m, problem.bones);
+  const Links links = MakeLinks(static_cast<std::size_t>(m), problem.bones);
+  Linearization at, trial_at;
+  Linearize(problem, x, &at);
+  std::vector<Eigen::Matrix3d> damped(static_cast<std::size_t>(m));
+  std::vector<Vec3> step(static_cast<std::size_t>(m));
+  std::vector<Vec3> trial(static_cast<std::size_t>(m));
+  double lambda = 1e-4;
+  for (int iteration = 0; iteration < problem.max_iterations; ++iteration) {
+    for (std::size_t u = 0; u < static_cast<std::size_t>(m); ++u) {
+      damped[u] = at.diagonal[u];
+      damped[u].diagonal() *= 1.0 + lambda;
+      step[u] = -at.gradient[u];
+    }
+    if (!SolveBlocks(order, links, at.coupling, &damped, &step)) break;
+    double step_norm = 0.0;
+    for (std::size_t u = 0; u < static_cast<std::size_t>(m); ++u) {
+      trial[u] = x[u] + step[u];
+      step_norm += step[u].squaredNorm();
+    }
+    Linearize(problem, trial, &trial_at);
+    if (std::isfinite(trial_at.cost) && trial_at.cost < at.cost) {
+      const bool converged = at.cost - trial_at.cost <= 1e-4 * at.cost || step_norm < 1e-10;
+      std::swap(x, trial);
+      std::swap(at, trial_at);
+      lambda = std::max(lambda * 0.3, 1e-9);
+      if (converged) break;
+    } else {
+      lambda *= 10.0;
+    }
+  }
+  return x;
+}
+
+std::vector<std::optional<Vec3>> FitJoints(const std::vector<std::optional<Vec3>>& start,
+                                           const std::vector<core::PersonView>& views,
+                                           const std::vector<Mat34>& projections,
+                                           const std::vector<std::pair<int, int>>& bones,
+                                           const std::vector<std::optional<double>>& bone_lengths,
+                                           const std::vector<std::optional<Vec3>>* previous,
+                                           const FitOptions& options,
+                                           const std::vector<double>* bone_uncertainty_m) {
+  const FitProblem problem = MakeFitProblem(
+      start, views, projections, bones, bone_lengths, previous, options, bone_uncertainty_m);
+  if (problem.reprojections.empty()) return start;
+  std::vector<Vec3> x;
+  x.reserve(problem.joint_of_slot.size());
+  for (const int k : problem.joint_of_slot) x.push_back(*start[static_cast<std::size_t>(k)]);
+  x = SolveFitProblem(problem, std::move(x));
+  std::vector<std::optional<Vec3>> out(start.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const auto k = static_cast<std::size_t>(problem.joint_of_slot[i]);
+    out[k] = x[i].allFinite() ? x[i] : *start[k];
   }
   return out;
 }

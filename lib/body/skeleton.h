@@ -72,8 +72,59 @@ struct FitOptions {
   double smooth_sigma_m = 0.10;
   /// Keypoints below this confidence are not used (TriangulationOptions::min_confidence).
   double min_confidence = 0.1;
-  int max_iterations = 10;
+  int max_iterations = 5;
 };
+
+/// The residuals of one frame's fit (MakeFitProblem), in the units of their standard deviations.
+/// The unknowns are the joints that have a starting value, in joint order ("slots").
+struct FitProblem {
+  std::vector<int> joint_of_slot;  ///< joint index per unknown
+  std::vector<int> slot_of_joint;  ///< unknown per joint, -1 for a joint without a start
+  /// π(P x) − keypoint, times `weight` (1 / σ), under a Cauchy loss of scale cauchy_scale.
+  struct Reprojection {
+    int slot = 0;
+    Mat34 projection = Mat34::Zero();
+    Vec2 keypoint = Vec2::Zero();
+    double weight = 1.0;
+  };
+  /// (|x_a − x_b| − length) × weight.
+  struct Bone {
+    int slot_a = 0, slot_b = 0;
+    double length = 0.0;
+    double weight = 1.0;
+  };
+  /// (x − point) × weight.
+  struct Point {
+    int slot = 0;
+    Vec3 point = Vec3::Zero();
+    double weight = 1.0;
+  };
+  std::vector<Reprojection> reprojections;
+  std::vector<Bone> bones;
+  std::vector<Point> points;
+  double cauchy_scale = 2.0;
+  int max_iterations = 5;
+};
+
+/// The residuals FitJoints minimises (see there); exposed for tests that solve them otherwise.
+FitProblem MakeFitProblem(const std::vector<std::optional<Vec3>>& start,
+                          const std::vector<core::PersonView>& views,
+                          const std::vector<Mat34>& projections,
+                          const std::vector<std::pair<int, int>>& bones,
+                          const std::vector<std::optional<double>>& bone_lengths,
+                          const std::vector<std::optional<Vec3>>* previous,
+                          const FitOptions& options,
+                          const std::vector<double>* bone_uncertainty_m = nullptr);
+
+/// The problem's cost at `x` (one point per slot): the sum of the squared point and bone
+/// residuals and of ρ(s) = c² log(1 + s / c²) over the reprojections' squared norms s.
+double FitCost(const FitProblem& problem, const std::vector<Vec3>& x);
+
+/// Minimises FitCost from `x` (one point per slot) by Levenberg-Marquardt on the Gauss-Newton
+/// normal equations with iteratively reweighted reprojections (Cauchy weights 1 / (1 + s / c²)),
+/// solved sparsely (a joint couples only to the joints it shares a bone with). Returns the
+/// minimiser found within problem.max_iterations.
+std::vector<Vec3> SolveFitProblem(const FitProblem& problem, std::vector<Vec3> x);
 
 /// Fits one frame's joints: minimises the confidence-weighted reprojection error of every view's
 /// keypoints (Cauchy loss: a keypoint on another person or a mirrored limb costs little),

@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config git
   # algorithm and runtime libraries
   libeigen3-dev libopencv-core-dev libopencv-calib3d-dev
-  # the skeleton fit (lib/body)
+  # tests: the reference the skeleton fit's solver is checked against (tests/body)
   libceres-dev
   # mvtrack view and calib check pictures (PNG, MP4) and OpenCV FileStorage calibrations
   libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-videoio-dev
