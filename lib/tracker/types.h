@@ -19,6 +19,9 @@ struct Track3D {
   Vec3 position = Vec3::Zero();
   /// Pose mode: one entry per joint of TrackerOptions::layout (world, metres); empty in box mode.
   std::vector<std::optional<Vec3>> joints;
+  /// Pose mode with refinement.fit_skeleton: the track's bone lengths, one per bone of the
+  /// layout (core::KeypointLayout::bones), metres, 0 where not known yet; empty otherwise.
+  std::vector<double> bone_lengths;
   /// Fraction of the track's points triangulated in this frame, in [0, 1].
   double confidence = 0.0;
   /// Cameras whose 2D tracklets supported the track in the window that produced this frame.

@@ -78,6 +78,14 @@ Track3D WindowFinalizer::MakeTrack(TrackId3D id,
   int valid = 0;
   for (const auto& p : points) valid += p ? 1 : 0;
   if (mode_ == InputMode::kPoses) track.joints = points;
+  if (fit_skeleton_) {
+    track.bone_lengths.assign(layout_.bones.size(), 0.0);
+    if (const auto lengths = bone_lengths_.find(id); lengths != bone_lengths_.end()) {
+      for (std::size_t b = 0; b < layout_.bones.size(); ++b) {
+        track.bone_lengths[b] = lengths->second.lengths()[b].value_or(0.0);
+      }
+    }
+  }
   track.position = FootprintOf(points);
   track.confidence = static_cast<double>(valid) / static_cast<double>(num_points_);
   track.age_frames = frame - first_frame;

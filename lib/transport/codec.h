@@ -160,7 +160,8 @@ struct TracksDecodeResult {
 /// Decodes a tracks3d_t from untrusted bytes (same guarantees as DecodeCameraDetections()).
 /// Beyond the structure it checks what the message's own contract makes checkable without
 /// geometry: a known keypoint_layout name ("" = box mode), a state that is one of STATE_*, and
-/// num_joints equal to 0 or to the layout's joint count (always 0 in box mode).
+/// num_joints equal to 0 or to the layout's joint count and num_bones to 0 or its bone count
+/// (always 0 in box mode).
 TracksDecodeResult DecodeTracks(const void* data,
                                 std::size_t size,
                                 const DecodeLimits& limits = {});

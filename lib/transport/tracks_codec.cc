@@ -33,7 +33,7 @@ using internal::WireWalker;
 // smallest track3d_t has no cameras and no joints.
 constexpr std::size_t kJointBytes = 3 * kDoubleBytes + kFloatBytes + kInt8Bytes;
 constexpr std::size_t kMinTrackBytes =
-    kInt64Bytes + kInt8Bytes + 3 * kDoubleBytes + kFloatBytes + 2 * kInt32Bytes + 2 * kInt16Bytes;
+    kInt64Bytes + kInt8Bytes + 3 * kDoubleBytes + kFloatBytes + 2 * kInt32Bytes + 3 * kInt16Bytes;
 
 std::optional<core::KeypointLayoutId> LayoutOfName(std::string_view name) {
   if (name.empty()) return core::KeypointLayoutId::kNone;
@@ -44,9 +44,13 @@ bool IsWireState(std::int8_t state) {
   return state >= mvtrack::track3d_t::STATE_TENTATIVE && state <= mvtrack::track3d_t::STATE_ENDED;
 }
 
-// Walks one track3d_t; `layout_joints` is the joint count of the message's layout (0 in box
-// mode).
-bool WalkTrack(WireWalker* w, const DecodeLimits& limits, int layout_joints, std::int32_t index) {
+// Walks one track3d_t; `layout_joints` and `layout_bones` are the joint and bone counts of the
+// message's layout (0 in box mode).
+bool WalkTrack(WireWalker* w,
+               const DecodeLimits& limits,
+               int layout_joints,
+               int layout_bones,
+               std::int32_t index) {
   std::int64_t id = 0;
   if (!w->ReadInt64("id", &id)) return false;
   w->set_context("track " + std::to_string(index) + " (id " + std::to_string(id) + ")");
@@ -77,7 +81,17 @@ bool WalkTrack(WireWalker* w, const DecodeLimits& limits, int layout_joints, std
                        std::to_string(layout_joints) + " joints of the message's layout",
                    joints_at);
   }
-  return w->Skip("joints", static_cast<std::size_t>(num_joints) * kJointBytes);
+  if (!w->Skip("joints", static_cast<std::size_t>(num_joints) * kJointBytes)) return false;
+  const std::size_t bones_at = w->position();
+  std::int32_t num_bones = 0;
+  if (!w->ReadCount16("num_bones", limits.max_joints, kFloatBytes, &num_bones)) return false;
+  if (num_bones != 0 && num_bones != layout_bones) {
+    return w->Fail(DecodeStatus::kMalformed,
+                   "num_bones " + std::to_string(num_bones) + " is neither 0 nor the " +
+                       std::to_string(layout_bones) + " bones of the message's layout",
+                   bones_at);
+  }
+  return w->Skip("bone_lengths", static_cast<std::size_t>(num_bones) * kFloatBytes);
 }
 
 bool WalkTracks(WireWalker* w, const DecodeLimits& limits) {
@@ -99,13 +113,14 @@ bool WalkTracks(WireWalker* w, const DecodeLimits& limits) {
                    layout_at);
   }
   const int layout_joints = core::GetKeypointLayout(*layout).num_joints();
+  const auto layout_bones = static_cast<int>(core::GetKeypointLayout(*layout).bones.size());
   std::int32_t num_tracks = 0;
   if (!w->ReadCount32("num_tracks", limits.max_tracks, kMinTrackBytes, &num_tracks)) {
     return false;
   }
   for (std::int32_t i = 0; i < num_tracks; ++i) {
     w->set_context("track " + std::to_string(i));
-    if (!WalkTrack(w, limits, layout_joints, i)) return false;
+    if (!WalkTrack(w, limits, layout_joints, layout_bones, i)) return false;
   }
   w->set_context("");
   if (w->remaining() > 0) {
@@ -178,6 +193,7 @@ TracksDecodeResult DecodeTracks(const void* data, std::size_t size, const Decode
           track.joints.emplace_back(std::nullopt);
         }
       }
+      track.bone_lengths.assign(t.bone_lengths.begin(), t.bone_lengths.end());
       out.frame.tracks.push_back(std::move(track));
       out.info.push_back(info);
     }
@@ -222,8 +238,9 @@ std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
     cameras.erase(std::unique(cameras.begin(), cameras.end()), cameras.end());
     MVTRACK_CHECK_MSG(cameras.size() <= static_cast<std::size_t>(INT16_MAX),
                       "too many cameras for track3d_t");
-    MVTRACK_CHECK_MSG(track.joints.size() <= static_cast<std::size_t>(INT16_MAX),
-                      "too many joints for track3d_t");
+    MVTRACK_CHECK_MSG(track.joints.size() <= static_cast<std::size_t>(INT16_MAX) &&
+                          track.bone_lengths.size() <= static_cast<std::size_t>(INT16_MAX),
+                      "too many joints or bones for track3d_t");
     mvtrack::track3d_t t;
     t.id = track.id;
     t.state = ToWireState(track.state);
@@ -246,6 +263,9 @@ std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
       j.valid = joint ? 1 : 0;
       t.joints.push_back(j);
     }
+    t.num_bones = static_cast<std::int16_t>(track.bone_lengths.size());
+    t.bone_lengths.reserve(track.bone_lengths.size());
+    for (const double length : track.bone_lengths) t.bone_lengths.push_back(NarrowToFloat(length));
     msg.tracks.push_back(std::move(t));
   }
   const int size = msg.getEncodedSize();

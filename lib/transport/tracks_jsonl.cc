@@ -93,7 +93,11 @@ bool GetTrack(json::Checker* c,
               const std::string& path,
               tracker::Track3D* track) {
   std::map<std::string, const json::Value*> m;
-  if (!c->Members(v, path, {"id", "joints", "position"}, {"id", "joints", "position"}, &m)) {
+  if (!c->Members(v,
+                  path,
+                  {"bone_lengths", "id", "joints", "position"},
+                  {"id", "joints", "position"},
+                  &m)) {
     return false;
   }
   const json::Value& id = *m.at("id");
@@ -125,6 +129,19 @@ bool GetTrack(json::Checker* c,
     if (!GetPoint(c, joint, path, "joints", static_cast<long>(j), &point)) return false;
     track->joints.emplace_back(point);
   }
+  if (const auto bones = m.find("bone_lengths"); bones != m.end()) {
+    const std::string bones_path = json::Checker::Join(path, "bone_lengths");
+    if (bones->second->kind != json::Value::Kind::kArray) {
+      return c->ExpectKind(*bones->second, bones_path, json::Value::Kind::kArray);
+    }
+    for (std::size_t b = 0; b < bones->second->items.size(); ++b) {
+      double length = 0.0;
+      if (!c->GetDouble(bones->second->items[b], json::Checker::Index(bones_path, b), &length)) {
+        return false;
+      }
+      track->bone_lengths.push_back(length);
+    }
+  }
   return true;
 }
 
@@ -153,7 +170,16 @@ std::string TracksJsonLine(const tracker::Frame3D& frame, core::KeypointLayoutId
   for (std::size_t k = 0; k < order.size(); ++k) {
     const tracker::Track3D& track = frame.tracks[order[k]];
     if (k > 0) out.append(", ");
-    out.append("{\"id\": ");
+    out.push_back('{');
+    if (!track.bone_lengths.empty()) {
+      out.append("\"bone_lengths\": [");
+      for (std::size_t b = 0; b < track.bone_lengths.size(); ++b) {
+        if (b > 0) out.append(", ");
+        AppendFixed(std::isfinite(track.bone_lengths[b]) ? track.bone_lengths[b] : 0.0, &out);
+      }
+      out.append("], ");
+    }
+    out.append("\"id\": ");
     AppendInt(track.id, &out);
     out.append(", \"joints\": [");
     for (std::size_t j = 0; j < track.joints.size(); ++j) {

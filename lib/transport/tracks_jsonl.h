@@ -5,8 +5,10 @@
 /// finalized frame:
 ///
 ///   {"frame": F, "layout": "<name>", "tracks": [T, ...], "utime": U}
-///   T = {"id": I, "joints": [J, ...], "position": [x, y, z]}
+///   T = {["bone_lengths": [L, ...], ]"id": I, "joints": [J, ...], "position": [x, y, z]}
 ///   J = [x, y, z] or null
+///   L = a bone length of the layout's bone in order, metres (0: not known yet); only with the
+///       skeleton fit (tracker::Track3D::bone_lengths non-empty)
 ///
 /// Canonical means byte-for-byte reproducible: keys sorted alphabetically at every level,
 /// tracks sorted by id, ", " and ": " as separators, integers in plain decimal, coordinates in
@@ -31,10 +33,10 @@ namespace mvtrack::transport {
 /// Digits after the decimal point of every coordinate (0.1 mm).
 inline constexpr int kTracksJsonDecimals = 4;
 
-/// The canonical line of `frame` (terminated by "\n"). Writes id, footprint and joints of each
-/// track; confidence, cameras, age and state are not part of the format. Tracks with equal ids
-/// keep their order. The joints are written as given (the tracker's invariant: none in box
-/// mode, one per joint of `layout` in pose mode).
+/// The canonical line of `frame` (terminated by "\n"). Writes id, footprint, joints and bone
+/// lengths (when it has them) of each track; confidence, cameras, age and state are not part of the
+/// format. Tracks with equal ids keep their order. The joints are written as given (the tracker's
+/// invariant: none in box mode, one per joint of `layout` in pose mode).
 std::string TracksJsonLine(const tracker::Frame3D& frame, core::KeypointLayoutId layout);
 
 /// Parses one line of the format above (whitespace between tokens is free, a trailing "\n" or

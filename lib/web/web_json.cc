@@ -43,6 +43,8 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
     const tracker::Track3D& t = message.frame.tracks[i];
     json joints = json::array();
     for (const std::optional<Vec3>& j : t.joints) joints.push_back(j ? Point(*j) : json(nullptr));
+    json bones = json::array();
+    for (const double b : t.bone_lengths) bones.push_back(Number(b));
     tracks.push_back(
         {{"id", t.id},
          {"state", i < message.info.size() ? StateName(message.info[i].state) : "confirmed"},
@@ -50,7 +52,8 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
          {"confidence", Number(t.confidence)},
          {"age_frames", t.age_frames},
          {"cameras", t.cameras},
-         {"joints", std::move(joints)}});
+         {"joints", std::move(joints)},
+         {"bone_lengths", std::move(bones)}});
   }
   const json o = {{"type", "tracks"},
                   {"frame", message.frame.frame},

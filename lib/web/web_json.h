@@ -16,7 +16,9 @@ namespace mvtrack::web {
 
 /// {"type":"tracks", "frame", "utime", "publish_utime", "latency_us", "layout", "tracks":[{"id",
 /// "state", "position":[x,y,z], "confidence", "age_frames", "cameras":[...], "joints":[[x,y,z]
-/// or null, ...]}]} on one line. `state` is "tentative", "confirmed", "lost" or "ended".
+/// or null, ...], "bone_lengths":[metres per bone of the layout, 0 = not known yet; empty
+/// without the skeleton fit]}]} on one line. `state` is "tentative", "confirmed", "lost" or
+/// "ended".
 std::string TracksEventJson(const transport::TracksMessage& message);
 
 /// {"type":"status", every tracker_status_t field, "flags":[names], "health", "reasons":[...],

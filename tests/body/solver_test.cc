@@ -153,14 +153,14 @@ TEST_CASE("fit solver: the minimum Ceres finds, on trees and on layouts with loo
       previous[k] = truth[k] + 0.05 * Vec3(noise(rng), noise(rng), noise(rng));
     }
     for (const auto& [a, b] : layout.bones) {
-      lengths.push_back((truth[static_cast<std::size_t>(a)] - truth[static_cast<std::size_t>(b)])
-                            .norm() *
-                        (1.0 + 0.03 * noise(rng)));
+      lengths.push_back(
+          (truth[static_cast<std::size_t>(a)] - truth[static_cast<std::size_t>(b)]).norm() *
+          (1.0 + 0.03 * noise(rng)));
     }
     FitOptions options;
     options.max_iterations = 100;
-    const FitProblem problem = MakeFitProblem(
-        start, views, cameras, layout.bones, lengths, &previous, options);
+    const FitProblem problem =
+        MakeFitProblem(start, views, cameras, layout.bones, lengths, &previous, options);
     REQUIRE(problem.reprojections.size() > 2 * n);
     REQUIRE_FALSE(problem.bones.empty());
     std::vector<Vec3> x0;

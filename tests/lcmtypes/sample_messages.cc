@@ -241,6 +241,13 @@ track3d_t MakeTrack3d(std::uint32_t seed, std::int64_t id, std::int8_t state, in
     const bool valid = state != track3d_t::STATE_LOST && j % 6 != 5;
     track.joints.push_back(MakeJoint3d(seed * 131u + static_cast<std::uint32_t>(j), valid));
   }
+  // With joints (coco17: 19 bones), the track's bone lengths; 0 = not known yet.
+  if (num_joints > 0) {
+    for (int b = 0; b < 19; ++b) {
+      track.bone_lengths.push_back(b % 7 == 6 ? 0.0f : gen.Uniform(0.05f, 0.6f));
+    }
+  }
+  track.num_bones = static_cast<std::int16_t>(track.bone_lengths.size());
   return track;
 }
 
@@ -375,6 +382,8 @@ std::string Dump(const track3d_t& msg, const std::string& prefix) {
   f.IntArray("camera_ids", msg.camera_ids.data(), msg.camera_ids.size());
   f.Int("num_joints", msg.num_joints);
   f.StructArray("joints", msg.joints);
+  f.Int("num_bones", msg.num_bones);
+  f.RealArray("bone_lengths", msg.bone_lengths.data(), msg.bone_lengths.size());
   return f.Render();
 }
 

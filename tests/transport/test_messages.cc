@@ -95,6 +95,10 @@ tracker::Frame3D MakeTracksFrame(std::uint32_t seed, bool pose) {
                                      FloatExact(&rng, 0.0, 2.0)));
         }
       }
+      // The track's bone lengths (coco17: 19 bones), one not known yet.
+      for (int b = 0; b < 19; ++b) {
+        t.bone_lengths.push_back(b == 4 ? 0.0 : FloatExact(&rng, 0.05, 0.6));
+      }
     }
     frame.tracks.push_back(std::move(t));
   }
@@ -160,7 +164,8 @@ Tracks3dOffsets OffsetsOf(const mvtrack::tracks3d_t& msg) {
   // tracks3d_t: fingerprint(8) utime(8) frame(8) publish_utime(8) latency_us(8) string
   // keypoint_layout, int32 num_tracks, tracks[]. track3d_t: id(8) state(1) position(24)
   // confidence(4) age_frames(4) missed_frames(4) int16 num_cameras, 4 bytes per camera, int16
-  // num_joints, 29 bytes per joint (3 doubles, float, boolean).
+  // num_joints, 29 bytes per joint (3 doubles, float, boolean), int16 num_bones, 4 bytes per
+  // bone length.
   Tracks3dOffsets out;
   out.keypoint_layout = 8 + 4 * 8;
   out.num_tracks = out.keypoint_layout + 4 + msg.keypoint_layout.size() + 1;
@@ -171,7 +176,8 @@ Tracks3dOffsets OffsetsOf(const mvtrack::tracks3d_t& msg) {
     o.state = pos + 8;
     o.num_cameras = o.state + 1 + 24 + 4 + 4 + 4;
     o.num_joints = o.num_cameras + 2 + 4 * t.camera_ids.size();
-    pos = o.num_joints + 2 + 29 * t.joints.size();
+    o.num_bones = o.num_joints + 2 + 29 * t.joints.size();
+    pos = o.num_bones + 2 + 4 * t.bone_lengths.size();
     out.tracks.push_back(o);
   }
   out.total = pos;

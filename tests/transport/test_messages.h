@@ -62,6 +62,7 @@ struct TrackOffsets {
   std::size_t state = 0;        ///< int8
   std::size_t num_cameras = 0;  ///< int16
   std::size_t num_joints = 0;   ///< int16
+  std::size_t num_bones = 0;    ///< int16
 };
 
 /// Offsets in an encoded tracks3d_t.

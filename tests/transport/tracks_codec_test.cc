@@ -67,6 +67,8 @@ mvtrack::tracks3d_t ReferenceMessage(const tracker::Frame3D& canonical,
       j.valid = joint ? 1 : 0;
       t.joints.push_back(j);
     }
+    t.num_bones = static_cast<std::int16_t>(track.bone_lengths.size());
+    for (const double b : track.bone_lengths) t.bone_lengths.push_back(static_cast<float>(b));
     msg.tracks.push_back(t);
   }
   return msg;
@@ -206,6 +208,14 @@ TEST_CASE("track structure errors name the track and field", "[unit]") {
     PutBigEndian(&bytes, offsets.tracks[i].num_joints, 1, 2);
     RequireRejected(
         bytes, DecodeStatus::kMalformed, prefix + "num_joints 1 is neither 0 nor the 17 joints");
+    bytes = good;
+    PutBigEndian(&bytes, offsets.tracks[i].num_bones, 0x8000, 2);
+    RequireRejected(bytes, DecodeStatus::kMalformed, prefix + "num_bones -32768 is negative");
+    PutBigEndian(&bytes, offsets.tracks[i].num_bones, 32767, 2);
+    RequireRejected(bytes, DecodeStatus::kLimitExceeded, prefix + "num_bones 32767 exceeds");
+    PutBigEndian(&bytes, offsets.tracks[i].num_bones, 18, 2);
+    RequireRejected(
+        bytes, DecodeStatus::kMalformed, prefix + "num_bones 18 is neither 0 nor the 19 bones");
   }
 
   // A joint count that does not match the layout: 17 joints in a box-mode message.

@@ -63,6 +63,17 @@ TEST_CASE("the canonical line of a hand-made pose frame", "[unit]") {
   CHECK(TracksJsonLine(HandMadePoseFrame(), core::KeypointLayoutId::kShelf14) == expected);
 }
 
+TEST_CASE("bone lengths follow the joints, when the track has them", "[unit]") {
+  tracker::Frame3D frame = HandMadePoseFrame();
+  frame.tracks[0].bone_lengths.assign(9, 0.0);  // shelf14: 9 bones
+  frame.tracks[0].bone_lengths[0] = 0.45;
+  frame.tracks[0].bone_lengths[8] = 0.23456;
+  const std::string line = TracksJsonLine(frame, core::KeypointLayoutId::kShelf14);
+  CHECK_THAT(line,
+             Catch::Contains("{\"bone_lengths\": [0.4500, 0.0000, 0.0000, 0.0000, 0.0000, "
+                             "0.0000, 0.0000, 0.0000, 0.2346], \"id\": 2, \"joints\": "));
+}
+
 TEST_CASE("the canonical line in box mode and of an empty frame", "[unit]") {
   tracker::Frame3D frame;
   frame.frame = 0;
@@ -165,6 +176,10 @@ TEST_CASE("parse(format(x)) == x within the printed precision", "[unit]") {
             t.joints.emplace_back(Vec3(coordinate(rng), coordinate(rng), coordinate(rng)));
           }
         }
+        // With the skeleton fit: the track's bone lengths (coco17: 19 bones).
+        if (trial % 4 == 0) {
+          for (int b = 0; b < 19; ++b) t.bone_lengths.push_back(std::abs(coordinate(rng)) / 50.0);
+        }
       }
       frame.tracks.push_back(t);
     }
@@ -194,6 +209,10 @@ TEST_CASE("parse(format(x)) == x within the printed precision", "[unit]") {
         if (want.joints[j]) {
           CHECK((*got.joints[j] - *want.joints[j]).cwiseAbs().maxCoeff() <= kTolerance);
         }
+      }
+      REQUIRE(got.bone_lengths.size() == want.bone_lengths.size());
+      for (std::size_t b = 0; b < want.bone_lengths.size(); ++b) {
+        CHECK(std::abs(got.bone_lengths[b] - want.bone_lengths[b]) <= kTolerance);
       }
     }
     // The canonical form is a fixed point.
@@ -300,7 +319,7 @@ TEST_CASE("the parser rejects malformed lines with a reason", "[unit]") {
       {head + "{\"id\": 1, \"joints\": 3, \"position\": [1, 2, 3]}" + tail,
        "tracks[0].joints: expected an array, found a number"},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [1, 2, 3], \"cameras\": []}" + tail,
-       "tracks[0].cameras: unknown key \"cameras\" (allowed: id, joints, position)"},
+       "tracks[0].cameras: unknown key \"cameras\" (allowed: bone_lengths, id, joints, position)"},
       {std::string(head) + "[[[[[[1]]]]]]" + tail, "nesting deeper than 5"},
   };
   for (const auto& [line, needle] : cases) {

@@ -175,8 +175,11 @@ TEST_CASE("tracks event: the documented fields, states, joints as null or [x,y,z
   t.cameras = {0, 2};
   t.joints.assign(17, std::nullopt);
   t.joints[0] = Vec3(1.0, 2.0, 1.7);
+  t.bone_lengths.assign(19, 0.0);  // with the skeleton fit: coco17's 19 bones
+  t.bone_lengths[3] = 0.25;
   m.frame.tracks.push_back(t);
   t.id = 10;
+  t.bone_lengths.clear();
   t.position = Vec3(std::nan(""), 0.0, 0.0);
   m.frame.tracks.push_back(t);
   m.info.resize(2);
@@ -195,6 +198,9 @@ TEST_CASE("tracks event: the documented fields, states, joints as null or [x,y,z
   CHECK(a["joints"].size() == 17);
   CHECK(a["joints"][0][2] == 1.7);
   CHECK(a["joints"][1].is_null());
+  CHECK(a["bone_lengths"].size() == 19);
+  CHECK(a["bone_lengths"][3] == 0.25);
+  CHECK(e["tracks"][1]["bone_lengths"] == json::array());
   CHECK(e["tracks"][1]["state"] == "lost");
   CHECK(e["tracks"][1]["position"][0].is_null());  // not finite -> null, still valid JSON
 }
