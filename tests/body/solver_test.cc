@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "body/skeleton.h"
+#include "body/test_cameras.h"
 
 namespace mvtrack::body {
 namespace {
@@ -92,23 +93,7 @@ std::vector<Vec3> SolveWithCeres(const FitProblem& problem, const std::vector<Ve
   return out;
 }
 
-// A camera 4 m away at height 1.5 m looking at (0, 0, 1), f = 1000 px.
-Mat34 Camera(double azimuth) {
-  const Vec3 c(4.0 * std::cos(azimuth), 4.0 * std::sin(azimuth), 1.5);
-  const Vec3 z = (Vec3(0, 0, 1.0) - c).normalized();
-  const Vec3 x = z.cross(Vec3(0, 0, 1)).normalized();
-  const Vec3 y = z.cross(x);
-  Mat3 r;
-  r.row(0) = x.transpose();
-  r.row(1) = y.transpose();
-  r.row(2) = z.transpose();
-  Mat3 k;
-  k << 1000, 0, 640, 0, 1000, 360, 0, 0, 1;
-  Mat34 rt;
-  rt.leftCols<3>() = r;
-  rt.col(3) = -r * c;
-  return k * rt;
-}
+Mat34 Camera(double azimuth) { return testing::RingCamera(azimuth); }
 
 }  // namespace
 

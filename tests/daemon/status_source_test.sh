@@ -23,6 +23,12 @@ unshare -n bash -euc '
   health() {  # health NAME: /healthz code and text into NAME.code and NAME.txt
     curl -s -o "$OUT/$1.txt" -w "%{http_code}\n" http://127.0.0.1:18081/healthz > "$OUT/$1.code"
   }
+  status() {  # status NAME: mvtrack status output and exit code into status_NAME.txt / .code
+    set +e
+    "$MVTRACK" status --url "$URL" --timeout 3 > "$OUT/status_$1.txt"
+    echo $? > "$OUT/status_$1.code"
+    set -e
+  }
   "$MVTRACK" web --listen 127.0.0.1:18081 --url "$URL" --stale-after 2 > "$OUT/web.log" 2>&1 &
   WEB=$!
   for _ in $(seq 100); do grep -q "serving http" "$OUT/web.log" && break; sleep 0.1; done
@@ -31,10 +37,7 @@ unshare -n bash -euc '
   DAEMON=$!
   sleep 1.5
   health alone
-  set +e
-  "$MVTRACK" status --url "$URL" --timeout 3 > "$OUT/status_alone.txt"
-  echo $? > "$OUT/status_alone.code"
-  set -e
+  status alone
   instance=$(sed -n "s/.*, instance \([0-9a-f]*\), status #.*/\1/p" "$OUT/status_alone.txt")
   echo "$instance" > "$OUT/instance.txt"
   # A second instance, five statuses a second for 3 s.
@@ -42,10 +45,7 @@ unshare -n bash -euc '
   SECOND=$!
   sleep 0.7
   health two
-  set +e
-  "$MVTRACK" status --url "$URL" --timeout 3 > "$OUT/status_two.txt"
-  echo $? > "$OUT/status_two.code"
-  set -e
+  status two
   wait $SECOND
   sleep 2.5  # longer than --stale-after: the conflict is forgotten
   # A replay: the daemon'"'"'s own instance id with sequence 1.
