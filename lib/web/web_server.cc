@@ -9,6 +9,7 @@
 #include <charconv>
 #include <chrono>
 #include <condition_variable>
+#include <ctime>
 #include <deque>
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
@@ -23,6 +24,19 @@
 #include "service/status_check.h"
 #include "transport/codec.h"
 #include "web/web_json.h"
+
+// civetweb 1.15 as Debian builds it (without REENTRANT_TIME) formats the Date header of every
+// response with gmtime(), whose result is one static buffer per process: two of its threads
+// answering at once race on it (ThreadSanitizer reports it, and a Date header can come out
+// mixed). This definition in the program takes the C library's place for civetweb (the dynamic
+// linker binds its call to the program's symbol first): the same conversion into a buffer per
+// thread, which POSIX allows.
+// (The buffer's TLS model is the executable's own: the library is compiled position-independent,
+// whose default model would make the program need the dynamic loader's __tls_get_addr.)
+extern "C" struct tm* gmtime(const time_t* t) noexcept {
+  [[gnu::tls_model("initial-exec")]] thread_local struct tm result;
+  return gmtime_r(t, &result);
+}
 
 namespace mvtrack::web {
 namespace {
