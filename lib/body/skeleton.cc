@@ -4,7 +4,6 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <string>
 
@@ -87,13 +86,12 @@ double WeightedMedian(const std::vector<std::pair<double, double>>& sorted) {
 }  // namespace
 
 void BoneLengths::Update() {
-  for (std::size_t i = 0; i < bones_.size(); ++i) {
-    std::vector<std::pair<double, double>> s = samples_[static_cast<std::size_t>(pool_[i])];
-    if (static_cast<int>(s.size()) < kMinSamples) {
-      lengths_[i] = std::nullopt;
-      uncertainties_[i] = 0.0;
-      continue;
-    }
+  // Per pooled group (a bone and its mirror image): its length and the length's standard error.
+  std::vector<std::optional<double>> group_length(samples_.size());
+  std::vector<double> group_uncertainty(samples_.size(), 0.0);
+  for (std::size_t g = 0; g < samples_.size(); ++g) {
+    std::vector<std::pair<double, double>> s = samples_[g];
+    if (static_cast<int>(s.size()) < kMinSamples) continue;
     std::sort(s.begin(), s.end());
     const double median = WeightedMedian(s);
     double sum = 0.0, sum2 = 0.0;
@@ -107,54 +105,18 @@ void BoneLengths::Update() {
     std::sort(deviations.begin(), deviations.end());
     const double spread = 1.4826 * WeightedMedian(deviations);
     const double effective_samples = sum * sum / sum2;
-    lengths_[i] = median;
-    uncertainties_[i] = 1.253 * spread / std::sqrt(effective_samples);
+    group_length[g] = median;
+    group_uncertainty[g] = 1.253 * spread / std::sqrt(effective_samples);
+  }
+  for (std::size_t i = 0; i < bones_.size(); ++i) {
+    const auto g = static_cast<std::size_t>(pool_[i]);
+    lengths_[i] = group_length[g];
+    uncertainties_[i] = group_uncertainty[g];
   }
 }
 
 namespace {
 
-// An order to eliminate the unknowns of a block system coupled along `bones` in: leaves first
-// (an unknown with at most one neighbour left), so a tree or forest (every layout but coco17's
-// face and torso loops) is solved without fill-in; what is left when only cycles remain comes
-// last, solved together densely (SolveBlocks). -1 separates the two parts.
-std::vector<int> EliminationOrder(int m, const std::vector<FitProblem::Bone>& bones) {
-  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(m));
-  for (const FitProblem::Bone& b : bones) {
-    neighbours[static_cast<std::size_t>(b.slot_a)].push_back(b.slot_b);
-    neighbours[static_cast<std::size_t>(b.slot_b)].push_back(b.slot_a);
-  }
-  std::vector<int> degree(static_cast<std::size_t>(m));
-  std::vector<char> done(static_cast<std::size_t>(m), 0);
-  std::vector<int> leaves;
-  for (int i = 0; i < m; ++i) {
-    degree[static_cast<std::size_t>(i)] =
-        static_cast<int>(neighbours[static_cast<std::size_t>(i)].size());
-    if (degree[static_cast<std::size_t>(i)] <= 1) leaves.push_back(i);
-  }
-  std::vector<int> order;
-  while (!leaves.empty()) {
-    const int i = leaves.back();
-    leaves.pop_back();
-    if (done[static_cast<std::size_t>(i)]) continue;
-    done[static_cast<std::size_t>(i)] = 1;
-    order.push_back(i);
-    for (const int j : neighbours[static_cast<std::size_t>(i)]) {
-      if (done[static_cast<std::size_t>(j)]) continue;
-      if (--degree[static_cast<std::size_t>(j)] <= 1) leaves.push_back(j);
-    }
-  }
-  order.push_back(-1);
-  for (int i = 0; i < m; ++i) {
-    if (!done[static_cast<std::size_t>(i)]) order.push_back(i);
-  }
-  return order;
-}
-
-// Solves the symmetric block system (diagonal blocks `diagonal`, the block of bone k between its
-// two unknowns `coupling[k]`, symmetric) for `rhs` in place, in `order` (EliminationOrder):
-// each leaf is eliminated into its one remaining neighbour, the rest (cycles) is solved densely,
-// then the leaves are substituted back. False when a block is singular.
 // Each unknown's couplings: (neighbour, bone index).
 using Links = std::vector<std::vector<std::pair<int, int>>>;
 Links MakeLinks(std::size_t m, const std::vector<FitProblem::Bone>& bones) {
@@ -168,6 +130,42 @@ Links MakeLinks(std::size_t m, const std::vector<FitProblem::Bone>& bones) {
   return links;
 }
 
+// An order to eliminate the unknowns of a block system coupled by `links` in: leaves first
+// (an unknown with at most one neighbour left), so a tree or forest (every layout but coco17's
+// face and torso loops) is solved without fill-in; what is left when only cycles remain comes
+// last, solved together densely (SolveBlocks). -1 separates the two parts.
+std::vector<int> EliminationOrder(const Links& links) {
+  const std::size_t m = links.size();
+  std::vector<int> degree(m);
+  std::vector<char> done(m, 0);
+  std::vector<int> leaves;
+  for (std::size_t i = 0; i < m; ++i) {
+    degree[i] = static_cast<int>(links[i].size());
+    if (degree[i] <= 1) leaves.push_back(static_cast<int>(i));
+  }
+  std::vector<int> order;
+  while (!leaves.empty()) {
+    const int i = leaves.back();
+    leaves.pop_back();
+    if (done[static_cast<std::size_t>(i)]) continue;
+    done[static_cast<std::size_t>(i)] = 1;
+    order.push_back(i);
+    for (const auto& [j, bone] : links[static_cast<std::size_t>(i)]) {
+      if (done[static_cast<std::size_t>(j)]) continue;
+      if (--degree[static_cast<std::size_t>(j)] <= 1) leaves.push_back(j);
+    }
+  }
+  order.push_back(-1);
+  for (std::size_t i = 0; i < m; ++i) {
+    if (!done[i]) order.push_back(static_cast<int>(i));
+  }
+  return order;
+}
+
+// Solves the symmetric block system (diagonal blocks `diagonal`, the block of bone k between its
+// two unknowns `coupling[k]`, symmetric) for `rhs` in place, in `order` (EliminationOrder):
+// each leaf is eliminated into its one remaining neighbour, the rest (cycles) is solved densely,
+// then the leaves are substituted back. False when a block is singular.
 bool SolveBlocks(const std::vector<int>& order,
                  const Links& links,
                  const std::vector<Eigen::Matrix3d>& coupling,
@@ -309,28 +307,6 @@ FitProblem MakeFitProblem(const std::vector<std::optional<Vec3>>& start,
   return problem;
 }
 
-double FitCost(const FitProblem& problem, const std::vector<Vec3>& x) {
-  const double c2 = problem.cauchy_scale * problem.cauchy_scale;
-  double cost = 0.0;
-  for (const FitProblem::Reprojection& r : problem.reprojections) {
-    const Vec3 h = r.projection * x[static_cast<std::size_t>(r.slot)].homogeneous();
-    if (!(h.z() > 1e-6)) continue;  // behind the camera: no information
-    const double s = ((h.hnormalized() - r.keypoint) * r.weight).squaredNorm();
-    cost += c2 * std::log1p(s / c2);
-  }
-  for (const FitProblem::Bone& b : problem.bones) {
-    const double d =
-        ((x[static_cast<std::size_t>(b.slot_a)] - x[static_cast<std::size_t>(b.slot_b)]).norm() -
-         b.length) *
-        b.weight;
-    cost += d * d;
-  }
-  for (const FitProblem::Point& p : problem.points) {
-    cost += ((x[static_cast<std::size_t>(p.slot)] - p.point) * p.weight).squaredNorm();
-  }
-  return cost;
-}
-
 namespace {
 
 // The Gauss-Newton normal equations of a FitProblem at one point: a 3x3 block per unknown, one
@@ -342,7 +318,8 @@ struct Linearization {
   double cost = 0.0;
 };
 
-// Fills `out` at `x`; the reprojections are reweighted by the Cauchy loss's ρ'(s).
+// Fills `out` at `x` (its cost is FitCost's); the reprojections are reweighted by the Cauchy
+// loss's ρ'(s).
 void Linearize(const FitProblem& problem, const std::vector<Vec3>& x, Linearization* out) {
   const double c2 = problem.cauchy_scale * problem.cauchy_scale;
   out->diagonal.assign(x.size(), Eigen::Matrix3d::Zero());
@@ -391,12 +368,18 @@ void Linearize(const FitProblem& problem, const std::vector<Vec3>& x, Linearizat
 
 }  // namespace
 
+double FitCost(const FitProblem& problem, const std::vector<Vec3>& x) {
+  Linearization at;
+  Linearize(problem, x, &at);
+  return at.cost;
+}
+
 std::vector<Vec3> SolveFitProblem(const FitProblem& problem, std::vector<Vec3> x) {
   const int m = static_cast<int>(x.size());
   if (m == 0 || problem.reprojections.empty()) return x;
   // The bones as a graph on the unknowns: its elimination order holds for every iteration.
-  const std::vector<int> order = EliminationOrder(m, problem.bones);
   const Links links = MakeLinks(static_cast<std::size_t>(m), problem.bones);
+  const std::vector<int> order = EliminationOrder(links);
   Linearization at, trial_at;
   Linearize(problem, x, &at);
   std::vector<Eigen::Matrix3d> damped(static_cast<std::size_t>(m));

@@ -3,7 +3,8 @@
 /// Bodies, not point clouds (issue 40): a person's bone lengths, estimated per track from its
 /// triangulated frames, and the per-frame fit of its joints to the 2D keypoints of every view
 /// that sees it, with those bone lengths, near its previous frame (docs/DECISIONS.md "Bodies").
-/// Pure: no I/O, deterministic (Ceres Solver, single-threaded).
+/// Pure: no I/O, deterministic; its solver is written for the problem (SolveFitProblem) and
+/// checked against Ceres Solver in tests/body.
 
 #include <optional>
 #include <vector>

@@ -158,7 +158,7 @@ void StatusSourceWatch::Add(const TrackerStatusSource& source, double now_s) {
                       Printable(previous->id)};
     }
     if (instances_.size() >= kMaxInstances) instances_.erase(instances_.begin());
-    instances_.push_back({id, source.sequence, now_s});
+    instances_.push_back({id, source.sequence});
     return;
   }
   if (&*it != previous) {
@@ -173,11 +173,8 @@ void StatusSourceWatch::Add(const TrackerStatusSource& source, double now_s) {
                       std::to_string(source.sequence) + " after " +
                       std::to_string(it->last_sequence) + "): replayed or forged status messages"};
   }
-  Instance updated = *it;
-  updated.last_sequence = std::max(updated.last_sequence, source.sequence);
-  updated.last_seen_s = now_s;
-  instances_.erase(it);
-  instances_.push_back(std::move(updated));
+  it->last_sequence = std::max(it->last_sequence, source.sequence);
+  std::rotate(it, it + 1, instances_.end());  // the most recently heard last
 }
 
 HealthReport StatusSourceWatch::Assess(double now_s) const {

@@ -103,7 +103,6 @@ class StatusSourceWatch {
   struct Instance {
     std::string id;
     std::int64_t last_sequence = 0;
-    double last_seen_s = 0.0;
   };
   struct Event {
     double at_s = -1e300;
