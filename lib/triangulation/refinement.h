@@ -128,9 +128,9 @@ struct RefinementOptions {
   /// Pose mode: after linking, every output frame's joints are fitted to the 2D keypoints of
   /// the views that see the person, with the bone lengths of its track (body::FitJoints,
   /// tracker::WindowFinalizer; docs/DECISIONS.md "Bodies"). Off by default until it is both
-  /// better on every dataset and fast (measured in docs/ACCURACY.md "Bodies"): Campus at the
-  /// hard level gains 0.3 PCP over seeds 2-10, Panoptic loses 1-2 mm MPJPE, and each fit costs
-  /// ~0.3 ms (Shelf replay 3.5x slower).
+  /// better on every dataset and fast enough (measured in docs/ACCURACY.md "Bodies"): Campus at
+  /// the hard level gains 0.3 PCP over seeds 2-10, Panoptic loses up to 2 mm MPJPE, and the pose
+  /// grid's two-camera points run at a third of their speed with it (~35 µs per fit).
   bool fit_skeleton = false;
 
   /// Checks ranges: merge_distance_m and box_merge_distance_m finite and >= 0,
