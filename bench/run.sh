@@ -14,7 +14,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${BUILD_DIR:-$root/build/bench}
 out=${OUT:-$root/bench/results}
 suite=${SUITE:-full}
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMVTRACK_BUILD_TESTS=OFF
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMVTRACK_BUILD_TESTS=OFF \
+  -DMVTRACK_BUILD_PICTURES=ON
 cmake --build "$build" --target mvtrack
 echo "bench/run.sh: load before: $(cat /proc/loadavg) (measure on a quiet machine)"
 if [ "$suite" = "full" ] && [ $# -eq 0 ]; then

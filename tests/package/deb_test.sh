@@ -159,6 +159,7 @@ for pkg in "${packages[@]}"; do
       owner=$(dpkg -S "$(readlink -f "$path")" 2>/dev/null | head -1 | cut -d: -f1) ||
         owner=$(dpkg -S "$path" 2>/dev/null | head -1 | cut -d: -f1) || true
       [ -n "$owner" ] || fail "$elf: no Debian package owns $path ($lib)"
+      echo "$owner" >>"$WORK/owners-$(basename "$elf").txt"
       # The owner, or a virtual package it provides (libspdlog1.10 provides libspdlog1.10-fmt9).
       provided=$(printf '%s\n%s\n' "$owner" "$(dpkg-query -W -f='${Provides}' "$owner" 2>/dev/null |
                  tr ',' '\n' | sed -E 's/\(.*\)//; s/^ +//; s/ +$//')")
@@ -213,6 +214,26 @@ for pkg in "${packages[@]}"; do
   done
   echo "$pkg: Depends: ${depends:-(none)}${recommends:+; Recommends: $recommends}; conffiles $(wc -l <"$d/conffiles.txt"); scripts: ${want_scripts:-none}"
 done
+
+# 9b. install_deps.sh's `run` profile is exactly what the two programs run with (the owners of
+#     the shared libraries of mvtrackd and mvtrack), and what mvtrack-pictures needs beyond it
+#     is the runtime part of the `pictures` profile: `install_deps.sh run` (or `build`, the
+#     demo's) installs all that the packaged programs load, and nothing they do not.
+profile() { bash "$SRC/tools/dev/install_deps.sh" --list "$1" | sort -u; }
+for f in mvtrackd mvtrack mvtrack-pictures; do
+  [ -s "$WORK/owners-$f.txt" ] || fail "no shared libraries recorded for bin/$f"
+done
+sort -u "$WORK/owners-mvtrackd.txt" "$WORK/owners-mvtrack.txt" >"$WORK/run_owners.txt"
+profile run >"$WORK/run_profile.txt"
+cmp -s "$WORK/run_owners.txt" "$WORK/run_profile.txt" ||
+  { diff "$WORK/run_profile.txt" "$WORK/run_owners.txt" >&2 || true
+    fail "install_deps.sh's run profile (<) differs from the packages owning mvtrackd's and mvtrack's libraries (>)"; }
+sort -u "$WORK/owners-mvtrack-pictures.txt" | comm -23 - "$WORK/run_profile.txt" >"$WORK/pictures_owners.txt"
+comm -23 <(profile pictures) <(profile build) | grep -v -- '-dev$' >"$WORK/pictures_profile.txt" || true
+cmp -s "$WORK/pictures_owners.txt" "$WORK/pictures_profile.txt" ||
+  { diff "$WORK/pictures_profile.txt" "$WORK/pictures_owners.txt" >&2 || true
+    fail "install_deps.sh's pictures libraries (<) differ from what mvtrack-pictures needs beyond the run profile (>)"; }
+echo "install_deps.sh: run profile = the libraries of mvtrackd and mvtrack ($(tr '\n' ' ' <"$WORK/run_profile.txt")); pictures adds $(tr '\n' ' ' <"$WORK/pictures_owners.txt")"
 
 # 10. mvtrackd's maintainer scripts, run with a deb-systemd-helper that records its calls (no
 #     systemd here: the [ -d /run/systemd/system ] branches are skipped, as in a chroot).

@@ -22,8 +22,8 @@
 # on every exit.
 #
 # Usage: tools/dev/deb_chroot_test.sh [options]
-#   --build DIR     build tree to run cpack in (default build/release; configured with
-#                   -DCMAKE_INSTALL_PREFIX=/usr and built)
+#   --build DIR     build tree to run cpack in (default build/package: the package preset,
+#                   configured with -DCMAKE_INSTALL_PREFIX=/usr, and built)
 #   --debs DIR      use the .debs already in DIR instead of running cpack
 #   --mirror URL    Debian mirror (default http://deb.debian.org/debian)
 #   --tarball FILE  reuse the debootstrap download: FILE is made on the first run
@@ -36,7 +36,7 @@
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 
-build=$repo/build/release
+build=$repo/build/package
 debs_dir=""
 mirror=http://deb.debian.org/debian
 tarball=""
@@ -59,33 +59,12 @@ while [ $# -gt 0 ]; do
 done
 cd "$repo"
 
-die() { echo "deb_chroot_test: error: $*" >&2; exit 1; }
-[ "$(id -u)" -eq 0 ] || die "needs root (debootstrap, chroot, mount)"
-command -v debootstrap >/dev/null || die "debootstrap not found: apt-get install debootstrap"
+name=deb_chroot_test
+# shellcheck source=chroot_lib.sh
+. "$repo/tools/dev/chroot_lib.sh"
+chroot_start
 
 # The packages.
-work=$(mktemp -d "${TMPDIR:-/var/tmp}/mvtrack-chroot.XXXXXX")
-root=$work/root
-mounted=()
-cleanup() {
-  local rc=$?
-  local i
-  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
-    umount "${mounted[$i]}" 2>/dev/null || umount -l "${mounted[$i]}" 2>/dev/null ||
-      echo "deb_chroot_test: could not unmount ${mounted[$i]}" >&2
-  done
-  if [ "$keep" = 1 ]; then
-    echo "deb_chroot_test: kept $work"
-  else
-    # Only once nothing is mounted below it.
-    if ! grep -qF " $work/" /proc/mounts; then rm -rf "$work"; fi
-  fi
-  exit $rc
-}
-trap cleanup EXIT
-trap 'exit 130' INT
-trap 'exit 143' TERM
-
 mkdir -p "$work/debs"
 if [ -n "$debs_dir" ]; then
   cp "$debs_dir"/*.deb "$work/debs/" || die "no .deb in $debs_dir"
@@ -111,41 +90,9 @@ deb_tools=$(deb_of mvtrack-tools)
 deb_python=$(deb_of python3-mvtrack-lcmtypes)
 
 # A fresh Debian 12.
-echo
-echo "== debootstrap --variant=minbase bookworm ($mirror)"
-start=$(date +%s)
-if [ -n "$tarball" ]; then
-  if [ ! -f "$tarball" ]; then
-    debootstrap --variant=minbase --make-tarball="$tarball" bookworm "$work/tarball-tmp" "$mirror" \
-      >"$work/debootstrap.log" 2>&1 || { tail -20 "$work/debootstrap.log" >&2; die "debootstrap --make-tarball failed"; }
-  fi
-  debootstrap --variant=minbase --unpack-tarball="$tarball" bookworm "$root" "$mirror" \
-    >"$work/debootstrap.log" 2>&1 || { tail -20 "$work/debootstrap.log" >&2; die "debootstrap failed"; }
-else
-  debootstrap --variant=minbase bookworm "$root" "$mirror" >"$work/debootstrap.log" 2>&1 ||
-    { tail -20 "$work/debootstrap.log" >&2; die "debootstrap failed"; }
-fi
-echo "debootstrap: $(($(date +%s) - start)) s, $(chroot "$root" dpkg-query -W | wc -l) packages"
-
-for m in proc sys dev dev/pts; do
-  mkdir -p "$root/$m"
-  case $m in
-    proc) mount -t proc proc "$root/proc" ;;
-    sys) mount -t sysfs sysfs "$root/sys" ;;
-    *) mount --bind "/$m" "$root/$m" ;;
-  esac
-  mounted+=("$root/$m")
-done
-cp /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
+chroot_debootstrap "$mirror" "$tarball"
 cp -r "$work/debs" "$root/tmp/debs"
 
-in_root() { chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root \
-              LC_ALL=C.UTF-8 DEBIAN_FRONTEND=noninteractive "$@"; }
-snapshot() { in_root dpkg-query -W -f='${binary:Package}\t${Installed-Size}\n' | sort >"$1"; }
-# new_packages BEFORE AFTER: "count installed-MB" of the packages in AFTER and not in BEFORE.
-new_packages() {
-  join -v2 -t$'\t' "$1" "$2" | awk -F'\t' '{ n++; kb += $2 } END { printf "%d %.1f\n", n, kb / 1024 }'
-}
 in_root apt-get update -qq >"$work/apt-update.log" 2>&1 ||
   { cat "$work/apt-update.log" >&2; die "apt-get update failed in the chroot"; }
 

@@ -5,7 +5,7 @@
 # tracks are printed and scored against the simulation's ground truth.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-tools/dev/install_deps.sh
+tools/dev/install_deps.sh build
 export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
 cmake --preset release >/dev/null
 cmake --build --preset release --target mvtrack mvtrackd

@@ -18,6 +18,11 @@ if [ ! -f "$BUILD/CMakeCache.txt" ]; then
 fi
 export CCACHE_BASEDIR="$ROOT" CCACHE_NOHASHDIR=true
 cmake --build "$BUILD" --target mvtrack >/dev/null
+[ -x "$BUILD/tools/mvtrack-pictures" ] || {
+  echo "render_readme_images: $BUILD has no mvtrack-pictures (it draws): run" \
+       "tools/dev/install_deps.sh pictures, configure again (cmake --preset release), then this" >&2
+  exit 1
+}
 M=$BUILD/tools/mvtrack
 OUT=$ROOT/docs/images
 WORK=$(mktemp -d)

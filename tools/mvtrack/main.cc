@@ -87,7 +87,9 @@ int main(int argc, char** argv) {
     if (helper.empty()) {
       std::cerr << "mvtrack " << c.name
                 << ": error: the helper mvtrack-pictures is not installed "
-                   "next to mvtrack\n";
+                   "next to mvtrack (Debian package mvtrack-tools; a build from source has it "
+                   "when OpenCV imgproc, imgcodecs and videoio are installed: "
+                   "tools/dev/install_deps.sh pictures, then build again)\n";
       return 1;
     }
     std::vector<char*> args(argv, argv + argc);

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# README command 1 as a new user runs it on a fresh Debian 12: debootstraps bookworm (variant
+# minbase, tools/dev/chroot_lib.sh), puts a commit's tree in /root/mvtrack (git archive: the
+# committed files only, no build tree, no ccache), runs `tools/dev/demo.sh` there as root and
+# reports its wall time, the packages it installed (count and MiB), whether any of them is a
+# JDK or Java runtime, a browser, an X server or a linter, and the demo's scores. Not run by CI:
+# it downloads the packages from the Debian mirror (about 250 MB for the current profile).
+# Needs root, debootstrap and about 3 GB in TMPDIR.
+#
+# Usage: tools/dev/fresh_demo_test.sh [options]
+#   --rev REV       the commit to run (default HEAD); an older one measures the time before a change
+#   --mirror URL    Debian mirror (default http://deb.debian.org/debian)
+#   --tarball FILE  reuse the debootstrap download (made on the first run, unpacked on later ones)
+#   --keep          keep the chroot directory (printed at the end)
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/../.." && pwd)
+rev=HEAD
+mirror=http://deb.debian.org/debian
+tarball=""
+keep=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --rev) rev=$2; shift ;;
+    --mirror) mirror=$2; shift ;;
+    --tarball) tarball=$(readlink -f "$2"); shift ;;
+    --keep) keep=1 ;;
+    -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    *) echo "fresh_demo_test: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+name=fresh_demo_test
+# shellcheck source=chroot_lib.sh
+. "$repo/tools/dev/chroot_lib.sh"
+commit=$(git -C "$repo" rev-parse --verify "$rev^{commit}" 2>/dev/null) || die "no commit '$rev' in $repo"
+chroot_start
+chroot_debootstrap "$mirror" "$tarball"
+
+mkdir -p "$root/root/mvtrack"
+git -C "$repo" archive "$commit" | tar -x -C "$root/root/mvtrack"
+snapshot "$work/before.txt"
+echo
+echo "== tools/dev/demo.sh of $(git -C "$repo" log -1 --format='%h %s' "$commit" | cut -c1-90)"
+start=$(date +%s.%N)
+rc=0
+in_root sh -c 'cd /root/mvtrack && tools/dev/demo.sh' >"$work/demo.log" 2>&1 || rc=$?
+end=$(date +%s.%N)
+snapshot "$work/after.txt"
+read -r n mb < <(new_packages "$work/before.txt" "$work/after.txt")
+seconds=$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.0f", b - a }')
+heavy=$(join -v2 -t$'\t' "$work/before.txt" "$work/after.txt" | cut -f1 |
+        grep -E 'openjdk|jdk|jre|chromium|firefox|^xserver|^xvfb|clang-tidy|clang-format' || true)
+tail -4 "$work/demo.log"
+echo
+echo "fresh_demo_test: $(git -C "$repo" rev-parse --short "$commit"): exit $rc, $seconds s" \
+     "($((seconds / 60)) min $((seconds % 60)) s), $n packages installed ($mb MiB)"
+echo "fresh_demo_test: JDK, browser, X server or linter among them: ${heavy:-none}" | tr '\n' ' '
+echo
+[ "$rc" -eq 0 ] || { tail -30 "$work/demo.log" >&2; die "tools/dev/demo.sh failed (exit $rc)"; }
+grep -q "MOTA" "$work/demo.log" || die "the demo printed no scores"
