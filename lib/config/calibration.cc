@@ -22,10 +22,9 @@ using internal::GetDouble;
 using internal::GetInt;
 using internal::GetSequence;
 using internal::GetString;
+using internal::kMaxImageSidePx;
 using internal::MapRef;
 using internal::NodeRef;
-
-constexpr int kMaxImageSidePx = 1 << 20;
 
 // The intrinsic scalars of the alternative to `K`.
 const std::vector<std::string> kIntrinsicScalars = {"fx", "fy", "cx", "cy", "skew"};

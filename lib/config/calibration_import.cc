@@ -24,7 +24,7 @@
 namespace mvtrack::config {
 namespace {
 
-constexpr int kMaxImageSidePx = 1 << 20;
+using internal::kMaxImageSidePx;
 // Largest difference allowed between a FileStorage Rot_<c> and Rodrigues(R_<c>).
 constexpr double kRotationAgreement = 1e-6;
 constexpr double kMmToM = 1e-3;

@@ -1,5 +1,6 @@
 #include "core/keypoint_layout.h"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <span>
@@ -262,6 +263,11 @@ std::optional<KeypointLayoutId> KeypointLayoutFromName(std::string_view name) {
     if (layout.name == name) return layout.id;
   }
   return std::nullopt;
+}
+
+int JointIndex(const KeypointLayout& layout, std::string_view name) {
+  const auto it = std::find(layout.joints.begin(), layout.joints.end(), name);
+  return it == layout.joints.end() ? -1 : static_cast<int>(it - layout.joints.begin());
 }
 
 std::vector<KeypointLayoutId> AllKeypointLayouts() {

@@ -35,6 +35,8 @@ const KeypointLayout& GetKeypointLayout(KeypointLayoutId id);
 std::optional<KeypointLayoutId> KeypointLayoutFromName(std::string_view name);
 /// All layouts except kNone.
 std::vector<KeypointLayoutId> AllKeypointLayouts();
+/// Index of the joint named `name` in `layout` ("l_elbow"); -1 when it has none.
+int JointIndex(const KeypointLayout& layout, std::string_view name);
 
 /// A target joint expressed as a weighted sum of source joints (weights sum to 1).
 struct JointSource {

@@ -4,8 +4,12 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <numbers>
 
 namespace mvtrack {
+
+/// Radians per degree.
+inline constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// Capture time in microseconds since the Unix epoch (the `utime` of every LCM message).
 using Utime = std::int64_t;

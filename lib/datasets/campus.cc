@@ -14,12 +14,12 @@ namespace mvtrack::datasets {
 namespace {
 
 using internal::JsonValue;
+using internal::kCmToM;
 
 constexpr double kCampusFps = 25.0;
 constexpr double kFramePeriodS = 1.0 / kCampusFps;  // 0.04 s
 constexpr int kCampusJoints = 14;
 constexpr int kCoco17Joints = 17;
-constexpr double kCmToM = 0.01;
 
 // frame = round(timestamp / 0.04), which must be (nearly) an integer: the timestamps are
 // written with 2-3 decimals.

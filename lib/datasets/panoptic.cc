@@ -16,11 +16,11 @@ namespace mvtrack::datasets {
 namespace {
 
 using internal::JsonValue;
+using internal::kCmToM;
 
 constexpr double kPanopticHdFps = 29.97;
 constexpr int kPanopticJoints = 19;
 constexpr int kNumHdCameras = 31;
-constexpr double kCmToM = 0.01;
 
 const char* const kSequences[] = {"160906_band1", "160906_band2"};
 

@@ -22,9 +22,9 @@ namespace mvtrack::datasets {
 namespace {
 
 using internal::JsonValue;
+using internal::kCmToM;
 
 constexpr double kWildtrackFps = 2.0;  // annotated frames: every 5th image of a 10 fps video
-constexpr double kCmToM = 0.01;
 // gt.txt: annotated frame k is image frame 5 k; the grid is 480 x 1440 cells of 2.5 cm.
 constexpr std::int64_t kImageFramesPerAnnotatedFrame = 5;
 constexpr std::int64_t kGridWidth = 480;

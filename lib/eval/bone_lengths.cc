@@ -13,10 +13,7 @@ BoneLengthStability EvaluateBoneLengths(const EvalSequence& predictions,
                                         const std::vector<FrameRange>& frame_ranges) {
   BoneLengthStability out;
   out.min_frames = min_frames;
-  const auto index = [&](const std::string& name) {
-    const auto it = std::find(layout.joints.begin(), layout.joints.end(), name);
-    return it == layout.joints.end() ? -1 : static_cast<int>(it - layout.joints.begin());
-  };
+  const auto index = [&](const std::string& name) { return core::JointIndex(layout, name); };
   std::vector<std::pair<int, int>> limbs;
   for (const char* side : {"l_", "r_"}) {
     for (const auto& [a, b] : {std::pair<const char*, const char*>{"shoulder", "elbow"},

@@ -11,18 +11,12 @@
 namespace mvtrack::eval {
 namespace {
 
-/// Index of joint `name` in `layout`; -1 when absent.
-int JointIndex(const core::KeypointLayout& layout, std::string_view name) {
-  const auto it = std::find(layout.joints.begin(), layout.joints.end(), name);
-  return it == layout.joints.end() ? -1 : static_cast<int>(it - layout.joints.begin());
-}
-
 /// Joint `name` of a BODY25 skeleton derived from `source` (layout `mapping.from`) with the
 /// mapping's rule; std::nullopt when a source joint it needs is missing or it is not derivable.
 std::optional<Vec3> Derived(const core::KeypointMapping& mapping,
                             std::string_view name,
                             const std::vector<std::optional<Vec3>>& source) {
-  const int j = JointIndex(core::GetKeypointLayout(mapping.to), name);
+  const int j = core::JointIndex(core::GetKeypointLayout(mapping.to), name);
   MVTRACK_CHECK_MSG(j >= 0, "joint missing from the target layout");
   const auto& terms = mapping.targets[static_cast<std::size_t>(j)];
   if (terms.empty()) return std::nullopt;
@@ -77,8 +71,8 @@ void ApplyHeadRule(HeadRule rule,
       source.size() == static_cast<std::size_t>(core::GetKeypointLayout(from).num_joints()),
       "ApplyHeadRule: the source skeleton must have the joints of its layout");
   if (rule == HeadRule::kCampus || from == core::KeypointLayoutId::kShelf14) return;
-  const auto top = static_cast<std::size_t>(JointIndex(shelf, "head_top"));
-  const auto bottom = static_cast<std::size_t>(JointIndex(shelf, "head_bottom"));
+  const auto top = static_cast<std::size_t>(core::JointIndex(shelf, "head_top"));
+  const auto bottom = static_cast<std::size_t>(core::JointIndex(shelf, "head_bottom"));
   (*shelf14)[top].reset();
   if (!(*shelf14)[bottom]) return;
   const core::KeypointMapping to_body25 =

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <string_view>
 #include <utility>
 
 #include "core/check.h"
@@ -14,16 +15,12 @@
 namespace mvtrack::eval {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using internal::kNaN;
+using internal::Ratio;
 
 bool Fail(std::string* why, const std::string& text) {
   if (why != nullptr) *why = text;
   return false;
-}
-
-double Ratio(std::int64_t num, std::int64_t den) {
-  if (den == 0) return kNaN;
-  return static_cast<double>(num) / static_cast<double>(den);
 }
 
 // The endpoint sum_k w_k x_{j_k}; std::nullopt when a joint it needs is missing.
@@ -38,10 +35,10 @@ std::optional<Vec3> Endpoint(const std::vector<WeightedJoint>& terms,
   return sum;
 }
 
-int JointIndex(const core::KeypointLayout& layout, const std::string& name) {
-  const auto it = std::find(layout.joints.begin(), layout.joints.end(), name);
-  MVTRACK_CHECK_MSG(it != layout.joints.end(), "shelf14 layout lacks a joint the PCP parts need");
-  return static_cast<int>(it - layout.joints.begin());
+int ShelfJoint(const core::KeypointLayout& layout, std::string_view name) {
+  const int j = core::JointIndex(layout, name);
+  MVTRACK_CHECK_MSG(j >= 0, "shelf14 layout lacks a joint the PCP parts need");
+  return j;
 }
 
 // Mean of the defined values; NaN when there is none.
@@ -139,7 +136,7 @@ bool PcpProtocol::Validate(int num_joints, std::string* why) const {
 
 PcpProtocol ShelfCampusPcpProtocol() {
   const core::KeypointLayout& layout = core::GetKeypointLayout(core::KeypointLayoutId::kShelf14);
-  const auto j = [&layout](const char* name) { return JointIndex(layout, name); };
+  const auto j = [&layout](const char* name) { return ShelfJoint(layout, name); };
   PcpProtocol protocol;
   protocol.name = "shelf_campus";
   protocol.bones = {

@@ -15,12 +15,8 @@ namespace mvtrack::eval {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double Ratio(std::int64_t num, std::int64_t den) {
-  if (den == 0) return kNaN;
-  return static_cast<double>(num) / static_cast<double>(den);
-}
+using internal::kNaN;
+using internal::Ratio;
 
 std::string Protocol(const TrackingOptions& options, std::int64_t num_frames) {
   std::string text;

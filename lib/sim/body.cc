@@ -9,8 +9,6 @@
 namespace mvtrack::sim {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 // COCO-17 indices.
 enum Joint : int {
   kNose = 0,

@@ -10,8 +10,6 @@
 namespace mvtrack::sim {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 std::vector<geometry::CameraModel> RingCameras(const SceneOptions& o) {
   std::vector<geometry::CameraModel> cameras;
   const double cx = 0.5 * o.room_width_m, cy = 0.5 * o.room_depth_m;

@@ -32,11 +32,7 @@ constexpr std::size_t kEmptyStringBytes = kInt32Bytes + 1;
 constexpr std::size_t kMinDetectionBytes =
     5 * kFloatBytes + 2 * kEmptyStringBytes + 2 * kInt16Bytes;
 
-// Layout of a detection_t.keypoint_layout string: "" is box-only (kNone).
-std::optional<core::KeypointLayoutId> LayoutOfName(std::string_view name) {
-  if (name.empty()) return core::KeypointLayoutId::kNone;
-  return core::KeypointLayoutFromName(name);
-}
+using internal::LayoutOfName;
 
 // Walks one detection_t (without fingerprint; nested types carry none).
 bool WalkDetection(WireWalker* w, const DecodeLimits& limits) {

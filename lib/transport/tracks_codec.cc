@@ -35,10 +35,7 @@ constexpr std::size_t kJointBytes = 3 * kDoubleBytes + kFloatBytes + kInt8Bytes;
 constexpr std::size_t kMinTrackBytes =
     kInt64Bytes + kInt8Bytes + 3 * kDoubleBytes + kFloatBytes + 2 * kInt32Bytes + 3 * kInt16Bytes;
 
-std::optional<core::KeypointLayoutId> LayoutOfName(std::string_view name) {
-  if (name.empty()) return core::KeypointLayoutId::kNone;
-  return core::KeypointLayoutFromName(name);
-}
+using internal::LayoutOfName;
 
 bool IsWireState(std::int8_t state) {
   return state >= mvtrack::track3d_t::STATE_TENTATIVE && state <= mvtrack::track3d_t::STATE_ENDED;

@@ -9,11 +9,11 @@
 namespace mvtrack::web {
 namespace {
 
-using json = mvtrack::json::Document;
+using Json = mvtrack::json::Document;
 
-json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+Json Number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
-json Point(const Vec3& p) { return json::array({Number(p.x()), Number(p.y()), Number(p.z())}); }
+Json Point(const Vec3& p) { return Json::array({Number(p.x()), Number(p.y()), Number(p.z())}); }
 
 const char* StateName(transport::WireTrackState s) {
   switch (s) {
@@ -29,8 +29,8 @@ const char* StateName(transport::WireTrackState s) {
   return "lost";
 }
 
-json Names(const std::vector<std::string>& names) {
-  json a = json::array();
+Json Names(const std::vector<std::string>& names) {
+  Json a = Json::array();
   for (const std::string& n : names) a.push_back(n);
   return a;
 }
@@ -38,12 +38,12 @@ json Names(const std::vector<std::string>& names) {
 }  // namespace
 
 std::string TracksEventJson(const transport::TracksMessage& message) {
-  json tracks = json::array();
+  Json tracks = Json::array();
   for (std::size_t i = 0; i < message.frame.tracks.size(); ++i) {
     const tracker::Track3D& t = message.frame.tracks[i];
-    json joints = json::array();
-    for (const std::optional<Vec3>& j : t.joints) joints.push_back(j ? Point(*j) : json(nullptr));
-    json bones = json::array();
+    Json joints = Json::array();
+    for (const std::optional<Vec3>& j : t.joints) joints.push_back(j ? Point(*j) : Json(nullptr));
+    Json bones = Json::array();
     for (const double b : t.bone_lengths) bones.push_back(Number(b));
     tracks.push_back(
         {{"id", t.id},
@@ -55,7 +55,7 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
          {"joints", std::move(joints)},
          {"bone_lengths", std::move(bones)}});
   }
-  const json o = {{"type", "tracks"},
+  const Json o = {{"type", "tracks"},
                   {"frame", message.frame.frame},
                   {"utime", message.frame.utime},
                   {"publish_utime", message.publish_utime},
@@ -71,7 +71,7 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
 std::string StatusEventJson(const transport::TrackerStatus& s,
                             const service::HealthReport& source) {
   const service::HealthReport health = service::Combine(service::AssessStatus(s), source);
-  json cameras = json::array();
+  Json cameras = Json::array();
   for (const transport::CameraStatus& c : s.cameras) {
     cameras.push_back({{"camera_id", c.camera_id},
                        {"flags", Names(transport::CameraFlagNames(c.flags))},
@@ -89,7 +89,7 @@ std::string StatusEventJson(const transport::TrackerStatus& s,
                        {"queue_depth", c.queue_depth},
                        {"queue_capacity", c.queue_capacity}});
   }
-  const json o = {{"type", "status"},
+  const Json o = {{"type", "status"},
                   {"utime", s.utime},
                   {"period_us", s.period_us},
                   {"uptime_us", s.uptime_us},
@@ -125,7 +125,7 @@ std::string StatusEventJson(const transport::TrackerStatus& s,
 std::string FloorJson(const std::vector<geometry::CameraModel>& cameras, double stale_after_s) {
   constexpr double kMaxRange = 25.0;
   constexpr int kPerEdge = 8;
-  json out_cameras = json::array();
+  Json out_cameras = Json::array();
   double bx0 = INFINITY, by0 = INFINITY, bx1 = -INFINITY, by1 = -INFINITY;
   auto grow = [&](double x, double y) {
     bx0 = std::min(bx0, x);
@@ -137,7 +137,7 @@ std::string FloorJson(const std::vector<geometry::CameraModel>& cameras, double 
     const Vec3 c = cam.CenterInWorld();
     const Mat3 k_inv = cam.K.inverse();
     const Mat3 world_from_cam = cam.cam_from_world.rotation.transpose();
-    json fov = json::array();
+    Json fov = Json::array();
     const double w = cam.width_px, h = cam.height_px;
     // The image border, clockwise from the top-left corner.
     const double corners[5][2] = {{0, 0}, {w, 0}, {w, h}, {0, h}, {0, 0}};
@@ -156,7 +156,7 @@ std::string FloorJson(const std::vector<geometry::CameraModel>& cameras, double 
         } else {
           continue;
         }
-        fov.push_back(json::array({Number(p.x()), Number(p.y())}));
+        fov.push_back(Json::array({Number(p.x()), Number(p.y())}));
       }
     }
     if (std::isfinite(c.x()) && std::isfinite(c.y())) grow(c.x(), c.y());
@@ -164,12 +164,12 @@ std::string FloorJson(const std::vector<geometry::CameraModel>& cameras, double 
   }
   // The cameras' positions with a margin of a quarter of their spread (at least 2 m): where the
   // people are; the fields of view reach far beyond and are clipped by the view.
-  json bounds = nullptr;
+  Json bounds = nullptr;
   if (bx0 <= bx1) {
     const double m = std::max(2.0, 0.25 * std::max(bx1 - bx0, by1 - by0));
-    bounds = json::array({bx0 - m, by0 - m, bx1 + m, by1 + m});
+    bounds = Json::array({bx0 - m, by0 - m, bx1 + m, by1 + m});
   }
-  const json o = {{"cameras", std::move(out_cameras)},
+  const Json o = {{"cameras", std::move(out_cameras)},
                   {"bounds", std::move(bounds)},
                   {"stale_after_s", stale_after_s}};
   return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);

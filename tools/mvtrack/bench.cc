@@ -56,10 +56,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 // CPU time of the whole process (all threads), seconds.
 double ProcessCpuSeconds() {
   timespec ts{};

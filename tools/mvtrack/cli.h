@@ -4,6 +4,7 @@
 /// colmap's exe/). Each subcommand is `int Run<Name>(int argc, char** argv)` with argv[0] being
 /// the subcommand name; it prints its own --help and returns a process exit code.
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -15,6 +16,11 @@
 #include "eval/sequence.h"
 
 namespace mvtrack::cli {
+
+/// Seconds of the steady clock since `start` (progress lines and timings).
+inline double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// Bad command-line usage: printed with the subcommand's usage line, exit code 2.
 class UsageError : public std::runtime_error {

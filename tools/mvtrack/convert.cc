@@ -128,12 +128,8 @@ CommonSettings ParseCommon(const Args& args,
   return c;
 }
 
-void Progress(const CommonSettings& c, const std::string& message) {
+void ShowProgress(const CommonSettings& c, const std::string& message) {
   if (!c.quiet) std::cerr << "mvtrack convert " << c.format << ": " << message << std::endl;
-}
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 std::string FormatSeconds(double s) {
@@ -317,7 +313,7 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
   formats::ConvertOutputDir out(c.out, c.overwrite);
 
   // Detections log.
-  Progress(c, "writing " + out.File(formats::kConvertLogFile).string());
+  ShowProgress(c, "writing " + out.File(formats::kConvertLogFile).string());
   formats::DetectionsLogSink sink(&out, c.channel);
   for (const std::vector<core::CameraFrame>& frame : ds.detections) {
     std::vector<formats::CameraFrameToWrite> batch;
@@ -490,11 +486,11 @@ void WriteDatasetJob(const CommonSettings& c, const DatasetJob& job) {
   }
   out.WriteText(formats::kConvertReadmeFile, r.str());
 
-  Progress(c,
-           "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
-               std::to_string(st.detections) + " detections, " + std::to_string(st.bytes) +
-               " bytes of log (load " + FormatSeconds(job.load_seconds) + ", write " +
-               FormatSeconds(SecondsSince(start)) + ")");
+  ShowProgress(c,
+               "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
+                   std::to_string(st.detections) + " detections, " + std::to_string(st.bytes) +
+                   " bytes of log (load " + FormatSeconds(job.load_seconds) + ", write " +
+                   FormatSeconds(SecondsSince(start)) + ")");
 }
 
 std::map<CameraId, std::string> NamesFromPattern(const std::vector<geometry::CameraModel>& cameras,
@@ -542,7 +538,7 @@ int ConvertShelf(int argc, char** argv, const std::string& command_line) {
   }
   DatasetJob job;
   job.source_dir = RequireDatasetDir(c, "shelf");
-  Progress(c, "loading Shelf from " + job.source_dir.string());
+  ShowProgress(c, "loading Shelf from " + job.source_dir.string());
   const Clock::time_point start = Clock::now();
   job.ds = datasets::LoadShelf(c.data_root);
   job.peer = datasets::LoadShelfPeer4DA(c.data_root,
@@ -590,7 +586,7 @@ int ConvertCampus(int argc, char** argv, const std::string& command_line) {
   options.corruption = ParseCorruption(args, defaults);
   DatasetJob job;
   job.source_dir = RequireDatasetDir(c, "campus");
-  Progress(c, "loading Campus from " + job.source_dir.string());
+  ShowProgress(c, "loading Campus from " + job.source_dir.string());
   const Clock::time_point start = Clock::now();
   job.ds = datasets::LoadCampus(c.data_root, options);
   job.peer = datasets::LoadCampusPeerCrossView(c.data_root);
@@ -686,7 +682,7 @@ int ConvertPanoptic(int argc, char** argv, const std::string& command_line) {
   if (!options.Validate(&why)) throw UsageError(why);
   DatasetJob job;
   job.source_dir = RequireDatasetDir(c, "panoptic");
-  Progress(c, "loading Panoptic " + options.sequence + " from " + job.source_dir.string());
+  ShowProgress(c, "loading Panoptic " + options.sequence + " from " + job.source_dir.string());
   const Clock::time_point start = Clock::now();
   job.ds = datasets::LoadPanoptic(c.data_root, options);
   job.load_seconds = SecondsSince(start);
@@ -796,7 +792,7 @@ int ConvertWildtrack(int argc, char** argv, const std::string& command_line) {
                              (job.source_dir / "opentraj" / "annotations_positions").string() +
                              " not found");
   }
-  Progress(c, "loading WILDTRACK from " + job.source_dir.string());
+  ShowProgress(c, "loading WILDTRACK from " + job.source_dir.string());
   const Clock::time_point start = Clock::now();
   std::string detections_line;
   if (annotated) {
@@ -929,7 +925,7 @@ int ConvertEpfl(int argc, char** argv, const std::string& command_line) {
   if (!options.Validate(&why)) throw UsageError(why);
   DatasetJob job;
   job.source_dir = RequireDatasetDir(c, "epfl");
-  Progress(c, "loading EPFL Terrace 1 from " + job.source_dir.string());
+  ShowProgress(c, "loading EPFL Terrace 1 from " + job.source_dir.string());
   const Clock::time_point start = Clock::now();
   datasets::EpflCalibration calibration;
   job.ds = datasets::LoadEpflTerrace(c.data_root, options, &calibration);
@@ -941,7 +937,7 @@ int ConvertEpfl(int argc, char** argv, const std::string& command_line) {
                      " floor units tall, taken as " + num(options.person_height_m) + " m"
                : std::string("as given"))
        << ")" << (calibration.mirrored_y ? ", floor y mirrored" : "");
-  Progress(c, unit.str());
+  ShowProgress(c, unit.str());
   job.camera_names = NamesFromPattern(job.ds.cameras, "c", 0);
   job.what = {
       "EPFL Terrace 1: the annotated per-view boxes (terrace1-c*/gt.txt, rows with lost = 0) of "
@@ -1005,7 +1001,7 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
   if (!in) throw std::runtime_error(detections_path + ": cannot open the detections file");
 
   formats::ConvertOutputDir out(c.out, c.overwrite);
-  Progress(
+  ShowProgress(
       c, "reading " + detections_path + ", writing " + out.File(formats::kConvertLogFile).string());
   formats::DetectionsLogSink sink(&out, c.channel);
   formats::JsonlDetectionsReader reader(&in, detections_path, reader_options);
@@ -1033,7 +1029,7 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
                 std::to_string(100 * reader.bytes_read() / static_cast<std::int64_t>(total_bytes)) +
                 " %)";
       }
-      Progress(c, std::to_string(reader.lines_read()) + " lines read" + share);
+      ShowProgress(c, std::to_string(reader.lines_read()) + " lines read" + share);
       next_report = std::chrono::steady_clock::now() + std::chrono::seconds(1);
     }
   }
@@ -1086,10 +1082,10 @@ int ConvertJsonl(int argc, char** argv, const std::string& command_line) {
   r << "  " << formats::kConvertReadmeFile << ": this file.\n";
   out.WriteText(formats::kConvertReadmeFile, r.str());
 
-  Progress(c,
-           "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
-               std::to_string(st.detections) + " detections, " + std::to_string(st.bytes) +
-               " bytes of log in " + FormatSeconds(SecondsSince(start)));
+  ShowProgress(c,
+               "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
+                   std::to_string(st.detections) + " detections, " + std::to_string(st.bytes) +
+                   " bytes of log in " + FormatSeconds(SecondsSince(start)));
   return 0;
 }
 
@@ -1204,7 +1200,7 @@ int ConvertPerCameraFiles(
   std::map<CameraId, formats::ImportedDetections> per_camera;
   std::int64_t clamped = 0;
   for (const auto& [id, path] : files) {
-    Progress(c, "reading camera " + std::to_string(id) + ": " + path);
+    ShowProgress(c, "reading camera " + std::to_string(id) + ": " + path);
     per_camera[id] = read(ReadWholeFile(path), path);
     clamped += per_camera[id].clamped;
   }
@@ -1233,9 +1229,9 @@ int ConvertPerCameraFiles(
   }
 
   formats::ConvertOutputDir out(c.out, c.overwrite);
-  Progress(c,
-           "writing " + out.File(formats::kConvertLogFile).string() + ", frames " +
-               std::to_string(*first) + "-" + std::to_string(*last));
+  ShowProgress(c,
+               "writing " + out.File(formats::kConvertLogFile).string() + ", frames " +
+                   std::to_string(*first) + "-" + std::to_string(*last));
   formats::DetectionsLogSink sink(&out, c.channel);
   const std::vector<core::Detection2D> none;
   for (FrameIndex frame = *first; frame <= *last; ++frame) {
@@ -1259,7 +1255,7 @@ int ConvertPerCameraFiles(
     }
     sink.WriteFrame(std::move(batch));
     if ((frame - *first + 1) % 10000 == 0) {
-      Progress(c, std::to_string(frame - *first + 1) + " frames written");
+      ShowProgress(c, std::to_string(frame - *first + 1) + " frames written");
     }
   }
   sink.Finish();
@@ -1301,10 +1297,10 @@ int ConvertPerCameraFiles(
   r << "  " << formats::kConvertReadmeFile << ": this file.\n";
   out.WriteText(formats::kConvertReadmeFile, r.str());
 
-  Progress(c,
-           "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
-               std::to_string(st.detections) + " detections, " + std::to_string(st.bytes) +
-               " bytes of log in " + FormatSeconds(SecondsSince(start)));
+  ShowProgress(c,
+               "wrote " + c.out.string() + ": " + std::to_string(st.events) + " events, " +
+                   std::to_string(st.detections) + " detections, " + std::to_string(st.bytes) +
+                   " bytes of log in " + FormatSeconds(SecondsSince(start)));
   return 0;
 }
 

@@ -48,10 +48,6 @@ constexpr std::int64_t kMaxThreads = 256;
 
 using Clock = std::chrono::steady_clock;
 
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 // A progress line on stderr at most once per second: rewritten in place on a terminal, one
 // line per update otherwise (logs, CI).
 class Progress {

@@ -27,6 +27,9 @@
 
 namespace mvtrack::config::internal {
 
+/// Largest image side a calibration file may give, pixels (a bound on untrusted input).
+inline constexpr int kMaxImageSidePx = 1 << 20;
+
 /// A YAML node together with its source file, its key path and its position, so that any
 /// problem with it can be reported precisely. Cheap to copy (YAML::Node is a handle). Not
 /// assignable: YAML::Node's operator= writes through to the node it refers to (yaml-cpp's

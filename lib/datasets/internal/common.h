@@ -19,6 +19,9 @@
 
 namespace mvtrack::datasets::internal {
 
+/// Centimetres to metres (Campus, Panoptic and WILDTRACK give centimetres).
+inline constexpr double kCmToM = 0.01;
+
 /// Builds a camera and checks it with CameraModel::Validate.
 /// @throws DatasetError naming `file` and `what` (e.g. "camera \"3\"") when it is invalid.
 geometry::CameraModel MakeCamera(const std::string& file,

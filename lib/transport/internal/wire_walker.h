@@ -8,13 +8,22 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 
+#include "core/keypoint_layout.h"
 #include "transport/codec.h"
 
 namespace mvtrack::transport::internal {
+
+/// The layout a message's keypoint_layout string names: "" is box-only (kNone); nullopt for a
+/// name no layout has.
+inline std::optional<core::KeypointLayoutId> LayoutOfName(std::string_view name) {
+  if (name.empty()) return core::KeypointLayoutId::kNone;
+  return core::KeypointLayoutFromName(name);
+}
 
 /// Wire sizes of the LCM primitive types, bytes.
 inline constexpr std::size_t kInt8Bytes = 1;
