@@ -31,10 +31,10 @@ if ! apt-cache show --no-all-versions build-essential 2>/dev/null | grep -x 'Pac
 fi
 
 # 1. Real packages.
-for p in $(list test); do
-  apt-cache show --no-all-versions "$p" 2>/dev/null | grep -x "Package: $p" >/dev/null ||
-    fail "'$p' (install_deps.sh) is not a Debian package here (virtual or misspelt)"
-done
+real=$(apt-cache show --no-all-versions $(list test) 2>/dev/null | sed -n 's/^Package: //p' | sort -u)
+not_real=$(comm -23 <(list test) <(echo "$real"))
+[ -z "$not_real" ] ||
+  fail "not Debian packages here (virtual or misspelt), in install_deps.sh: $(echo $not_real)"
 echo "all $(list test | wc -l) packages of the profiles are Debian packages"
 
 # 2. Each package is listed once, and so the demo's list holds none of the later profiles'.
