@@ -1,5 +1,5 @@
 # A fresh Debian 12 in a chroot, for the on-demand checks that need one
-# (tools/dev/deb_chroot_test.sh, tools/dev/fresh_demo_test.sh). Sourced, not run. The caller sets
+# (tools/dev/deb_chroot_test.sh, tools/dev/fresh_machine_test.sh). Sourced, not run. The caller sets
 #   name   its name for messages;   keep   1 keeps the work directory at exit
 # then calls chroot_start, which makes the work directory ($work) and installs the exit trap
 # that undoes every mount, and chroot_debootstrap to make $root.

@@ -37,9 +37,11 @@ table=(
   # Tests: Catch2; OpenCV calib3d and Ceres Solver as references (geometry, the skeleton fit's
   # solver); the format check and the tidy preset (Debian 12's LLVM 14); mvtrack web's page in
   # a real browser, headless; the Python examples in a virtualenv with PyPI's lcm; man renders
-  # the packages' pages; the lcm-spy smoke test under a virtual X server; git lists the sources.
+  # the packages' pages; the lcm-spy smoke test under a virtual X server; git lists the sources;
+  # ip (iproute2) brings up the loopback of the live tests' private network namespaces (without
+  # it they skip: a minbase Debian has none).
   "test      catch2 libopencv-calib3d-dev libceres-dev clang-format-14 clang-tidy-14"
-  "test      chromium curl python3-websocket python3-venv man-db xvfb xauth git"
+  "test      chromium curl python3-websocket python3-venv man-db xvfb xauth git iproute2"
 )
 
 die() { echo "install_deps: $*" >&2; exit 2; }
