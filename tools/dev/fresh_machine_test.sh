@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A README command as a new user runs it on a fresh Debian 12: debootstraps bookworm (variant
-# minbase, tools/dev/chroot_lib.sh), puts a commit's tree in /root/mvtrack (git archive: the
-# committed files only, no build tree, no ccache), runs the command there as root and reports
+# minbase, tools/dev/chroot_lib.sh), clones the repository into /root/mvtrack at a commit (no
+# build tree, no ccache), runs the command there as root and reports
 # its wall time, the packages it installed (count and MiB) and whether any of them is a JDK or
 # Java runtime, a browser, an X server or a linter. Not run by CI: it downloads the packages
 # from the Debian mirror. Needs root, debootstrap and about 3 GB (demo) or 12 GB (test) in
@@ -14,6 +14,8 @@
 #   --rev REV       the commit to run (default HEAD); an older one measures the time before a change
 #   --mirror URL    Debian mirror (default http://deb.debian.org/debian)
 #   --tarball FILE  reuse the debootstrap download (made on the first run, unpacked on later ones)
+#   --host-ccache   share this machine's ccache (~/.cache/ccache) with the chroot: a rerun to see
+#                   what fails builds in minutes, but its time is not a fresh machine's
 #   --keep          keep the chroot directory (printed at the end)
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
@@ -22,12 +24,14 @@ command=demo
 mirror=http://deb.debian.org/debian
 tarball=""
 keep=0
+host_ccache=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --command) command=$2; shift ;;
     --rev) rev=$2; shift ;;
     --mirror) mirror=$2; shift ;;
     --tarball) tarball=$(readlink -f "$2"); shift ;;
+    --host-ccache) host_ccache=1 ;;
     --keep) keep=1 ;;
     -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) echo "fresh_machine_test: unknown argument '$1' (see --help)" >&2; exit 2 ;;
@@ -43,8 +47,13 @@ commit=$(git -C "$repo" rev-parse --verify "$rev^{commit}" 2>/dev/null) || die "
 chroot_start
 chroot_debootstrap "$mirror" "$tarball"
 
-mkdir -p "$root/root/mvtrack"
-git -C "$repo" archive "$commit" | tar -x -C "$root/root/mvtrack"
+git clone -q --no-hardlinks "$repo" "$root/root/mvtrack"
+git -C "$root/root/mvtrack" checkout -q "$commit"
+if [ "$host_ccache" = 1 ]; then
+  mkdir -p "$HOME/.cache/ccache" "$root/root/.cache/ccache"
+  mount --bind "$HOME/.cache/ccache" "$root/root/.cache/ccache"
+  mounted+=("$root/root/.cache/ccache")
+fi
 ci_env=""
 if [ "$command" = test ]; then
   shared=$(readlink -f "$repo/../shared")
