@@ -47,6 +47,12 @@ commit=$(git -C "$repo" rev-parse --verify "$rev^{commit}" 2>/dev/null) || die "
 chroot_start
 chroot_debootstrap "$mirror" "$tarball"
 
+# A machine on this network trusts the CAs this one adds locally (an HTTPS proxy's, for PyPI):
+# ca-certificates, when install_deps.sh installs it, takes them in as it takes in the host's.
+if compgen -G "/usr/local/share/ca-certificates/*.crt" >/dev/null; then
+  mkdir -p "$root/usr/local/share/ca-certificates"
+  cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
+fi
 git clone -q --no-hardlinks "$repo" "$root/root/mvtrack"
 git -C "$root/root/mvtrack" checkout -q "$commit"
 if [ "$host_ccache" = 1 ]; then

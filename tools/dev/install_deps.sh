@@ -32,16 +32,20 @@ table=(
   "pictures  libopencv-core406 libopencv-imgproc406 libopencv-imgcodecs406 libopencv-videoio406"
   "pictures  libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-videoio-dev"
   # The Java types jar and lcm-spy (jchart2d draws its plots); cpack -G DEB runs
-  # dpkg-shlibdeps, help2man writes the man pages (tools/cmake/packaging.cmake).
-  "package   default-jdk-headless liblcm-java libjchart2d-java dpkg-dev help2man"
+  # dpkg-shlibdeps and `file` (CPackDeb finds the ELF files with it), help2man writes the man
+  # pages (tools/cmake/packaging.cmake).
+  "package   default-jdk-headless liblcm-java libjchart2d-java dpkg-dev file help2man"
   # Tests: Catch2; OpenCV calib3d and Ceres Solver as references (geometry, the skeleton fit's
   # solver); the format check and the tidy preset (Debian 12's LLVM 14); mvtrack web's page in
-  # a real browser, headless; the Python examples in a virtualenv with PyPI's lcm; man renders
-  # the packages' pages; the lcm-spy smoke test under a virtual X server; git lists the sources;
+  # a real browser, headless; the Python examples in a virtualenv with PyPI's lcm (over HTTPS:
+  # ca-certificates); man renders the packages' pages; the lcm-spy smoke test under a virtual X
+  # server (a Java runtime with AWT: default-jre, what mvtrack-spy depends on); git lists the
+  # sources;
   # ip (iproute2) brings up the loopback of the live tests' private network namespaces (without
   # it they skip: a minbase Debian has none).
   "test      catch2 libopencv-calib3d-dev libceres-dev clang-format-14 clang-tidy-14"
-  "test      chromium curl python3-websocket python3-venv man-db xvfb xauth git iproute2"
+  "test      chromium curl python3-websocket python3-venv ca-certificates man-db xvfb xauth"
+  "test      default-jre git iproute2"
 )
 
 die() { echo "install_deps: $*" >&2; exit 2; }
