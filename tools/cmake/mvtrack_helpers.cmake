@@ -6,7 +6,7 @@ add_library(mvtrack_warnings INTERFACE)
 target_compile_options(mvtrack_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Woverloaded-virtual -Wconversion
   $<$<BOOL:${MVTRACK_WERROR}>:-Werror>)
-# A unity build (the release and package presets) compiles each .cc as if it were a header of
+# A unity build (the release preset) compiles each .cc as if it were a header of
 # the batch's source, so GCC's -Wsubobject-linkage flags every class that holds a type of its
 # file's anonymous namespace; that is safe in a .cc of its own, which is what every one is.
 if(CMAKE_UNITY_BUILD)

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The release and package presets compile in unity batches (CMAKE_UNITY_BUILD: README command 1
+# The release preset compiles in unity batches (CMAKE_UNITY_BUILD: README command 1
 # builds in about half the time), where two .cc files of one library that each define the same
 # name in their anonymous namespace no longer compile. The other presets build file by file and
 # would not notice, so this check (CTest build/unity) configures the release build's sources
 # as unity batches with -fsyntax-only (names are checked, no code is generated) and compiles
-# every batch of every target the release and package presets build, warnings as errors
+# every batch of every target the release preset builds, warnings as errors
 # (archiving and linking are no-ops: there are no objects).
 # Usage: tools/dev/check_unity_build.sh SOURCE_DIR WORK_DIR
 set -euo pipefail
