@@ -451,10 +451,19 @@ TEST_CASE("service: NO_OUTPUT when cameras deliver and nothing is published for 
   REQUIRE(published > 0);
   CHECK((flags() & mvtrack::tracker_status_t::FLAG_NO_OUTPUT) == 0);
   // Every camera keeps re-sending its frame 39 (each rejected as a duplicate): input arrives,
-  // nothing more is published. Flagged once 3 s have passed since the last publish.
-  const Utime last_publish = clock.NowMicros();
+  // nothing more is published. Flagged once 3 s have passed since the last publish: the time
+  // the last tracks message carries, which is earlier than the clock when the pipeline's
+  // threads published while Feed was still moving the clock (a loaded machine).
+  Utime last_publish = 0;
+  {
+    std::lock_guard<std::mutex> lock(sink.mu);
+    REQUIRE(!sink.tracks.empty());
+    last_publish = sink.tracks.back().publish_utime;
+  }
+  REQUIRE(last_publish <= clock.NowMicros());
+  const Utime resend_from = clock.NowMicros();
   for (int k = 1; k <= 40; ++k) {
-    clock.SetMicros(last_publish + k * 100'000);
+    clock.SetMicros(std::max(resend_from, last_publish + k * 100'000));
     for (const core::CameraFrame& f : Scene().detections[39]) {
       const std::vector<std::uint8_t> bytes = Encode(f);
       s->OnMessage(transport::DetectionsChannelForCamera(f.camera_id), bytes.data(), bytes.size());
