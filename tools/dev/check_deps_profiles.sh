@@ -17,7 +17,7 @@ list() { bash "$deps" --list "$1" | sort -u; }
 # own PROFILE: the packages of PROFILE's own rows (--list prints the rows in order, the earlier
 # profiles' first).
 own() {
-  local prev=$1 n=0
+  local prev="" n=0
   case $1 in build) prev=run ;; pictures) prev=build ;; package) prev=pictures ;; test) prev=package ;; *) prev="" ;; esac
   [ -z "$prev" ] || n=$(bash "$deps" --list "$prev" | wc -l)
   bash "$deps" --list "$1" | tail -n +$((n + 1)) | sort -u
