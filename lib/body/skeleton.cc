@@ -21,6 +21,21 @@ std::string Mirror(const std::string& name) {
 
 }  // namespace
 
+double BoneLengths::StatureShare(const std::string& joint_a, const std::string& joint_b) {
+  const auto bare = [](const std::string& name) {
+    return name.rfind("l_", 0) == 0 || name.rfind("r_", 0) == 0 ? name.substr(2) : name;
+  };
+  const std::string a = bare(joint_a), b = bare(joint_b);
+  const auto is = [&](const char* x, const char* y) {
+    return (a == x && b == y) || (a == y && b == x);
+  };
+  if (is("shoulder", "elbow")) return 0.186;
+  if (is("elbow", "wrist")) return 0.146;
+  if (is("hip", "knee")) return 0.245;
+  if (is("knee", "ankle")) return 0.246;
+  return 0.0;
+}
+
 BoneLengths::BoneLengths(const core::KeypointLayout& layout) : bones_(layout.bones) {
   pool_.assign(bones_.size(), -1);
   int groups = 0;
@@ -38,6 +53,12 @@ BoneLengths::BoneLengths(const core::KeypointLayout& layout) : bones_(layout.bon
     ++groups;
   }
   samples_.resize(static_cast<std::size_t>(groups));
+  share_.assign(static_cast<std::size_t>(groups), 0.0);
+  for (std::size_t i = 0; i < bones_.size(); ++i) {
+    share_[static_cast<std::size_t>(pool_[i])] =
+        StatureShare(layout.joints[static_cast<std::size_t>(bones_[i].first)],
+                     layout.joints[static_cast<std::size_t>(bones_[i].second)]);
+  }
   samples_per_bone_.assign(bones_.size(), 0);
   lengths_.assign(bones_.size(), std::nullopt);
   uncertainties_.assign(bones_.size(), 0.0);
@@ -83,30 +104,61 @@ double WeightedMedian(const std::vector<std::pair<double, double>>& sorted) {
   return sorted.back().first;
 }
 
+// The weighted median of (value, weight) samples and its standard error: 1.253 × the samples'
+// robust spread (1.4826 × their weighted median absolute deviation) over √ of the effective
+// sample count. Sorts `samples`.
+std::pair<double, double> MedianAndError(std::vector<std::pair<double, double>>* samples) {
+  std::sort(samples->begin(), samples->end());
+  const double median = WeightedMedian(*samples);
+  double sum = 0.0, sum2 = 0.0;
+  std::vector<std::pair<double, double>> deviations;
+  deviations.reserve(samples->size());
+  for (const auto& [value, weight] : *samples) {
+    deviations.emplace_back(std::abs(value - median), weight);
+    sum += weight;
+    sum2 += weight * weight;
+  }
+  std::sort(deviations.begin(), deviations.end());
+  const double spread = 1.4826 * WeightedMedian(deviations);
+  return {median, 1.253 * spread / std::sqrt(sum * sum / sum2)};
+}
+
 }  // namespace
 
 void BoneLengths::Update() {
   // Per pooled group (a bone and its mirror image): its length and the length's standard error.
   std::vector<std::optional<double>> group_length(samples_.size());
   std::vector<double> group_uncertainty(samples_.size(), 0.0);
+  std::vector<std::pair<double, double>> stature_samples;
   for (std::size_t g = 0; g < samples_.size(); ++g) {
-    std::vector<std::pair<double, double>> s = samples_[g];
-    if (static_cast<int>(s.size()) < kMinSamples) continue;
-    std::sort(s.begin(), s.end());
-    const double median = WeightedMedian(s);
-    double sum = 0.0, sum2 = 0.0;
-    std::vector<std::pair<double, double>> deviations;
-    deviations.reserve(s.size());
-    for (const auto& [length, weight] : s) {
-      deviations.emplace_back(std::abs(length - median), weight);
-      sum += weight;
-      sum2 += weight * weight;
+    if (share_[g] > 0.0) {
+      for (const auto& [length, weight] : samples_[g]) {
+        stature_samples.emplace_back(length / share_[g], weight);
+      }
     }
-    std::sort(deviations.begin(), deviations.end());
-    const double spread = 1.4826 * WeightedMedian(deviations);
-    const double effective_samples = sum * sum / sum2;
+    if (static_cast<int>(samples_[g].size()) < kMinSamples) continue;
+    std::vector<std::pair<double, double>> s = samples_[g];
+    const auto [median, error] = MedianAndError(&s);
     group_length[g] = median;
-    group_uncertainty[g] = 1.253 * spread / std::sqrt(effective_samples);
+    group_uncertainty[g] = error;
+  }
+  // The limbs' share of the stature: the prior each limb's own estimate is combined with.
+  if (static_cast<int>(stature_samples.size()) >= kMinSamples) {
+    const auto [stature, stature_error] = MedianAndError(&stature_samples);
+    for (std::size_t g = 0; g < samples_.size(); ++g) {
+      if (share_[g] <= 0.0) continue;
+      const double prior = stature * share_[g];
+      const double prior_sigma = std::hypot(kShareSpread * prior, stature_error * share_[g]);
+      if (!group_length[g]) {
+        group_length[g] = prior;
+        group_uncertainty[g] = prior_sigma;
+      } else if (group_uncertainty[g] > 0.0) {
+        const double own = 1.0 / (group_uncertainty[g] * group_uncertainty[g]);
+        const double body = 1.0 / (prior_sigma * prior_sigma);
+        group_length[g] = (*group_length[g] * own + prior * body) / (own + body);
+        group_uncertainty[g] = 1.0 / std::sqrt(own + body);
+      }
+    }
   }
   for (std::size_t i = 0; i < bones_.size(); ++i) {
     const auto g = static_cast<std::size_t>(pool_[i]);
@@ -298,7 +350,8 @@ FitProblem MakeFitProblem(const std::vector<std::optional<Vec3>>& start,
   }
   for (std::size_t k = 0; k < n; ++k) {
     if (!start[k]) continue;
-    problem.points.push_back({problem.slot_of_joint[k], *start[k], 1.0 / options.anchor_sigma_m});
+    problem.points.push_back(
+        {problem.slot_of_joint[k], *start[k], 1.0 / options.anchor_sigma_m, /*robust=*/true});
     if (previous != nullptr && k < previous->size() && (*previous)[k]) {
       problem.points.push_back(
           {problem.slot_of_joint[k], *(*previous)[k], 1.0 / options.smooth_sigma_m});
@@ -360,9 +413,12 @@ void Linearize(const FitProblem& problem, const std::vector<Vec3>& x, Linearizat
   for (const FitProblem::Point& p : problem.points) {
     const auto i = static_cast<std::size_t>(p.slot);
     const Vec3 d = x[i] - p.point;
-    out->cost += p.weight * p.weight * d.squaredNorm();
-    out->diagonal[i].diagonal().array() += p.weight * p.weight;
-    out->gradient[i] += p.weight * p.weight * d;
+    const double w2 = p.weight * p.weight;
+    const double s = w2 * d.squaredNorm();
+    const double omega = p.robust ? 1.0 / (1.0 + s / c2) : 1.0;
+    out->cost += p.robust ? c2 * std::log1p(s / c2) : s;
+    out->diagonal[i].diagonal().array() += omega * w2;
+    out->gradient[i] += omega * w2 * d;
   }
 }
 
@@ -400,7 +456,8 @@ std::vector<Vec3> SolveFitProblem(const FitProblem& problem, std::vector<Vec3> x
     }
     Linearize(problem, trial, &trial_at);
     if (std::isfinite(trial_at.cost) && trial_at.cost < at.cost) {
-      const bool converged = at.cost - trial_at.cost <= 1e-4 * at.cost || step_norm < 1e-10;
+      const bool converged =
+          at.cost - trial_at.cost <= problem.relative_tolerance * at.cost || step_norm < 1e-10;
       std::swap(x, trial);
       std::swap(at, trial_at);
       lambda = std::max(lambda * 0.3, 1e-9);

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "body/test_cameras.h"
@@ -80,14 +81,25 @@ TEST_CASE("bone lengths: the median of a bone and its mirror image, once measure
   lengths.AddFrame(crossing);
   lengths.Update();
   const auto& bones = Layout().bones;
+  // The stature the shins give (their samples over the shin's share), the median of
+  // 0.45 / 0.246 x4 and 0.47 / 0.246 x2.
+  const double stature = 0.45 / BoneLengths::StatureShare("r_knee", "r_ankle");
   for (std::size_t i = 0; i < bones.size(); ++i) {
     const bool lower_leg =
         bones[i] == std::pair<int, int>{0, 1} || bones[i] == std::pair<int, int>{4, 5};
+    const double share = BoneLengths::StatureShare(Layout().joints[bones[i].first],
+                                                   Layout().joints[bones[i].second]);
     if (lower_leg) {
       REQUIRE(lengths.lengths()[i].has_value());
       CHECK(*lengths.lengths()[i] == Approx(0.45));  // median of 0.45 x4, 0.47 x2
+    } else if (share > 0.0) {
+      // A limb never measured: its share of the stature, as uncertain as the share is.
+      REQUIRE(lengths.lengths()[i].has_value());
+      CHECK(*lengths.lengths()[i] == Approx(stature * share));
+      CHECK(lengths.uncertainties()[i] ==
+            Approx(BoneLengths::kShareSpread * stature * share).epsilon(0.01));
     } else {
-      CHECK_FALSE(lengths.lengths()[i].has_value());
+      CHECK_FALSE(lengths.lengths()[i].has_value());  // the head: no share, no samples
     }
   }
   // Constant after kMaxSamples samples of a bone.
@@ -100,6 +112,90 @@ TEST_CASE("bone lengths: the median of a bone and its mirror image, once measure
   for (int i = 0; i < 100; ++i) lengths.AddFrame(frame);
   lengths.Update();
   CHECK(*lengths.lengths()[0] == settled);
+}
+
+TEST_CASE("bone lengths: a limb whose few samples scatter leans on the body's proportions",
+          "[unit]") {
+  // Legs and upper arms measured 60 times each, consistently, of a person 1.80 m tall; the
+  // forearms (true length 0.146 x 1.80 = 0.263 m) five times, scattered around 0.40 m (a
+  // badly seen arm).
+  const double stature = 1.80;
+  const auto share = [](const char* a, const char* b) { return BoneLengths::StatureShare(a, b); };
+  BoneLengths lengths(Layout());
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  const auto limb = [&](std::vector<std::optional<Vec3>>* frame, int a, int b, double length) {
+    (*frame)[static_cast<std::size_t>(a)] = Vec3(0, 0, 0);
+    (*frame)[static_cast<std::size_t>(b)] = Vec3(0, 0, length);
+  };
+  for (int i = 0; i < 30; ++i) {
+    std::vector<std::optional<Vec3>> frame(14);
+    limb(&frame, 0, 1, stature * share("knee", "ankle") * (1.0 + 0.01 * noise(rng)));
+    limb(&frame, 3, 4, stature * share("hip", "knee") * (1.0 + 0.01 * noise(rng)));
+    limb(&frame, 7, 8, stature * share("shoulder", "elbow") * (1.0 + 0.01 * noise(rng)));
+    lengths.AddFrame(frame);
+    lengths.AddFrame(frame);
+  }
+  for (const double forearm : {0.30, 0.36, 0.40, 0.45, 0.52}) {
+    std::vector<std::optional<Vec3>> frame(14);
+    limb(&frame, 10, 11, forearm);
+    lengths.AddFrame(frame);
+  }
+  lengths.Update();
+  const auto& bones = Layout().bones;
+  for (std::size_t i = 0; i < bones.size(); ++i) {
+    const std::string a = Layout().joints[bones[i].first], b = Layout().joints[bones[i].second];
+    INFO(a << " - " << b);
+    const double s = BoneLengths::StatureShare(a, b);
+    if (s == 0.0) continue;
+    REQUIRE(lengths.lengths()[i].has_value());
+    if (a.find("wrist") != std::string::npos || b.find("wrist") != std::string::npos) {
+      // Its own median (0.40 m) is 50 % off the body's proportions; its spread makes it weigh
+      // little: the combination lies within 10 % of the share of the stature.
+      CHECK(std::abs(*lengths.lengths()[i] / (stature * s) - 1.0) < 0.10);
+      CHECK(lengths.uncertainties()[i] < BoneLengths::kShareSpread * stature * s);
+    } else {
+      // Well measured: its own length, which the prior barely moves.
+      CHECK(*lengths.lengths()[i] == Approx(stature * s).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE("fit: a joint triangulated far off along one view's ray goes back where its bones put it",
+          "[unit]") {
+  const std::vector<Vec3> truth = Person();
+  const std::vector<Mat34> cameras = {Camera(0.0), Camera(2.0), Camera(4.0)};
+  std::vector<core::PersonView> views;
+  for (int c = 0; c < 3; ++c) views.push_back(View(c, cameras[static_cast<std::size_t>(c)], truth));
+  const auto& bones = Layout().bones;
+  std::vector<std::optional<double>> lengths;
+  for (const auto& b : bones) {
+    lengths.push_back(
+        (truth[static_cast<std::size_t>(b.first)] - truth[static_cast<std::size_t>(b.second)])
+            .norm());
+  }
+  // The right wrist (6) starts 1.2 m away from the truth along camera 0's ray through it (a
+  // two-view triangulation of nearly parallel rays): camera 0's keypoint still fits the start,
+  // the other views' keypoints are too far from it to be used. The fit puts it on camera 0's
+  // ray at the forearm's length from the elbow (of the ray's two points at that distance, the
+  // one on the start's side).
+  const Vec3 centre = -cameras[0].leftCols<3>().inverse() * cameras[0].col(3);
+  std::vector<std::optional<Vec3>> start(truth.begin(), truth.end());
+  start[6] = truth[6] + 1.2 * (truth[6] - centre).normalized();
+  const std::vector<std::optional<Vec3>> fitted =
+      FitJoints(start, views, cameras, bones, lengths, nullptr, FitOptions{});
+  REQUIRE(fitted[6].has_value());
+  const Vec2 seen = (cameras[0] * fitted[6]->homogeneous()).hnormalized();
+  CHECK((seen - views[0].observation.points_px[6]).norm() <
+        FitOptions{}.reprojection_sigma * views[0].observation.scale_px);
+  CHECK((*fitted[6] - truth[6]).norm() < 0.15);
+  for (std::size_t i = 0; i < bones.size(); ++i) {
+    CHECK(Length(fitted, bones[i]) == Approx(*lengths[i]).margin(0.01));
+  }
+  // The other joints stay where their views put them.
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    if (k != 6) CHECK((*fitted[k] - truth[k]).norm() < 0.02);
+  }
 }
 
 TEST_CASE("fit: joints move towards where three views see them, bones keep the track's lengths",

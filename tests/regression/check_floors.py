@@ -4,7 +4,9 @@
 Usage: check_floors.py KEY FLOORS_FILE EVAL_JSON
 Floors file lines: `KEY METRIC >=|<= BOUND` ('#' starts a comment); only KEY's lines are
 checked and there must be at least one. Metrics: mota, idf1, hota, mpjpe_m, false_positives,
-misses, id_switches, id_transfers, id_fragmentations, predicted_ids (tracking); pcp_average, pcp_actorN (PCP); median_distance_m, p90_distance_m,
+misses, id_switches, id_transfers, id_fragmentations, predicted_ids (tracking); pcp_average,
+pcp_actorN (PCP); bone_cv_mean, bone_cv_worst_track (bone-length stability, `--pcp`);
+median_distance_m, p90_distance_m,
 precision, recall, mean_abs_count_difference, moda, modp_m, false_positives, misses
 (--points). Exit 0 when every bound holds.
 Shared by replay_regression_test.sh (datasets) and sim_regression_test.sh (simulated scenes).
@@ -33,6 +35,9 @@ if "pcp" in report:
     metrics["pcp_average"] = report["pcp"]["average_pcp"]
     for actor in report["pcp"]["actors"]:
         metrics[f"pcp_actor{actor['actor_id']}"] = actor["pcp"]
+if report.get("bones", {}).get("num_tracks", 0) > 0:
+    metrics["bone_cv_mean"] = report["bones"]["cv_mean"]
+    metrics["bone_cv_worst_track"] = report["bones"]["cv_worst_track"]
 if "points" in report:
     for name in ("median_distance_m", "p90_distance_m", "precision", "recall",
                  "mean_abs_count_difference", "moda", "modp_m", "false_positives", "misses"):

@@ -30,6 +30,16 @@ case $DATASET in
   campus)
     replay_args=(--mode poses --layout shelf14)
     eval_args=(--frames 350-470,650-750 --distance joints --pcp --actors 0,1,2) ;;
+  shelf_fit)  # the skeleton fit (issue 40): bone-length stability as well as PCP
+    source=shelf
+    replay_args=(--mode poses --layout body25
+                 --config "$SRC/docs/examples/ablations/refinement_fit_skeleton.yaml")
+    eval_args=(--frames 300-600 --distance joints --pcp --actors 0,1,2 --head-rule shelf-4da) ;;
+  campus_fit)
+    source=campus
+    replay_args=(--mode poses --layout shelf14
+                 --config "$SRC/docs/examples/ablations/refinement_fit_skeleton.yaml")
+    eval_args=(--frames 350-470,650-750 --distance joints --pcp --actors 0,1,2) ;;
   campus_hard)
     # The hard corruption level (docs/ACCURACY.md "Campus at the hard corruption level").
     source=campus
@@ -69,7 +79,8 @@ case $DATASET in
     convert_args=(--corruption default)
     replay_args=(--mode boxes --layout none)
     eval_args=() ;;
-  *) echo "unknown dataset '$DATASET' (shelf, campus, campus_hard, wildtrack," \
+  *) echo "unknown dataset '$DATASET' (shelf, shelf_fit, campus, campus_fit, campus_hard," \
+       "wildtrack," \
        "wildtrack_tracking, wildtrack_annotated, wildtrack_annotated_all_default, epfl," \
        "epfl_default)" >&2; exit 2 ;;
 esac

@@ -190,21 +190,28 @@ def actor_pcp(m, actor):
     return m.get("pcp_actors", {}).get(str(actor))
 
 
+def bone_cv(m):
+    if m.get("bone_cv_mean") is None:
+        return ""
+    return pct(m.get("bone_cv_mean"), 2) + " / " + pct(m.get("bone_cv_worst_track"), 2)
+
+
 def pose_row(label, rid, m):
     return [label, pct(actor_pcp(m, 0)), pct(actor_pcp(m, 1)), pct(actor_pcp(m, 2)),
-            pct(m.get("pcp_average")), mm(m.get("mpjpe_m")), pct(m.get("mota")),
+            pct(m.get("pcp_average")), mm(m.get("mpjpe_m")), bone_cv(m), pct(m.get("mota")),
             pct(m.get("idf1")), pct(m.get("hota")), m.get("id_transfers", "n/a"),
             m.get("id_fragmentations", "n/a"), m.get("mt", "n/a"), m.get("ml", "n/a"), m.get("fp", "n/a"),
             m.get("fn", "n/a"), m.get("ids", "n/a"), f"`{rid}`"]
 
 
-POSE_HEADER = ["", "Actor 1", "Actor 2", "Actor 3", "Avg PCP", "MPJPE mm", "MOTA", "IDF1",
+POSE_HEADER = ["", "Actor 1", "Actor 2", "Actor 3", "Avg PCP", "MPJPE mm",
+               "Bone CV % (mean / worst track)", "MOTA", "IDF1",
                "HOTA", "IDTR", "IDFRAG",
                "MT", "ML", "FP", "FN", "IDs", "run"]
 
 
 def paper_rows(rows):
-    return [[name + " †", num(a1), num(a2), num(a3), num(avg), "", num(mota) if mota else "",
+    return [[name + " †", num(a1), num(a2), num(a3), num(avg), "", "", num(mota) if mota else "",
              "", "", "", "", "", "", "", "", "", "Table 6"] for name, a1, a2, a3, avg, mota in rows]
 
 
@@ -301,6 +308,9 @@ def render(out_dir, runs, info):
     md.append("\n### Shelf (real OpenPose detections), next to the paper's Table 6\n\n")
     rows = paper_rows(PAPER_T6_SHELF)
     rows.append(pose_row("**mvtrack** (these detections)", "shelf", R["shelf"]["metrics"]))
+    rows.append(pose_row("mvtrack with the skeleton fit (`refinement.fit_skeleton: true`, issue "
+                         "40)", "shelf_refinement_fit_skeleton",
+                         R["shelf_refinement_fit_skeleton"]["metrics"]))
     rows.append(pose_row("mvtrack, head top by VoxelPose's `coco2campus3D` instead "
                          "(`--head-rule campus`)", "shelf_head_campus",
                          R["shelf_head_campus"]["metrics"]))
@@ -315,6 +325,9 @@ def render(out_dir, runs, info):
               "Table 6\n\n")
     rows = paper_rows(PAPER_T6_CAMPUS)
     rows.append(pose_row("**mvtrack**, default corruption", "campus", R["campus"]["metrics"]))
+    rows.append(pose_row("mvtrack with the skeleton fit (`refinement.fit_skeleton: true`)",
+                         "campus_refinement_fit_skeleton",
+                         R["campus_refinement_fit_skeleton"]["metrics"]))
     rows.append(pose_row("mvtrack, clean 2D ground truth (`--clean`)", "campus_clean",
                          R["campus_clean"]["metrics"]))
     rows.append(pose_row("mvtrack, hard corruption (`--corruption hard`, docs/ACCURACY.md)",
@@ -550,6 +563,19 @@ def floors(out_dir):
         lines.append(f"{ds} id_transfers <= {m['id_transfers']}")
         if ds == "shelf":
             lines.append(f"{ds} id_fragmentations <= {m['id_fragmentations']}")
+    # The skeleton fit (issue 40): PCP and MPJPE as above; bone-length CV (mean over tracks /
+    # worst track) + 0.5 / + 1.0 percentage point.
+    for ds, rid in (("shelf_fit", "shelf_refinement_fit_skeleton"),
+                    ("campus_fit", "campus_refinement_fit_skeleton")):
+        m = runs[rid]["metrics"]
+        lines.append(f"{ds} pcp_average >= {floor(m['pcp_average'], 0.005):.4f}")
+        for actor in ("0", "1", "2"):
+            lines.append(f"{ds} pcp_actor{actor} >= {floor(m['pcp_actors'][actor], 0.005):.4f}")
+        lines.append(f"{ds} mpjpe_m <= {math.ceil((m['mpjpe_m'] + 0.002) * 10000) / 10000:.4f}")
+        lines.append(f"{ds} bone_cv_mean <= "
+                     f"{math.ceil((m['bone_cv_mean'] + 0.005) * 10000) / 10000:.4f}")
+        lines.append(f"{ds} bone_cv_worst_track <= "
+                     f"{math.ceil((m['bone_cv_worst_track'] + 0.01) * 10000) / 10000:.4f}")
     m = runs["wildtrack"]["metrics"]
     lines.append(f"wildtrack modp_m <= {math.ceil((m['modp_m'] + 0.01) * 10000) / 10000:.4f}")
     for key in ("moda", "precision", "recall"):
