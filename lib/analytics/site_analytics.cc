@@ -159,8 +159,8 @@ SiteAnalytics::SiteAnalytics(Site site) : site_(std::move(site)) {
 // The one rule, for a region or a line: `d` is the signed distance now (a region: positive
 // inside; a line: positive on its left), `confirmed` the side the track has. Returns true when a
 // change of side has now held for hold_s.
-bool SiteAnalytics::Step(SideState* state, double d, double previous_time_s, double time_s,
-                         bool first) const {
+bool SiteAnalytics::Step(
+    SideState* state, double d, double previous_time_s, double time_s, bool first) const {
   const double half = 0.5 * site_.options.hysteresis_m;
   // Distances towards the side the track is not on: positive = past the border.
   const double e = state->confirmed ? -d : d;
@@ -180,8 +180,12 @@ bool SiteAnalytics::Step(SideState* state, double d, double previous_time_s, dou
   return state->pending && time_s - state->cross_time_s >= site_.options.hold_s;
 }
 
-void SiteAnalytics::Confirm(TrackId3D id, std::size_t r, SideState* state, double time_s,
-                            bool track_ended, std::vector<Event>* events) {
+void SiteAnalytics::Confirm(TrackId3D id,
+                            std::size_t r,
+                            SideState* state,
+                            double time_s,
+                            bool track_ended,
+                            std::vector<Event>* events) {
   Event event;
   event.region = static_cast<int>(r);
   event.track = id;
@@ -205,7 +209,9 @@ void SiteAnalytics::Confirm(TrackId3D id, std::size_t r, SideState* state, doubl
   events->push_back(event);
 }
 
-void SiteAnalytics::ConfirmCrossing(TrackId3D id, std::size_t l, SideState* state,
+void SiteAnalytics::ConfirmCrossing(TrackId3D id,
+                                    std::size_t l,
+                                    SideState* state,
                                     std::vector<Event>* events) {
   if (state->counted) {
     Event event;
@@ -224,8 +230,12 @@ void SiteAnalytics::ConfirmCrossing(TrackId3D id, std::size_t l, SideState* stat
   state->pending = false;
 }
 
-void SiteAnalytics::UpdateTrack(TrackId3D id, TrackState* track, const Vec2& floor, double time_s,
-                                bool first, std::vector<Event>* events) {
+void SiteAnalytics::UpdateTrack(TrackId3D id,
+                                TrackState* track,
+                                const Vec2& floor,
+                                double time_s,
+                                bool first,
+                                std::vector<Event>* events) {
   for (std::size_t r = 0; r < site_.regions.size(); ++r) {
     SideState& state = track->regions[r];
     const double d = SignedDistance(site_.regions[r].polygon, floor);
@@ -252,10 +262,9 @@ void SiteAnalytics::UpdateTrack(TrackId3D id, TrackState* track, const Vec2& flo
     if (state.crossed_now) {
       // Counted only when the path crossed the segment itself, not the line beyond its ends.
       state.crossed_now = false;
-      const double t = time_s > track->last_seen_s
-                           ? (state.cross_time_s - track->last_seen_s) /
-                                 (time_s - track->last_seen_s)
-                           : 1.0;
+      const double t = time_s > track->last_seen_s ? (state.cross_time_s - track->last_seen_s) /
+                                                         (time_s - track->last_seen_s)
+                                                   : 1.0;
       const Vec2 at = track->last_floor + t * (floor - track->last_floor);
       const double u = (at - line.from).dot(along) / along.squaredNorm();
       state.counted = u >= 0.0 && u <= 1.0;
@@ -308,15 +317,16 @@ std::vector<Event> SiteAnalytics::Update(double time_s, const std::vector<TrackP
   for (const TrackPosition& t : tracks) {
     if (Finite(t.floor)) order.push_back(&t);
   }
-  std::stable_sort(order.begin(), order.end(),
-                   [](const TrackPosition* a, const TrackPosition* b) { return a->id < b->id; });
+  std::stable_sort(order.begin(), order.end(), [](const TrackPosition* a, const TrackPosition* b) {
+    return a->id < b->id;
+  });
   for (std::size_t i = 0; i < order.size(); ++i) {
     if (i > 0 && order[i]->id == order[i - 1]->id) continue;
     const TrackId3D id = order[i]->id;
-    auto it = std::lower_bound(tracks_.begin(), tracks_.end(), id,
-                               [](const auto& entry, TrackId3D wanted) {
-                                 return entry.first < wanted;
-                               });
+    auto it = std::lower_bound(
+        tracks_.begin(), tracks_.end(), id, [](const auto& entry, TrackId3D wanted) {
+          return entry.first < wanted;
+        });
     const bool first = it == tracks_.end() || it->first != id;
     if (first) {
       TrackState state;

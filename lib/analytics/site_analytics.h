@@ -86,9 +86,9 @@ struct TrackPosition {
 /// A confirmed change.
 struct Event {
   enum class Kind {
-    kEnter,      ///< a visit of `region` began at `time_s`
-    kExit,       ///< the visit that began at `enter_time_s` ended at `time_s`
-    kCrossing,   ///< `line` was crossed at `time_s` in `direction`
+    kEnter,     ///< a visit of `region` began at `time_s`
+    kExit,      ///< the visit that began at `enter_time_s` ended at `time_s`
+    kCrossing,  ///< `line` was crossed at `time_s` in `direction`
   };
   enum class Direction { kLeftToRight, kRightToLeft };
   Kind kind = Kind::kEnter;
@@ -112,7 +112,7 @@ const char* ToString(Event::Direction direction);
 
 /// Counts per region and line since the start.
 struct RegionCounts {
-  int occupancy = 0;       ///< visits open now (confirmed, not yet ended)
+  int occupancy = 0;  ///< visits open now (confirmed, not yet ended)
   std::int64_t entries = 0;
   std::int64_t exits = 0;
 };
@@ -165,13 +165,19 @@ class SiteAnalytics {
     std::vector<SideState> regions;
     std::vector<SideState> lines;
   };
-  bool Step(SideState* state, double d, double previous_time_s, double time_s,
-            bool first) const;
-  void Confirm(TrackId3D id, std::size_t r, SideState* state, double time_s, bool track_ended,
+  bool Step(SideState* state, double d, double previous_time_s, double time_s, bool first) const;
+  void Confirm(TrackId3D id,
+               std::size_t r,
+               SideState* state,
+               double time_s,
+               bool track_ended,
                std::vector<Event>* events);
-  void ConfirmCrossing(TrackId3D id, std::size_t l, SideState* state,
-                       std::vector<Event>* events);
-  void UpdateTrack(TrackId3D id, TrackState* track, const Vec2& floor, double time_s, bool first,
+  void ConfirmCrossing(TrackId3D id, std::size_t l, SideState* state, std::vector<Event>* events);
+  void UpdateTrack(TrackId3D id,
+                   TrackState* track,
+                   const Vec2& floor,
+                   double time_s,
+                   bool first,
                    std::vector<Event>* events);
   void EndTrack(TrackId3D id, TrackState* track, std::vector<Event>* events);
 

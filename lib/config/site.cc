@@ -31,7 +31,8 @@ Vec2 GetPoint(const NodeRef& node) {
 // A name: non-empty, unique among `names` (regions and lines have their own).
 std::string GetName(const NodeRef& node, std::set<std::string>* names, const char* what) {
   std::string name = GetString(node);
-  if (!names->insert(name).second) node.Fail("another " + std::string(what) + " is named '" + name + "'");
+  if (!names->insert(name).second)
+    node.Fail("another " + std::string(what) + " is named '" + name + "'");
   return name;
 }
 
@@ -95,7 +96,8 @@ analytics::Site ParseSite(std::string_view text, const std::string& source_name)
   if (const std::optional<NodeRef> rules = root.Find("rules")) {
     const MapRef r(*rules, {"hysteresis_m", "hold_s", "max_gap_s"}, /*null_is_empty=*/true);
     analytics::AnalyticsOptions& o = site.options;
-    if (auto v = r.Find("hysteresis_m")) o.hysteresis_m = GetDouble(*v, DoubleRange::Closed(0, 100));
+    if (auto v = r.Find("hysteresis_m"))
+      o.hysteresis_m = GetDouble(*v, DoubleRange::Closed(0, 100));
     if (auto v = r.Find("hold_s")) o.hold_s = GetDouble(*v, DoubleRange::Closed(0, 3600));
     if (auto v = r.Find("max_gap_s")) {
       o.max_gap_s = GetDouble(*v, DoubleRange::LeftOpen(0, 3600));
@@ -142,8 +144,8 @@ std::string SiteToYaml(const analytics::Site& site) {
   }
   if (!site.lines.empty()) out += "lines:\n";
   for (const analytics::Line& l : site.lines) {
-    out += "  - name: " + quoted(l.name) + "\n    from: " + point(l.from) + "\n    to: " +
-           point(l.to) + "\n";
+    out += "  - name: " + quoted(l.name) + "\n    from: " + point(l.from) +
+           "\n    to: " + point(l.to) + "\n";
   }
   out += "rules:\n  hysteresis_m: " + internal::FormatDouble(site.options.hysteresis_m) +
          "\n  hold_s: " + internal::FormatDouble(site.options.hold_s) +

@@ -21,8 +21,12 @@ Site Room() {
 
 // Feeds one track along `path` (one position per sample, `dt` apart from t0); returns every
 // event, Finish() included.
-std::vector<Event> Walk(SiteAnalytics* analytics, const std::vector<Vec2>& path, double dt = 0.1,
-                        double t0 = 0.0, TrackId3D id = 1, bool finish = true) {
+std::vector<Event> Walk(SiteAnalytics* analytics,
+                        const std::vector<Vec2>& path,
+                        double dt = 0.1,
+                        double t0 = 0.0,
+                        TrackId3D id = 1,
+                        bool finish = true) {
   std::vector<Event> all;
   for (std::size_t i = 0; i < path.size(); ++i) {
     const std::vector<Event> e =
@@ -160,8 +164,7 @@ TEST_CASE("analytics: standing on the border for minutes is at most one entry", 
   CHECK(e[0].time_s == Approx(2.0));
 }
 
-TEST_CASE("analytics: a track lost for a moment is one visit, lost for longer it ended",
-          "[unit]") {
+TEST_CASE("analytics: a track lost for a moment is one visit, lost for longer it ended", "[unit]") {
   Site site = Room();
   SiteAnalytics analytics(site);
   std::vector<Event> events;
@@ -173,8 +176,8 @@ TEST_CASE("analytics: a track lost for a moment is one visit, lost for longer it
     const auto e = analytics.Update(t, {});
     events.insert(events.end(), e.begin(), e.end());
   };
-  for (int i = 0; i <= 30; ++i) feed(0.1 * i, {2, 2});  // inside from t = 0
-  for (int i = 31; i < 60; ++i) nobody(0.1 * i);          // 2.9 s without it
+  for (int i = 0; i <= 30; ++i) feed(0.1 * i, {2, 2});   // inside from t = 0
+  for (int i = 31; i < 60; ++i) nobody(0.1 * i);         // 2.9 s without it
   for (int i = 60; i <= 80; ++i) feed(0.1 * i, {2, 2});  // back under its id
   CHECK(analytics.region_counts()[0].entries == 1);
   CHECK(analytics.region_counts()[0].occupancy == 1);
@@ -203,9 +206,10 @@ TEST_CASE("analytics: a ghost shorter than hold_s is no visit, and crossings nee
   CHECK(beside.line_counts()[0].right_to_left + beside.line_counts()[0].left_to_right == 0);
 }
 
-TEST_CASE("analytics: time going backwards is ignored and counted, the input's order of tracks "
-          "does not matter",
-          "[unit]") {
+TEST_CASE(
+    "analytics: time going backwards is ignored and counted, the input's order of tracks "
+    "does not matter",
+    "[unit]") {
   SiteAnalytics a(Room()), b(Room());
   std::vector<Event> from_a, from_b;
   for (int i = 0; i < 60; ++i) {

@@ -31,7 +31,7 @@ rules:
 
 TEST_CASE("site file: the documented example and a minimal site", "[unit]") {
   const analytics::Site example =
-      LoadSiteFile(std::string(MVTRACK_SOURCE_DIR) + "/docs/examples/site.yaml");
+      LoadSiteFile(std::string(MVTRACK_SOURCE_DIR) + "/docs/examples/sites/demo.yaml");
   CHECK(example.regions.size() == 3);
   CHECK(example.lines.size() == 1);
   CHECK(example.options.hysteresis_m == 0.3);
@@ -58,28 +58,36 @@ TEST_CASE("site file: mistakes are errors naming the line and the key", "[unit]"
   };
   std::string text = kSite;
   text.replace(text.find("hold_s"), 6, "hold_sec");
-  CheckLocated(error(text), "s.yaml", LineOf(text, "hold_sec"), "rules.hold_sec",
-               "did you mean 'hold_s'");
+  CheckLocated(
+      error(text), "s.yaml", LineOf(text, "hold_sec"), "rules.hold_sec", "did you mean 'hold_s'");
   text = kSite;
   text.replace(text.find("[2, 1], [0, 1]"), 14, "[0, 1], [2, 1]");
-  CheckLocated(error(text), "s.yaml", LineOf(text, "polygon"), "regions[0].polygon",
+  CheckLocated(error(text),
+               "s.yaml",
+               LineOf(text, "polygon"),
+               "regions[0].polygon",
                "cross (the polygon must be simple)");
   text = kSite;
   text.replace(text.find("[0, 0], "), 8, "");
   text.replace(text.find("[2, 1], "), 8, "");
-  CheckLocated(error(text), "s.yaml", LineOf(text, "polygon"), "regions[0].polygon",
+  CheckLocated(error(text),
+               "s.yaml",
+               LineOf(text, "polygon"),
+               "regions[0].polygon",
                "3 to 1000 vertices, not 2");
   text = kSite;
   text.replace(text.find("to: [0, 3]"), 10, "to: [0, 1]");
-  CheckLocated(error(text), "s.yaml", LineOf(text, "to: [0, 1]"), "lines[0].to",
-               "the line has no length");
+  CheckLocated(
+      error(text), "s.yaml", LineOf(text, "to: [0, 1]"), "lines[0].to", "the line has no length");
   text = kSite;
   text.replace(text.find("[2, 0]"), 6, "[.nan, 0]");
-  CheckLocated(error(text), "s.yaml", LineOf(text, "polygon"), "regions[0].polygon[1][0]",
-               "");
+  CheckLocated(error(text), "s.yaml", LineOf(text, "polygon"), "regions[0].polygon[1][0]", "");
   text = std::string(kSite) + "  - name: door\n    from: [5, 5]\n    to: [6, 6]\n";
   text.replace(text.find("rules:\n  hold_s: 0.5\n"), 21, "");
-  CheckLocated(error(text), "s.yaml", LineOf(text, "  - name: door\n    from: [5"), "lines[1].name",
+  CheckLocated(error(text),
+               "s.yaml",
+               LineOf(text, "  - name: door\n    from: [5"),
+               "lines[1].name",
                "another line is named 'door'");
   text = kSite;
   text.replace(text.find("hold_s: 0.5"), 11, "hold_s: -1");

@@ -233,6 +233,42 @@ for ds in epfl epfl_default; do
   experiment "${ds}_05m" $ds boxes none - --threshold 0.5
 done
 
+# ---- Analytics (issue 41): region visits and line crossings of the tracks against those of the
+# ground truth's tracks under the same rules (`mvtrack analytics --gt`), on the simulator's
+# enter/leave scene (9000 frames, boxes and poses) and on WILDTRACK with person ids.
+printf 'id\ttracks_run\tsite\tcommand\tjson\n' >"$R/analytics.tsv"
+# sim_scene NAME ARGS...: mvtrack sim into $R/NAME, its ground truth where experiment() reads it.
+sim_scene() {
+  local name=$1
+  shift
+  progress "sim $name"
+  run "mvtrack sim $* --out \$R/$name --quiet"
+  run "cp \$R/$name/gt.jsonl \$R/$name/ground_truth.jsonl"
+}
+# analytics_run ID TRACKS_RUN DATASET_DIR SITE: the analytics of runs/TRACKS_RUN.jsonl.
+analytics_run() {
+  local id=$1 tracks=$2 ds=$3 site=$4
+  local cmd="mvtrack analytics --tracks \$R/runs/$tracks.jsonl --regions $site --gt \$R/$ds/ground_truth.jsonl --quiet --json \$R/runs/$id.analytics.json"
+  progress "$id"
+  run "$cmd > \$R/runs/$id.analytics.txt"
+  printf '%s\t%s\t%s\t%s\t%s\n' "$id" "$tracks" "$site" "$cmd" "runs/$id.analytics.json" \
+    >>"$R/analytics.tsv"
+}
+sim_scene sim_enter_leave_boxes --cameras 4 --people 12 --enter-leave --frames 9000 --seed 11 \
+  --mode boxes
+sim_scene sim_enter_leave_poses --cameras 4 --people 12 --enter-leave --frames 9000 --seed 11 \
+  --mode poses
+experiment sim_enter_leave_boxes sim_enter_leave_boxes boxes none - --threshold 0.5
+experiment sim_enter_leave_poses sim_enter_leave_poses poses coco17 - --threshold 0.5
+for mode in boxes poses; do
+  analytics_run "analytics_sim_enter_leave_$mode" "sim_enter_leave_$mode" \
+    "sim_enter_leave_$mode" docs/examples/sites/sim_enter_leave.yaml
+done
+analytics_run analytics_wildtrack_annotated_all wildtrack_annotated_all_tracking_1m \
+  wildtrack_annotated_all docs/examples/sites/wildtrack.yaml
+analytics_run analytics_wildtrack_annotated_all_default wildtrack_annotated_all_default_tracking_1m \
+  wildtrack_annotated_all_default docs/examples/sites/wildtrack.yaml
+
 # ---- Tables.
 progress "tables"
 commit=$(git rev-parse HEAD 2>/dev/null || echo unknown)

@@ -125,6 +125,62 @@ def load(out_dir):
     return runs
 
 
+def load_analytics(out_dir):
+    """The analytics runs of R/analytics.tsv (absent in results directories before issue 41)."""
+    path = os.path.join(out_dir, "analytics.tsv")
+    if not os.path.exists(path):
+        return {}
+    out = {}
+    with open(path, encoding="utf-8") as f:
+        lines = f.read().splitlines()
+    for line in lines[1:]:
+        aid, tracks, site, command, json_path = line.split("\t")
+        with open(os.path.join(out_dir, json_path), encoding="utf-8") as f:
+            out[aid] = {"tracks_run": tracks, "site": site, "command": command,
+                        "report": json.load(f)}
+    return out
+
+
+def analytics_tables(A):
+    """RESULTS.md's analytics section: per run, its regions and lines against the ground truth."""
+    md = ["\n### Analytics against ground truth (issue 41)\n\n"
+          "`mvtrack analytics --gt`: the tracker's tracks and the ground truth's tracks through the "
+          "same site file and rules (docs/DECISIONS.md \"Analytics\"); entries and crossings as "
+          "counted, error = (counted - ground truth) / ground truth; occupancy compared in every "
+          "ground-truth frame (exact: the same number of people; MAE: mean absolute difference); "
+          "dwell error per visit matched by time overlap. Regions and lines: "
+          "docs/examples/sites/.\n\n"]
+    def err(n, gt):
+        if gt == 0:
+            return "0.0" if n == 0 else "n/a"
+        return f"{100.0 * (n - gt) / gt:+.1f}"
+    hdr = ["run", "region", "entries (gt)", "entry error %", "exits (gt)", "occupancy exact %",
+           "occupancy MAE", "dwell error median / p95 s", "visits matched"]
+    rows = []
+    for aid, a in A.items():
+        for r in a["report"]["regions"]:
+            frames = r.get("occupancy_frames", 0)
+            dm, dp = r.get("dwell_error_median_s"), r.get("dwell_error_p95_s")
+            rows.append([f"`{aid}`", r["name"], f"{r['entries']} ({r['gt_entries']})",
+                         err(r["entries"], r["gt_entries"]), f"{r['exits']} ({r['gt_exits']})",
+                         pct(r["occupancy_frames_exact"] / frames if frames else None),
+                         num(r["occupancy_abs_error_sum"] / frames if frames else None, 3),
+                         (f"{dm:.2f} / {dp:.2f}" if dm is not None else "n/a"),
+                         f"{r['visits_matched']} / {r['gt_visits']}"])
+    md.append(table(hdr, rows))
+    md.append("\n")
+    hdr = ["run", "line", "left_to_right (gt)", "error %", "right_to_left (gt)", "error %"]
+    rows = []
+    for aid, a in A.items():
+        for l in a["report"]["lines"]:
+            rows.append([f"`{aid}`", l["name"], f"{l['left_to_right']} ({l['gt_left_to_right']})",
+                         err(l["left_to_right"], l["gt_left_to_right"]),
+                         f"{l['right_to_left']} ({l['gt_right_to_left']})",
+                         err(l["right_to_left"], l["gt_right_to_left"])])
+    md.append(table(hdr, rows))
+    return "".join(md)
+
+
 def replay_summary(text):
     if text is None:
         return None
@@ -336,6 +392,10 @@ def render(out_dir, runs, info):
                          "campus_peer_crossview", R["campus_peer_crossview"]["metrics"]))
     md.append(table(POSE_HEADER, rows))
 
+    A = load_analytics(out_dir)
+    if A:
+        md.append(analytics_tables(A))
+
     md.append("\n### Ablation: cross-view association (PDNC vs hierarchical clustering)\n\n")
     md.append("Paper Table 5 (WILDTRACK, w/o appearance) †: " + "; ".join(
         f"{n}: IDF1 {a} %, MOTA {b} %, IDs {c_}" for n, a, b, c_ in PAPER_T5) + ".\n\n")
@@ -528,7 +588,7 @@ def render(out_dir, runs, info):
     md.append("Conversions:\n\n```sh\n")
     with open(os.path.join(out_dir, "commands.sh"), encoding="utf-8") as f:
         for line in f:
-            if line.startswith("mvtrack convert "):
+            if line.startswith(("mvtrack convert ", "mvtrack sim ", "cp ")):
                 md.append(line)
     md.append("```\n\nRuns:\n\n")
     for rid, run in R.items():
@@ -536,6 +596,9 @@ def render(out_dir, runs, info):
         for cmd in run["commands"]:
             md.append(f"  {cmd}\n")
         md.append("  ```\n")
+    for aid, a in A.items():
+        md.append(f"- `{aid}` (the tracks of `{a['tracks_run']}`):\n  ```sh\n  {a['command']}\n"
+                  "  ```\n")
     return "".join(md)
 
 

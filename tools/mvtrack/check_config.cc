@@ -12,6 +12,7 @@
 
 #include "config/calibration.h"
 #include "config/config_error.h"
+#include "config/site.h"
 #include "config/tracker_options.h"
 #include "core/keypoint_layout.h"
 #include "formats/tracks_io.h"
@@ -64,7 +65,8 @@ int RunCheckConfig(int argc, char** argv) {
   Args args;
   args.Positional("OPTIONS.yaml",
                   "tracker options file (a `tracker:` YAML document) or daemon "
-                  "configuration (format: mvtrack.daemon/1)")
+                  "configuration (format: mvtrack.daemon/1) or site file (format: "
+                  "mvtrack.site/1)")
       .Option("calibration",
               "also validate this calibration file (mvtrack.calibration/1) and "
               "that the tracker accepts the rig with these options; for a daemon "
@@ -83,10 +85,23 @@ int RunCheckConfig(int argc, char** argv) {
           "docs/DAEMON.md) is validated whole, with the calibration it names (relative to\n"
           "its own directory) and the tracker built from both, and its effective\n"
           "configuration is printed (what mvtrackd logs at start), with its hash.\n\n"
+          "A site file for `mvtrack analytics` (format: mvtrack.site/1, docs/FORMATS.md\n"
+          "\"Site file\") is validated and printed in its canonical form.\n\n"
           "Exit status: 0 valid, 1 invalid (the error is printed on stderr), 2 usage error.")) {
     return 0;
   }
   const std::string options_path = args.Get("OPTIONS.yaml");
+  if (config::LooksLikeSite(ReadIfPossible(options_path))) {
+    try {
+      const analytics::Site site = config::LoadSiteFile(options_path);
+      std::cout << config::SiteToYaml(site) << "# ok: " << options_path << ": site, "
+                << site.regions.size() << " region(s), " << site.lines.size() << " line(s)\n";
+      return 0;
+    } catch (const config::ConfigError& e) {
+      std::cerr << "mvtrack check-config: invalid: " << e.what() << "\n";
+      return 1;
+    }
+  }
   if (service::LooksLikeDaemonConfig(ReadIfPossible(options_path))) {
     return CheckDaemonConfig(options_path, args.Has("calibration") ? args.Get("calibration") : "");
   }

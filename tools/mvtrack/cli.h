@@ -93,6 +93,9 @@ int RunReplay(int argc, char** argv);
 int RunEval(int argc, char** argv);
 /// `mvtrack diff`: compare two track outputs frame by frame (diff.cc).
 int RunDiff(int argc, char** argv);
+/// `mvtrack analytics`: region visits and line crossings of tracks, as CSV and against ground
+/// truth (analytics.cc).
+int RunAnalytics(int argc, char** argv);
 /// `mvtrack check-config`: validate an options file (and a calibration) (check_config.cc).
 int RunCheckConfig(int argc, char** argv);
 /// `mvtrack convert`: datasets and JSON-lines detections -> detections log, calibration,

@@ -1,0 +1,134 @@
+#include "analytics/recording.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+namespace mvtrack::analytics {
+namespace {
+
+void Collect(const std::vector<Event>& events, RecordingAnalytics* out) {
+  for (const Event& e : events) {
+    if (e.kind == Event::Kind::kExit) {
+      out->visits.push_back({e.region, e.track, e.enter_time_s, e.time_s, e.track_ended});
+    } else if (e.kind == Event::Kind::kCrossing) {
+      out->crossings.push_back({e.line, e.track, e.time_s, e.direction});
+    }
+  }
+}
+
+}  // namespace
+
+RecordingAnalytics AnalyzeRecording(const Site& site, const std::vector<TimedPositions>& messages) {
+  SiteAnalytics analytics(site);
+  RecordingAnalytics out;
+  for (const TimedPositions& m : messages) Collect(analytics.Update(m.time_s, m.tracks), &out);
+  Collect(analytics.Finish(), &out);
+  out.regions = analytics.region_counts();
+  out.lines = analytics.line_counts();
+  out.ignored_messages = analytics.ignored_messages();
+  return out;
+}
+
+int OccupancyAt(const std::vector<Visit>& visits, int region, double time_s) {
+  int n = 0;
+  for (const Visit& v : visits) n += v.region == region && v.enter_s <= time_s && time_s < v.exit_s;
+  return n;
+}
+
+double Quantile(const std::vector<double>& sorted, double q) {
+  if (sorted.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const double rank = std::ceil(std::clamp(q, 0.0, 1.0) * static_cast<double>(sorted.size()));
+  const auto i = static_cast<std::size_t>(std::max(rank, 1.0)) - 1;
+  return sorted[std::min(i, sorted.size() - 1)];
+}
+
+AnalyticsComparison CompareAnalytics(const Site& site,
+                                     const RecordingAnalytics& truth,
+                                     const RecordingAnalytics& predicted,
+                                     const std::vector<double>& frame_times_s) {
+  AnalyticsComparison out;
+  out.regions.resize(site.regions.size());
+  out.lines.resize(site.lines.size());
+  for (std::size_t r = 0; r < site.regions.size(); ++r) {
+    RegionComparison& c = out.regions[r];
+    const int region = static_cast<int>(r);
+    if (r < truth.regions.size()) {
+      c.gt_entries = truth.regions[r].entries;
+      c.gt_exits = truth.regions[r].exits;
+    }
+    if (r < predicted.regions.size()) {
+      c.entries = predicted.regions[r].entries;
+      c.exits = predicted.regions[r].exits;
+    }
+    // Occupancy per frame: both sides' visits, swept once over the sorted frame times.
+    std::vector<std::pair<double, int>> changes_gt, changes_pred;
+    for (const Visit& v : truth.visits) {
+      if (v.region != region) continue;
+      changes_gt.emplace_back(v.enter_s, +1);
+      changes_gt.emplace_back(v.exit_s, -1);
+    }
+    for (const Visit& v : predicted.visits) {
+      if (v.region != region) continue;
+      changes_pred.emplace_back(v.enter_s, +1);
+      changes_pred.emplace_back(v.exit_s, -1);
+    }
+    std::sort(changes_gt.begin(), changes_gt.end());
+    std::sort(changes_pred.begin(), changes_pred.end());
+    std::vector<double> times = frame_times_s;
+    std::sort(times.begin(), times.end());
+    std::size_t ig = 0, ip = 0;
+    int occ_gt = 0, occ_pred = 0;
+    for (const double t : times) {
+      // Open at t: enter_s <= t < exit_s.
+      while (ig < changes_gt.size() && changes_gt[ig].first <= t) occ_gt += changes_gt[ig++].second;
+      while (ip < changes_pred.size() && changes_pred[ip].first <= t) {
+        occ_pred += changes_pred[ip++].second;
+      }
+      ++c.occupancy_frames;
+      c.occupancy_frames_equal += occ_gt == occ_pred;
+      c.occupancy_abs_error_sum += std::abs(occ_gt - occ_pred);
+    }
+    // Dwell: visits matched one to one, the largest overlap first.
+    std::vector<const Visit*> gt, pred;
+    for (const Visit& v : truth.visits) {
+      if (v.region == region) gt.push_back(&v);
+    }
+    for (const Visit& v : predicted.visits) {
+      if (v.region == region) pred.push_back(&v);
+    }
+    c.gt_visits = static_cast<std::int64_t>(gt.size());
+    c.visits = static_cast<std::int64_t>(pred.size());
+    std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
+    for (std::size_t i = 0; i < gt.size(); ++i) {
+      for (std::size_t j = 0; j < pred.size(); ++j) {
+        const double overlap = std::min(gt[i]->exit_s, pred[j]->exit_s) -
+                               std::max(gt[i]->enter_s, pred[j]->enter_s);
+        if (overlap > 0.0) pairs.emplace_back(-overlap, i, j);
+      }
+    }
+    std::sort(pairs.begin(), pairs.end());
+    std::vector<char> gt_used(gt.size(), 0), pred_used(pred.size(), 0);
+    for (const auto& [negative_overlap, i, j] : pairs) {
+      if (gt_used[i] || pred_used[j]) continue;
+      gt_used[i] = pred_used[j] = 1;
+      c.dwell_errors_s.push_back(std::abs(pred[j]->dwell_s() - gt[i]->dwell_s()));
+    }
+    std::sort(c.dwell_errors_s.begin(), c.dwell_errors_s.end());
+  }
+  for (std::size_t l = 0; l < site.lines.size(); ++l) {
+    LineComparison& c = out.lines[l];
+    if (l < truth.lines.size()) {
+      c.gt_left_to_right = truth.lines[l].left_to_right;
+      c.gt_right_to_left = truth.lines[l].right_to_left;
+    }
+    if (l < predicted.lines.size()) {
+      c.left_to_right = predicted.lines[l].left_to_right;
+      c.right_to_left = predicted.lines[l].right_to_left;
+    }
+  }
+  return out;
+}
+
+}  // namespace mvtrack::analytics
