@@ -103,8 +103,8 @@ AnalyticsComparison CompareAnalytics(const Site& site,
     std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
     for (std::size_t i = 0; i < gt.size(); ++i) {
       for (std::size_t j = 0; j < pred.size(); ++j) {
-        const double overlap = std::min(gt[i]->exit_s, pred[j]->exit_s) -
-                               std::max(gt[i]->enter_s, pred[j]->enter_s);
+        const double overlap =
+            std::min(gt[i]->exit_s, pred[j]->exit_s) - std::max(gt[i]->enter_s, pred[j]->enter_s);
         if (overlap > 0.0) pairs.emplace_back(-overlap, i, j);
       }
     }

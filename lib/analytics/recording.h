@@ -38,9 +38,9 @@ struct Crossing {
 
 /// Everything SiteAnalytics found in a recording, in the order of the events (time, ...).
 struct RecordingAnalytics {
-  std::vector<Visit> visits;         ///< ordered by exit time (when they were complete)
-  std::vector<Crossing> crossings;   ///< ordered by time
-  std::vector<RegionCounts> regions; ///< final counts (occupancy 0: every visit closed)
+  std::vector<Visit> visits;          ///< ordered by exit time (when they were complete)
+  std::vector<Crossing> crossings;    ///< ordered by time
+  std::vector<RegionCounts> regions;  ///< final counts (occupancy 0: every visit closed)
   std::vector<LineCounts> lines;
   std::int64_t ignored_messages = 0;
 };

@@ -80,6 +80,17 @@ double SignedDistance(const std::vector<Vec2>& polygon, const Vec2& p) {
   return inside ? distance : -distance;
 }
 
+std::optional<std::string> ValidateName(const std::string& name) {
+  if (name.empty()) return "the name is empty";
+  if (name.size() > static_cast<std::size_t>(kMaxNameLength)) {
+    return "the name is longer than " + std::to_string(kMaxNameLength) + " characters";
+  }
+  for (const char c : name) {
+    if (c < 0x20 || c > 0x7E) return "the name has a character that is not printable ASCII";
+  }
+  return std::nullopt;
+}
+
 std::optional<std::string> ValidatePolygon(const std::vector<Vec2>& p) {
   if (p.size() < 3) return "a polygon needs at least 3 vertices";
   if (p.size() > static_cast<std::size_t>(kMaxPolygonVertices)) {
@@ -124,7 +135,9 @@ std::optional<std::string> ValidateSite(const Site& site) {
   for (std::size_t r = 0; r < site.regions.size(); ++r) {
     const Region& region = site.regions[r];
     const std::string where = "regions[" + std::to_string(r) + "] '" + region.name + "': ";
-    if (region.name.empty()) return "regions[" + std::to_string(r) + "]: the name is empty";
+    if (const std::optional<std::string> why = ValidateName(region.name)) {
+      return "regions[" + std::to_string(r) + "]: " + *why;
+    }
     if (!names.insert(region.name).second) return where + "another region has this name";
     if (const std::optional<std::string> why = ValidatePolygon(region.polygon)) {
       return where + *why;
@@ -134,7 +147,9 @@ std::optional<std::string> ValidateSite(const Site& site) {
   for (std::size_t l = 0; l < site.lines.size(); ++l) {
     const Line& line = site.lines[l];
     const std::string where = "lines[" + std::to_string(l) + "] '" + line.name + "': ";
-    if (line.name.empty()) return "lines[" + std::to_string(l) + "]: the name is empty";
+    if (const std::optional<std::string> why = ValidateName(line.name)) {
+      return "lines[" + std::to_string(l) + "]: " + *why;
+    }
     if (!names.insert(line.name).second) return where + "another line has this name";
     if (!Finite(line.from) || !Finite(line.to)) return where + "an end is not finite";
     if (!((line.to - line.from).norm() > 1e-6)) return where + "the line has no length";

@@ -64,6 +64,12 @@ struct Site {
 inline constexpr int kMaxRegions = 1000;
 inline constexpr int kMaxLines = 1000;
 inline constexpr int kMaxPolygonVertices = 1000;
+/// Longest region or line name, characters.
+inline constexpr int kMaxNameLength = 64;
+
+/// Why `name` is not a usable region or line name: names are 1 to kMaxNameLength printable
+/// ASCII characters (they travel in LCM strings, which are ASCII); nullopt when it is.
+std::optional<std::string> ValidateName(const std::string& name);
 
 /// Why `polygon` is not a usable region (fewer than 3 or more than kMaxPolygonVertices
 /// vertices, a non-finite vertex, edges crossing, no area); nullopt when it is.

@@ -31,6 +31,7 @@ Vec2 GetPoint(const NodeRef& node) {
 // A name: non-empty, unique among `names` (regions and lines have their own).
 std::string GetName(const NodeRef& node, std::set<std::string>* names, const char* what) {
   std::string name = GetString(node);
+  if (const std::optional<std::string> why = analytics::ValidateName(name)) node.Fail(*why);
   if (!names->insert(name).second)
     node.Fail("another " + std::string(what) + " is named '" + name + "'");
   return name;

@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "analytics/site_analytics.h"
 #include "core/detection.h"
 #include "core/keypoint_layout.h"
 #include "core/types.h"
@@ -59,6 +60,8 @@ struct DecodeLimits {
   int max_cameras = 256;
   /// track3d_t.num_joints.
   int max_joints = 64;
+  /// site_counts_t.num_regions and num_lines.
+  int max_site_items = analytics::kMaxRegions;
 
   /// True when usable: 8 <= max_message_bytes <= INT32_MAX and every count limit >= 0.
   /// Otherwise false, with the first violated condition in `why` (when not null).
@@ -259,5 +262,69 @@ std::vector<std::string> CameraFlagNames(std::int64_t flags);
 /// bits as
 /// CameraFlagNames does.
 std::vector<std::string> TrackerFlagNames(std::int64_t flags);
+
+/// A decoded analytics_event_t (lcmtypes/analytics_event_t.lcm; same fields and units).
+struct AnalyticsEventMessage {
+  Utime utime = 0;
+  Utime publish_utime = 0;
+  analytics::Event::Kind kind = analytics::Event::Kind::kEnter;
+  std::string name;
+  TrackId3D track_id = 0;
+  Utime enter_utime = 0;
+  analytics::Event::Direction direction = analytics::Event::Direction::kLeftToRight;
+  bool track_ended = false;
+};
+
+/// Result of DecodeAnalyticsEvent().
+struct AnalyticsEventDecodeResult {
+  DecodeStatus status = DecodeStatus::kMalformed;
+  std::string reason;             ///< empty when kOk; otherwise what, where, why
+  AnalyticsEventMessage message;  ///< valid only when kOk
+  bool ok() const { return status == DecodeStatus::kOk; }
+};
+
+/// Decodes an analytics_event_t from untrusted bytes (same guarantees as
+/// DecodeCameraDetections(); the name bounded by limits.max_string, kind and direction one of
+/// their constants).
+AnalyticsEventDecodeResult DecodeAnalyticsEvent(const void* data,
+                                                std::size_t size,
+                                                const DecodeLimits& limits = {});
+
+/// Encodes one event as an analytics_event_t.
+std::vector<std::uint8_t> EncodeAnalyticsEvent(const AnalyticsEventMessage& event);
+
+/// The analytics_event_t of `event` (times in seconds of capture time, as lib/analytics keeps
+/// them, rounded to µs) for a site whose regions and lines are `site`'s.
+AnalyticsEventMessage ToAnalyticsEventMessage(const analytics::Event& event,
+                                              const analytics::Site& site,
+                                              Utime publish_utime);
+
+/// A decoded site_counts_t (lcmtypes/site_counts_t.lcm).
+struct SiteCounts {
+  Utime utime = 0;
+  Utime publish_utime = 0;
+  std::vector<std::string> region_names;
+  std::vector<analytics::RegionCounts> regions;  ///< by region, as region_names
+  std::vector<std::string> line_names;
+  std::vector<analytics::LineCounts> lines;  ///< by line, as line_names
+};
+
+/// Result of DecodeSiteCounts().
+struct SiteCountsDecodeResult {
+  DecodeStatus status = DecodeStatus::kMalformed;
+  std::string reason;  ///< empty when kOk; otherwise what, where, why
+  SiteCounts message;  ///< valid only when kOk
+  bool ok() const { return status == DecodeStatus::kOk; }
+};
+
+/// Decodes a site_counts_t from untrusted bytes (same guarantees as DecodeCameraDetections();
+/// num_regions and num_lines bounded by limits.max_site_items, names by limits.max_string).
+SiteCountsDecodeResult DecodeSiteCounts(const void* data,
+                                        std::size_t size,
+                                        const DecodeLimits& limits = {});
+
+/// Encodes `counts` as a site_counts_t.
+/// @pre names and counts of equal sizes, at most INT16_MAX each (checked; aborts otherwise).
+std::vector<std::uint8_t> EncodeSiteCounts(const SiteCounts& counts);
 
 }  // namespace mvtrack::transport

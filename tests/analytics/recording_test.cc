@@ -20,7 +20,8 @@ Site Square() {
 
 // Track `id` inside the square (at (1.5, 1)) over [from, to) s, outside (at (5, 1)) otherwise,
 // sampled at 10 Hz over [0, 10) s.
-std::vector<TimedPositions> Inside(const std::vector<std::tuple<TrackId3D, double, double>>& stays) {
+std::vector<TimedPositions> Inside(
+    const std::vector<std::tuple<TrackId3D, double, double>>& stays) {
   std::vector<TimedPositions> out;
   for (int i = 0; i < 100; ++i) {
     TimedPositions m;
@@ -53,8 +54,7 @@ TEST_CASE("analytics recording: visits, occupancy at a time, quantiles", "[unit]
   CHECK(std::isnan(Quantile({}, 0.5)));
 }
 
-TEST_CASE("analytics recording: counts, occupancy and dwell against the ground truth",
-          "[unit]") {
+TEST_CASE("analytics recording: counts, occupancy and dwell against the ground truth", "[unit]") {
   const Site site = Square();
   const RecordingAnalytics truth = AnalyzeRecording(site, Inside({{1, 2.0, 5.0}, {2, 3.0, 8.0}}));
   // The tracker: track 1's visit 0.5 s late and split by a new id at 4.0 s (ids 7 and 8), track

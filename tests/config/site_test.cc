@@ -92,6 +92,10 @@ TEST_CASE("site file: mistakes are errors naming the line and the key", "[unit]"
   text = kSite;
   text.replace(text.find("hold_s: 0.5"), 11, "hold_s: -1");
   CheckLocated(error(text), "s.yaml", LineOf(text, "hold_s"), "rules.hold_s", "[0, 3600]");
+  text = kSite;
+  text.replace(text.find("name: shelf"), 11, "name: caf\xc3\xa9");
+  CheckLocated(
+      error(text), "s.yaml", LineOf(text, "name: caf"), "regions[0].name", "not printable ASCII");
   CHECK_THAT(error("format: mvtrack.site/1\n").what(),
              Catch::Contains("a site needs at least one region or line"));
   CHECK_THAT(error("format: mvtrack.site/2\nregions: []\n").what(),
