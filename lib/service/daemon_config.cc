@@ -13,6 +13,7 @@
 #include "config/calibration.h"
 #include "config/internal/tracker_options_node.h"
 #include "config/internal/yaml_node.h"
+#include "config/site.h"
 #include "geometry/camera_rig.h"
 #include "transport/channels.h"
 
@@ -175,6 +176,37 @@ void ParseOutput(const MapRef& root, DaemonConfig* c) {
   if (auto v = m.Find("latency_limit_us")) c->latency_limit_us = GetInt64(*v, 1);
 }
 
+void ParseAnalytics(const MapRef& root, const std::string& base_dir, DaemonConfig* c) {
+  const std::optional<NodeRef> node = root.Find("analytics");
+  if (!node) return;
+  const MapRef m(*node, {"site", "events_channel", "counts_channel"}, true);
+  if (auto v = m.Find("site")) {
+    const std::string path = GetString(*v, /*allow_empty=*/true);
+    if (!path.empty()) {
+      c->site_path = ResolvePath(base_dir, path);
+      c->site = config::LoadSiteFile(c->site_path);
+    }
+  }
+  const std::vector<std::string> taken = {c->tracks_channel, c->status_channel};
+  if (auto v = m.Find("events_channel")) {
+    c->analytics_events_channel = GetString(*v);
+    CheckChannelName(*v, c->analytics_events_channel);
+  }
+  if (auto v = m.Find("counts_channel")) {
+    c->site_counts_channel = GetString(*v);
+    CheckChannelName(*v, c->site_counts_channel);
+  }
+  for (const std::string& channel : {c->analytics_events_channel, c->site_counts_channel}) {
+    if (std::count(taken.begin(), taken.end(), channel) > 0 ||
+        c->analytics_events_channel == c->site_counts_channel) {
+      node->Fail(
+          "the analytics channels must differ from each other and from the tracks and "
+          "status channels ('" +
+          channel + "')");
+    }
+  }
+}
+
 void ParseSync(const MapRef& root, DaemonConfig* c) {
   const std::optional<NodeRef> node = root.Find("sync");
   if (!node) return;
@@ -327,6 +359,7 @@ DaemonConfig ParseDaemonConfig(std::string_view text,
                        "queues",
                        "state",
                        "logging",
+                       "analytics",
                        "tracker"});
     const NodeRef format = root.Get("format");
     if (GetString(format) != kDaemonConfigFormat) {
@@ -336,6 +369,7 @@ DaemonConfig ParseDaemonConfig(std::string_view text,
     ParseCameras(root, base_dir, calibration_override, &c);
     ParseInput(root, &c);
     ParseOutput(root, &c);
+    ParseAnalytics(root, base_dir, &c);
     ParseSync(root, &c);
     ParseThreadsAndQueues(root, &c);
     ParseState(root, base_dir, &c);
@@ -394,6 +428,10 @@ std::string DaemonConfigToYaml(const DaemonConfig& c) {
   line("  status_channel: " + QuoteString(c.status_channel));
   line("  status_period_s: " + FormatDouble(c.status_period_s));
   line("  latency_limit_us: " + std::to_string(c.latency_limit_us));
+  line("analytics:");
+  line("  site: " + QuoteString(c.site_path));
+  line("  events_channel: " + QuoteString(c.analytics_events_channel));
+  line("  counts_channel: " + QuoteString(c.site_counts_channel));
   line("sync:");
   line("  mode: " + std::string(SyncModeName(c.sync.mode)));
   line("  tolerance_us: " + std::to_string(c.sync.tolerance_us));
@@ -433,7 +471,8 @@ int LcmQueueCapacity(const DaemonConfig& config) {
 }
 
 std::string DaemonConfigHash(const DaemonConfig& c) {
-  return Fnv1a64Hex(DaemonConfigToYaml(c) + "\n---\n" + config::CalibrationToYaml(c.cameras));
+  return Fnv1a64Hex(DaemonConfigToYaml(c) + "\n---\n" + config::CalibrationToYaml(c.cameras) +
+                    (c.site_path.empty() ? "" : "\n---\n" + config::SiteToYaml(c.site)));
 }
 
 }  // namespace mvtrack::service

@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include "analytics/site_analytics.h"
 #include "config/config_error.h"
 #include "core/types.h"
 #include "geometry/camera_model.h"
@@ -160,6 +161,15 @@ struct DaemonConfig {
   /// interval (the suppressed count is reported with the next one), seconds, > 0.
   double log_repeat_interval_s = 10.0;
 
+  /// analytics.site: the site file (regions and lines, docs/FORMATS.md "Site file"), resolved
+  /// against the configuration file's directory; "" = no analytics.
+  std::string site_path;
+  /// The site loaded from site_path (empty when there is none).
+  analytics::Site site;
+  /// analytics.events_channel: where analytics_event_t messages go.
+  std::string analytics_events_channel = "MVTRACK_ANALYTICS_EVENTS";
+  /// analytics.counts_channel: where site_counts_t messages go.
+  std::string site_counts_channel = "MVTRACK_SITE_COUNTS";
   /// state.directory: where the daemon keeps what must survive a restart (the track id
   /// reservation, service::IdReservation), resolved against the configuration file's
   /// directory; "" = $STATE_DIRECTORY (systemd's StateDirectory=) when mvtrackd runs under

@@ -138,6 +138,7 @@ Service::Service(DaemonConfig config, ServiceHooks hooks)
   period_start_us_ = start_us_;
   next_status_us_ = start_us_ + Seconds(config_.status_period_s);
   last_message_us_ = start_us_;
+  if (!config_.site_path.empty()) analytics_.emplace(config_.site);
 }
 
 Service::~Service() { Stop(); }
@@ -410,6 +411,7 @@ void Service::OnFrame(tracker::Frame3D frame) {
       transport::EncodeTracks(frame, output_layout_, now, latency);
   Publish(config_.tracks_channel, bytes, now);
   if (hooks_.on_frame) hooks_.on_frame(frame, output_layout_);
+  if (analytics_) Analyse(frame, now);
   std::lock_guard<std::mutex> lock(mu_);
   ++counters_.frames_published;
   counters_.max_latency_us = std::max(counters_.max_latency_us, latency);
@@ -422,6 +424,38 @@ void Service::OnFrame(tracker::Frame3D frame) {
     if (t.state != linking::TrackState::kTentative) ++confirmed_tracks_;
     max_published_id_ = std::max(max_published_id_, t.id);
   }
+}
+
+void Service::Analyse(const tracker::Frame3D& frame, std::int64_t now) {
+  std::vector<analytics::TrackPosition> positions;
+  positions.reserve(frame.tracks.size());
+  for (const tracker::Track3D& t : frame.tracks) positions.push_back({t.id, t.position.head<2>()});
+  std::lock_guard<std::mutex> lock(analytics_mu_);
+  const std::vector<analytics::Event> events =
+      analytics_->Update(static_cast<double>(frame.utime) * 1e-6, positions);
+  analytics_utime_ = frame.utime;
+  for (const analytics::Event& e : events) {
+    Publish(
+        config_.analytics_events_channel,
+        transport::EncodeAnalyticsEvent(transport::ToAnalyticsEventMessage(e, config_.site, now)),
+        now);
+  }
+  if (!events.empty()) PublishSiteCounts(now);
+  std::lock_guard<std::mutex> counters_lock(mu_);
+  counters_.analytics_events_published += static_cast<std::int64_t>(events.size());
+}
+
+void Service::PublishSiteCounts(std::int64_t now) {
+  transport::SiteCounts counts;
+  counts.utime = analytics_utime_;
+  counts.publish_utime = now;
+  for (const analytics::Region& r : config_.site.regions) counts.region_names.push_back(r.name);
+  counts.regions = analytics_->region_counts();
+  for (const analytics::Line& l : config_.site.lines) counts.line_names.push_back(l.name);
+  counts.lines = analytics_->line_counts();
+  Publish(config_.site_counts_channel, transport::EncodeSiteCounts(counts), now);
+  std::lock_guard<std::mutex> lock(mu_);
+  ++counters_.site_counts_published;
 }
 
 bool Service::ExtendReservation(TrackId3D next_id, std::string* why) {
@@ -453,6 +487,10 @@ void Service::Tick() {
     {
       std::lock_guard<std::mutex> lock(mu_);
       ++counters_.status_published;
+    }
+    if (analytics_) {
+      std::lock_guard<std::mutex> lock(analytics_mu_);
+      PublishSiteCounts(now);
     }
     next_status_us_ = now + Seconds(config_.status_period_s);
   }
@@ -546,6 +584,10 @@ void Service::Stop() {
   {
     std::lock_guard<std::mutex> lock(mu_);
     ++counters_.status_published;
+  }
+  if (analytics_) {
+    std::lock_guard<std::mutex> analytics_lock(analytics_mu_);
+    PublishSiteCounts(Now());
   }
   std::lock_guard<std::mutex> lock(out_mu_);
   if (record_) {

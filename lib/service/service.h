@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "analytics/site_analytics.h"
 #include "core/keypoint_layout.h"
 #include "pipeline/clock.h"
 #include "pipeline/pipeline.h"
@@ -91,6 +92,8 @@ struct ServiceCounters {
   std::int64_t submitted = 0;                           ///< camera-frames submitted to the pipeline
   std::int64_t gate_rejected = 0;                       ///< rejected by the tracker's FrameGate
   std::int64_t frames_published = 0;                    ///< tracks messages published
+  std::int64_t analytics_events_published = 0;          ///< analytics_event_t published
+  std::int64_t site_counts_published = 0;               ///< site_counts_t published
   std::int64_t status_published = 0;                    ///< status messages published
   std::int64_t idle_flushes = 0;                        ///< idle flushes (all cameras silent)
   std::int64_t stream_restarts = 0;                     ///< synchronizer resyncs
@@ -188,6 +191,10 @@ class Service {
   // pipeline_->Flush() with flushing_ set (frames it outputs are not latency-sampled).
   void FlushPipeline();
   void OnFrame(tracker::Frame3D frame);
+  // The site analytics of a published frame: its events, and the counts when one changed.
+  void Analyse(const tracker::Frame3D& frame, std::int64_t now);
+  // Publishes site_counts_t (analytics_mu_ held).
+  void PublishSiteCounts(std::int64_t now);
   void Publish(const std::string& channel,
                const std::vector<std::uint8_t>& data,
                std::int64_t time_us);
@@ -248,6 +255,13 @@ class Service {
   // -1 while never measured.
   mutable std::atomic<std::int64_t> kernel_drops_{-1};
   std::int64_t kernel_drops_at_period_start_ = 0;
+
+  // The site analytics (config_.site_path; none when empty), fed by the finalizer thread,
+  // its counts also published by the control thread with each status (guarded by
+  // analytics_mu_).
+  std::optional<analytics::SiteAnalytics> analytics_;
+  std::int64_t analytics_utime_ = 0;  // capture time of the newest frame analysed
+  std::mutex analytics_mu_;
 
   // Set while the control thread flushes the pipeline (read by the finalizer thread).
   std::atomic<bool> flushing_{false};

@@ -34,7 +34,8 @@ bool WalkEvent(WireWalker* w, const DecodeLimits& limits) {
   if (!w->ReadInt8("kind", &kind)) return false;
   if (kind < mvtrack::analytics_event_t::KIND_ENTER ||
       kind > mvtrack::analytics_event_t::KIND_CROSSING) {
-    return w->Fail(DecodeStatus::kMalformed, "kind " + std::to_string(kind) + " is not a KIND_*",
+    return w->Fail(DecodeStatus::kMalformed,
+                   "kind " + std::to_string(kind) + " is not a KIND_*",
                    w->position() - 1);
   }
   std::string_view name;
@@ -65,8 +66,10 @@ bool WalkCounts(WireWalker* w, const DecodeLimits& limits) {
   w->Skip("utime, publish_utime", 2 * kInt64Bytes);
   std::string_view name;
   std::int32_t regions = 0;
-  if (!w->ReadCount16("num_regions", limits.max_site_items,
-                      kMinStringBytes + kInt32Bytes + 2 * kInt64Bytes, &regions)) {
+  if (!w->ReadCount16("num_regions",
+                      limits.max_site_items,
+                      kMinStringBytes + kInt32Bytes + 2 * kInt64Bytes,
+                      &regions)) {
     return false;
   }
   for (std::int32_t i = 0; i < regions; ++i) {
@@ -75,8 +78,8 @@ bool WalkCounts(WireWalker* w, const DecodeLimits& limits) {
   w->Skip("occupancy", static_cast<std::size_t>(regions) * kInt32Bytes);
   w->Skip("entries, exits", 2 * static_cast<std::size_t>(regions) * kInt64Bytes);
   std::int32_t lines = 0;
-  if (!w->ReadCount16("num_lines", limits.max_site_items, kMinStringBytes + 2 * kInt64Bytes,
-                      &lines)) {
+  if (!w->ReadCount16(
+          "num_lines", limits.max_site_items, kMinStringBytes + 2 * kInt64Bytes, &lines)) {
     return false;
   }
   for (std::int32_t i = 0; i < lines; ++i) {
@@ -161,8 +164,8 @@ AnalyticsEventMessage ToAnalyticsEventMessage(const analytics::Event& event,
                ? site.lines[static_cast<std::size_t>(event.line)].name
                : site.regions[static_cast<std::size_t>(event.region)].name;
   m.track_id = event.track;
-  m.enter_utime = event.kind == analytics::Event::Kind::kExit ? ToUtime(event.enter_time_s)
-                                                               : m.utime;
+  m.enter_utime =
+      event.kind == analytics::Event::Kind::kExit ? ToUtime(event.enter_time_s) : m.utime;
   m.direction = event.kind == analytics::Event::Kind::kCrossing
                     ? event.direction
                     : analytics::Event::Direction::kLeftToRight;

@@ -155,6 +155,44 @@ TEST_CASE("daemon config: errors name the file, line, key and reason", "[unit]")
   }
 }
 
+TEST_CASE("daemon config: the analytics site, its channels and its errors", "[unit]") {
+  TempDir dir;
+  const std::string cal_text =
+      config::CalibrationToYaml(config::LoadCalibration(ExampleDir() + "/" + kCalibration));
+  dir.Write(kCalibration, cal_text);
+  dir.Write("site.yaml",
+            "format: mvtrack.site/1\nregions:\n  - name: door\n"
+            "    polygon: [[0, 0], [1, 0], [1, 1]]\n");
+  const std::string path =
+      dir.Write("d.yaml", Minimal("analytics:\n  site: site.yaml\n  counts_channel: COUNTS\n"));
+  const DaemonConfig c = LoadDaemonConfigFile(path);
+  CHECK(c.site_path == dir.File("site.yaml"));
+  REQUIRE(c.site.regions.size() == 1);
+  CHECK(c.site.regions[0].name == "door");
+  CHECK(c.analytics_events_channel == "MVTRACK_ANALYTICS_EVENTS");
+  CHECK(c.site_counts_channel == "COUNTS");
+  CHECK(DaemonConfigToYaml(c).find("  site: \"" + dir.File("site.yaml") + "\"") !=
+        std::string::npos);
+  // The site is part of the hash.
+  DaemonConfig other = c;
+  other.site.regions[0].polygon[2].x() = 2.0;
+  CHECK(DaemonConfigHash(c) != DaemonConfigHash(other));
+  // A mistake in the site file is blamed on the site file.
+  dir.Write("site.yaml", "format: mvtrack.site/1\nregion: []\n");
+  try {
+    LoadDaemonConfigFile(path);
+    FAIL("a broken site was accepted");
+  } catch (const config::ConfigError& e) {
+    CHECK(e.file() == dir.File("site.yaml"));
+    CHECK_THAT(e.reason(), Catch::Contains("did you mean 'regions'"));
+  }
+  // A channel taken twice.
+  const config::ConfigError clash =
+      ErrorOf(Minimal("analytics:\n  events_channel: MVTRACK_TRACKS\n"));
+  CHECK(clash.key_path() == "analytics");
+  CHECK_THAT(clash.reason(), Catch::Contains("must differ"));
+}
+
 TEST_CASE("daemon config: calibration override, detection and hash", "[unit]") {
   TempDir dir;
   const std::string cal_text =

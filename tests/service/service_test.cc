@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "analytics/site_analytics.h"
 #include "config/config_test_util.h"
 #include "geometry/camera_rig.h"
 #include "service/daemon_config.h"
@@ -74,6 +75,7 @@ struct Sink {
   std::vector<transport::TracksMessage> tracks;     // decoded tracks3d_t
   std::vector<mvtrack::tracker_status_t> statuses;  // decoded tracker_status_t
   std::map<std::string, int> channels;
+  std::map<std::string, std::vector<std::vector<std::uint8_t>>> other;  // other channels, raw
   int undecodable = 0;  // published messages that did not decode (checked on the test thread)
 
   ServiceHooks Hooks(const pipeline::Clock* clock) {
@@ -90,6 +92,8 @@ struct Sink {
           return;
         }
         tracks.push_back(std::move(r.message));
+      } else if (channel != "MVTRACK_STATUS") {
+        other[channel].push_back(data);
       } else {
         mvtrack::tracker_status_t s;
         if (s.decode(data.data(), 0, static_cast<int>(data.size())) !=
@@ -573,6 +577,95 @@ TEST_CASE("service --record log holds every input and output message", "[unit]")
   unwritable.record_path = dir.File("no/such/dir/record.lcmlog");
   CHECK_FALSE(Service::Create(Config(1), unwritable, &why));
   CHECK_THAT(why, Catch::Contains("--record"));
+}
+
+TEST_CASE("service: with a site, the analytics events of its published frames and the counts",
+          "[unit]") {
+  analytics::Site site;
+  site.regions.push_back({"west", {{0, 0}, {3, 0}, {3, 6}, {0, 6}}});
+  site.lines.push_back({"middle", {3, 0}, {3, 6}});
+  site.options.hysteresis_m = 0.1;
+  site.options.hold_s = 0.2;
+  // The reference: the tracker's frames through the analytics directly.
+  std::string why;
+  tracker::TrackerOptions options;
+  options.mode = tracker::InputMode::kBoxes;
+  auto t = tracker::Tracker::Create(geometry::CameraRig(Scene().cameras), options, &why);
+  REQUIRE(t);
+  analytics::SiteAnalytics reference(site);
+  std::vector<analytics::Event> expected;
+  const auto analyse = [&](const tracker::Frame3D& f) {
+    std::vector<analytics::TrackPosition> positions;
+    for (const tracker::Track3D& track : f.tracks) {
+      positions.push_back({track.id, track.position.head<2>()});
+    }
+    for (const analytics::Event& e :
+         reference.Update(static_cast<double>(f.utime) * 1e-6, positions)) {
+      expected.push_back(e);
+    }
+  };
+  for (const auto& cams : Scene().detections) {
+    for (const core::CameraFrame& f : cams) {
+      const std::vector<std::uint8_t> bytes = Encode(f);
+      const transport::DecodeResult d =
+          transport::DecodeCameraDetections(bytes.data(), bytes.size());
+      REQUIRE(d.ok());
+      for (const tracker::Frame3D& out : t->Add(d.frame).finalized) analyse(out);
+    }
+  }
+  for (const tracker::Frame3D& out : t->Flush()) analyse(out);
+  REQUIRE(expected.size() >= 2);
+
+  DaemonConfig config = Config(2);
+  config.site_path = "site.yaml";  // only its being set matters here: the site is given
+  config.site = site;
+  pipeline::ManualClock clock(Scene().detections[0][0].utime);
+  Sink sink;
+  std::unique_ptr<Service> s = Service::Create(config, sink.Hooks(&clock), &why);
+  REQUIRE(s);
+  Feed(s.get(), &clock, 0, Scene().detections.size());
+  s->EndOfInput();
+  const ServiceCounters c = s->Counters();
+  s->Stop();
+  CHECK(sink.undecodable == 0);
+  const auto& events = sink.other["MVTRACK_ANALYTICS_EVENTS"];
+  REQUIRE(events.size() == expected.size());
+  CHECK(c.analytics_events_published == static_cast<std::int64_t>(expected.size()));
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const transport::AnalyticsEventDecodeResult d =
+        transport::DecodeAnalyticsEvent(events[i].data(), events[i].size());
+    REQUIRE(d.ok());
+    const transport::AnalyticsEventMessage want =
+        transport::ToAnalyticsEventMessage(expected[i], site, d.message.publish_utime);
+    CHECK(d.message.kind == want.kind);
+    CHECK(d.message.name == want.name);
+    CHECK(d.message.track_id == want.track_id);
+    CHECK(d.message.utime == want.utime);
+    CHECK(d.message.enter_utime == want.enter_utime);
+    CHECK(d.message.direction == want.direction);
+  }
+  // Counts: after each frame with events and with the final status; the last ones are the
+  // reference's.
+  const auto& counts = sink.other["MVTRACK_SITE_COUNTS"];
+  REQUIRE_FALSE(counts.empty());
+  // One more with the final status of Stop().
+  CHECK(c.site_counts_published + 1 == static_cast<std::int64_t>(counts.size()));
+  const transport::SiteCountsDecodeResult last =
+      transport::DecodeSiteCounts(counts.back().data(), counts.back().size());
+  REQUIRE(last.ok());
+  CHECK(last.message.region_names == std::vector<std::string>{"west"});
+  CHECK(last.message.regions[0].entries == reference.region_counts()[0].entries);
+  CHECK(last.message.regions[0].exits == reference.region_counts()[0].exits);
+  CHECK(last.message.regions[0].occupancy == reference.region_counts()[0].occupancy);
+  CHECK(last.message.lines[0].left_to_right == reference.line_counts()[0].left_to_right);
+  CHECK(last.message.lines[0].right_to_left == reference.line_counts()[0].right_to_left);
+  // Without a site nothing is published on the analytics channels.
+  Sink plain;
+  std::unique_ptr<Service> without = Service::Create(Config(2), plain.Hooks(&clock), &why);
+  REQUIRE(without);
+  Feed(without.get(), &clock, 0, 30);
+  without->Stop();
+  CHECK(plain.other.empty());
 }
 
 TEST_CASE("LcmRunner routes memq:// messages to the service and publishes its output", "[unit]") {

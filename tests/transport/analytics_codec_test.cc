@@ -81,8 +81,7 @@ TEST_CASE("analytics messages: truncations, other types, bad values and counts a
     CHECK_FALSE(DecodeSiteCounts(counts.data(), n).ok());
   }
   // Each decoder refuses the other's bytes.
-  CHECK(DecodeAnalyticsEvent(counts.data(), counts.size()).status ==
-        DecodeStatus::kBadFingerprint);
+  CHECK(DecodeAnalyticsEvent(counts.data(), counts.size()).status == DecodeStatus::kBadFingerprint);
   CHECK(DecodeSiteCounts(event.data(), event.size()).status == DecodeStatus::kBadFingerprint);
   // kind is the byte after the fingerprint and the two int64 times.
   std::vector<std::uint8_t> kind = event;
@@ -104,8 +103,7 @@ TEST_CASE("analytics messages: truncations, other types, bad values and counts a
   CHECK_FALSE(DecodeSiteCounts(huge.data(), huge.size()).ok());
   DecodeLimits one;
   one.max_site_items = 1;
-  CHECK(DecodeSiteCounts(counts.data(), counts.size(), one).status ==
-        DecodeStatus::kLimitExceeded);
+  CHECK(DecodeSiteCounts(counts.data(), counts.size(), one).status == DecodeStatus::kLimitExceeded);
 }
 
 TEST_CASE("5000 random mutations of analytics messages never crash", "[unit]") {

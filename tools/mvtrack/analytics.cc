@@ -68,8 +68,8 @@ void WriteCsv(const std::filesystem::path& dir,
   std::string visits = "region,track,enter_s,exit_s,dwell_s,ended_by\n";
   for (const analytics::Visit& v : result.visits) {
     visits += Field(site.regions[static_cast<std::size_t>(v.region)].name) + "," +
-              std::to_string(v.track) + "," + Fixed(v.enter_s, 3) + "," + Fixed(v.exit_s, 3) +
-              "," + Fixed(v.dwell_s(), 3) + "," + (v.track_ended ? "track_end" : "exit") + "\n";
+              std::to_string(v.track) + "," + Fixed(v.enter_s, 3) + "," + Fixed(v.exit_s, 3) + "," +
+              Fixed(v.dwell_s(), 3) + "," + (v.track_ended ? "track_end" : "exit") + "\n";
   }
   WriteFile(dir / "visits.csv", visits);
   std::string crossings = "line,track,time_s,direction\n";
@@ -97,7 +97,7 @@ void WriteCsv(const std::filesystem::path& dir,
     Hour& h = hours[{"line:" + site.lines[static_cast<std::size_t>(c.line)].name,
                      static_cast<std::int64_t>(std::floor(c.time_s / 3600.0))}];
     ++(c.direction == analytics::Event::Direction::kLeftToRight ? h.left_to_right
-                                                                 : h.right_to_left);
+                                                                : h.right_to_left);
   }
   std::string summary = "kind,name,hour_start_s,visits,mean_dwell_s,left_to_right,right_to_left\n";
   for (const auto& [key, h] : hours) {
@@ -105,11 +105,11 @@ void WriteCsv(const std::filesystem::path& dir,
     const std::string name = key.first.substr(key.first.find(':') + 1);
     summary += kind + "," + Field(name) + "," + std::to_string(key.second * 3600) + ",";
     if (kind == "region") {
-      summary += std::to_string(h.visits) + "," + Fixed(h.dwell / static_cast<double>(h.visits), 3) +
-                 ",,\n";
+      summary += std::to_string(h.visits) + "," +
+                 Fixed(h.dwell / static_cast<double>(h.visits), 3) + ",,\n";
     } else {
-      summary += ",," + std::to_string(h.left_to_right) + "," + std::to_string(h.right_to_left) +
-                 "\n";
+      summary +=
+          ",," + std::to_string(h.left_to_right) + "," + std::to_string(h.right_to_left) + "\n";
     }
   }
   WriteFile(dir / "summary.csv", summary);
@@ -133,8 +133,7 @@ int RunAnalytics(int argc, char** argv) {
   args.Option("tracks", "track output to analyse (tracks JSONL or an LCM tracks log)")
       .Option("regions", "site file with the regions and lines (format mvtrack.site/1)")
       .Option("out", "write visits.csv, crossings.csv and summary.csv into this directory")
-      .Option("gt",
-              "ground-truth tracks (JSONL or log): also analysed, and the counts compared")
+      .Option("gt", "ground-truth tracks (JSONL or log): also analysed, and the counts compared")
       .Option("json", "also write the counts (and the comparison) as JSON to this file")
       .Option("fps", "frame rate for files without capture times (every utime 0)", "25")
       .Flag("quiet", "no progress lines on stderr");
@@ -215,10 +214,13 @@ int RunAnalytics(int argc, char** argv) {
                               {"dwell_median_s", analytics::Quantile(dwell, 0.5)},
                               {"dwell_p95_s", analytics::Quantile(dwell, 0.95)}});
     char line[256];
-    std::snprintf(line, sizeof(line), "  %-20s %8lld %8lld %7zu %15s %12s\n",
+    std::snprintf(line,
+                  sizeof(line),
+                  "  %-20s %8lld %8lld %7zu %15s %12s\n",
                   site.regions[r].name.c_str(),
                   static_cast<long long>(result.regions[r].entries),
-                  static_cast<long long>(result.regions[r].exits), dwell.size(),
+                  static_cast<long long>(result.regions[r].exits),
+                  dwell.size(),
                   Fixed(analytics::Quantile(dwell, 0.5), 2).c_str(),
                   Fixed(analytics::Quantile(dwell, 0.95), 2).c_str());
     std::cout << line;
@@ -230,7 +232,10 @@ int RunAnalytics(int argc, char** argv) {
                               {"left_to_right", result.lines[l].left_to_right},
                               {"right_to_left", result.lines[l].right_to_left}});
       char line[256];
-      std::snprintf(line, sizeof(line), "  %-20s %13lld %14lld\n", site.lines[l].name.c_str(),
+      std::snprintf(line,
+                    sizeof(line),
+                    "  %-20s %13lld %14lld\n",
+                    site.lines[l].name.c_str(),
                     static_cast<long long>(result.lines[l].left_to_right),
                     static_cast<long long>(result.lines[l].right_to_left));
       std::cout << line;
@@ -261,23 +266,27 @@ int RunAnalytics(int argc, char** argv) {
       d["dwell_error_median_s"] = analytics::Quantile(rc.dwell_errors_s, 0.5);
       d["dwell_error_p95_s"] = analytics::Quantile(rc.dwell_errors_s, 0.95);
       char line[320];
-      std::snprintf(
-          line, sizeof(line),
-          "  %-20s %6lld (%lld) %8s %6lld (%lld) %8s %18s %5s %8zu / %-6lld %21s %6s\n",
-          site.regions[r].name.c_str(), static_cast<long long>(rc.entries),
-          static_cast<long long>(rc.gt_entries), CountError(rc.entries, rc.gt_entries).c_str(),
-          static_cast<long long>(rc.exits), static_cast<long long>(rc.gt_exits),
-          CountError(rc.exits, rc.gt_exits).c_str(),
-          Percent(rc.occupancy_frames_equal, rc.occupancy_frames).c_str(),
-          rc.occupancy_frames > 0
-              ? Fixed(static_cast<double>(rc.occupancy_abs_error_sum) /
-                          static_cast<double>(rc.occupancy_frames),
-                      2)
-                    .c_str()
-              : "n/a",
-          rc.dwell_errors_s.size(), static_cast<long long>(rc.gt_visits),
-          Fixed(analytics::Quantile(rc.dwell_errors_s, 0.5), 2).c_str(),
-          Fixed(analytics::Quantile(rc.dwell_errors_s, 0.95), 2).c_str());
+      std::snprintf(line,
+                    sizeof(line),
+                    "  %-20s %6lld (%lld) %8s %6lld (%lld) %8s %18s %5s %8zu / %-6lld %21s %6s\n",
+                    site.regions[r].name.c_str(),
+                    static_cast<long long>(rc.entries),
+                    static_cast<long long>(rc.gt_entries),
+                    CountError(rc.entries, rc.gt_entries).c_str(),
+                    static_cast<long long>(rc.exits),
+                    static_cast<long long>(rc.gt_exits),
+                    CountError(rc.exits, rc.gt_exits).c_str(),
+                    Percent(rc.occupancy_frames_equal, rc.occupancy_frames).c_str(),
+                    rc.occupancy_frames > 0
+                        ? Fixed(static_cast<double>(rc.occupancy_abs_error_sum) /
+                                    static_cast<double>(rc.occupancy_frames),
+                                2)
+                              .c_str()
+                        : "n/a",
+                    rc.dwell_errors_s.size(),
+                    static_cast<long long>(rc.gt_visits),
+                    Fixed(analytics::Quantile(rc.dwell_errors_s, 0.5), 2).c_str(),
+                    Fixed(analytics::Quantile(rc.dwell_errors_s, 0.95), 2).c_str());
       std::cout << line;
     }
     for (std::size_t l = 0; l < site.lines.size(); ++l) {
