@@ -192,7 +192,8 @@ bool SiteAnalytics::Step(
   } else if (e < -half) {
     state->pending = false;  // back past the band on its own side: not a change
   }
-  return state->pending && time_s - state->cross_time_s >= site_.options.hold_s;
+  // Held: past the band once, on the new side of the border now, for hold_s since crossing it.
+  return state->pending && e > 0.0 && time_s - state->cross_time_s >= site_.options.hold_s;
 }
 
 void SiteAnalytics::Confirm(TrackId3D id,

@@ -199,3 +199,81 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
 }
 
 }  // namespace mvtrack::web
+
+namespace mvtrack::web {
+namespace {
+
+// A Prometheus label value: backslash, double quote and line feed escaped (names are printable
+// ASCII, ValidateName, but a hostile message may still carry quotes).
+std::string LabelValue(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\\' || c == '"') out += '\\';
+    out += c == '\n' ? std::string("\\n") : std::string(1, c);
+  }
+  return out;
+}
+
+}  // namespace
+
+void DwellHistogram::Add(double dwell_s) {
+  if (!std::isfinite(dwell_s) || dwell_s < 0.0) return;
+  for (std::size_t i = 0; i < std::size(kBounds); ++i) counts[i] += dwell_s <= kBounds[i] ? 1 : 0;
+  ++count;
+  sum_s += dwell_s;
+}
+
+std::string SiteMetricsText(const std::optional<transport::SiteCounts>& counts,
+                            const std::map<std::string, DwellHistogram>& dwell) {
+  Exposition e;
+  if (counts) {
+    const auto region = [](const std::string& name) {
+      return "region=\"" + LabelValue(name) + "\"";
+    };
+    e.Family("mvtrack_region_occupancy", "gauge", "people inside the region now (confirmed)");
+    for (std::size_t i = 0; i < counts->regions.size(); ++i) {
+      e.Sample(counts->regions[i].occupancy, region(counts->region_names[i]));
+    }
+    e.Family("mvtrack_region_entries_total", "counter", "visits of the region begun");
+    for (std::size_t i = 0; i < counts->regions.size(); ++i) {
+      e.Sample(D(counts->regions[i].entries), region(counts->region_names[i]));
+    }
+    e.Family("mvtrack_region_exits_total", "counter", "visits of the region ended");
+    for (std::size_t i = 0; i < counts->regions.size(); ++i) {
+      e.Sample(D(counts->regions[i].exits), region(counts->region_names[i]));
+    }
+    if (!counts->lines.empty()) {
+      e.Family("mvtrack_line_crossings_total", "counter", "crossings of the line, by direction");
+      for (std::size_t i = 0; i < counts->lines.size(); ++i) {
+        const std::string line = "line=\"" + LabelValue(counts->line_names[i]) + "\"";
+        e.Sample(D(counts->lines[i].left_to_right), line + ",direction=\"left_to_right\"");
+        e.Sample(D(counts->lines[i].right_to_left), line + ",direction=\"right_to_left\"");
+      }
+    }
+  }
+  if (!dwell.empty()) {
+    e.Family("mvtrack_region_dwell_seconds",
+             "histogram",
+             "dwell of the visits that ended since the web server started, seconds");
+    std::string text = e.text();
+    for (const auto& [name, h] : dwell) {
+      const std::string region = "region=\"" + LabelValue(name) + "\"";
+      char buf[64];
+      for (std::size_t i = 0; i < std::size(DwellHistogram::kBounds); ++i) {
+        std::snprintf(buf, sizeof(buf), "%g", DwellHistogram::kBounds[i]);
+        text += "mvtrack_region_dwell_seconds_bucket{" + region + ",le=\"" + buf + "\"} " +
+                std::to_string(h.counts[i]) + "\n";
+      }
+      text += "mvtrack_region_dwell_seconds_bucket{" + region + ",le=\"+Inf\"} " +
+              std::to_string(h.count) + "\n";
+      std::snprintf(buf, sizeof(buf), "%.9g", h.sum_s);
+      text += "mvtrack_region_dwell_seconds_sum{" + region + "} " + buf + "\n";
+      text +=
+          "mvtrack_region_dwell_seconds_count{" + region + "} " + std::to_string(h.count) + "\n";
+    }
+    return text;
+  }
+  return e.text();
+}
+
+}  // namespace mvtrack::web

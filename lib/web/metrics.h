@@ -4,6 +4,8 @@
 /// server's own counters, for `mvtrack web`'s /metrics (metric names in docs/OPERATING.md).
 
 #include <cstdint>
+#include <iterator>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -14,12 +16,25 @@ namespace mvtrack::web {
 
 /// The web server's own counters.
 struct WebCounters {
-  std::int64_t tracks_messages = 0;  ///< tracks3d_t received and decoded
-  std::int64_t status_messages = 0;  ///< tracker_status_t received and decoded
-  std::int64_t decode_errors = 0;    ///< messages on either channel that failed to decode
-  std::int64_t clients = 0;          ///< /events clients connected now
-  std::int64_t clients_dropped = 0;  ///< /events clients disconnected for being too slow
-  std::int64_t events_sent = 0;      ///< events written to /events clients
+  std::int64_t tracks_messages = 0;       ///< tracks3d_t received and decoded
+  std::int64_t status_messages = 0;       ///< tracker_status_t received and decoded
+  std::int64_t decode_errors = 0;         ///< messages on either channel that failed to decode
+  std::int64_t clients = 0;               ///< /events clients connected now
+  std::int64_t clients_dropped = 0;       ///< /events clients disconnected for being too slow
+  std::int64_t events_sent = 0;           ///< events written to /events clients
+  std::int64_t analytics_events = 0;      ///< analytics_event_t received and decoded
+  std::int64_t site_counts_messages = 0;  ///< site_counts_t received and decoded
+};
+
+/// The dwell times of one region's visits that ended (exit events) since the server started,
+/// as a Prometheus histogram.
+struct DwellHistogram {
+  /// Upper bounds of the buckets, seconds (then +Inf).
+  static constexpr double kBounds[] = {1, 5, 10, 30, 60, 300, 900, 3600};
+  std::int64_t counts[std::size(kBounds)] = {};  ///< per bound: visits with dwell <= it
+  std::int64_t count = 0;
+  double sum_s = 0.0;
+  void Add(double dwell_s);
 };
 
 /// The exposition text. Without a status (none received yet) only mvtrack_up 0 and the web
@@ -33,5 +48,12 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
                            double stale_after_s,
                            const WebCounters& web,
                            const service::HealthReport& source = {service::Health::kOk, {}});
+
+/// The site analytics' series (docs/OPERATING.md "Metrics"): per region of the latest counts
+/// mvtrack_region_occupancy, mvtrack_region_entries_total, mvtrack_region_exits_total; per line
+/// mvtrack_line_crossings_total{direction}; per region with ended visits
+/// mvtrack_region_dwell_seconds (histogram). Empty without counts and dwell times.
+std::string SiteMetricsText(const std::optional<transport::SiteCounts>& counts,
+                            const std::map<std::string, DwellHistogram>& dwell);
 
 }  // namespace mvtrack::web

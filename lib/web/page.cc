@@ -60,6 +60,14 @@ const std::string& IndexPage() {
         <th>latency ms</th><th>clock offset ms</th><th>late</th><th>dropped</th><th>lost</th><th>rejected</th>
         <th>flags</th></tr></thead><tbody></tbody></table>
     </section>
+    <section id="site-section" hidden>
+      <h2>Regions and lines</h2>
+      <table id="regions"><thead><tr><th>region</th><th>inside</th><th>entries</th><th>exits</th>
+        </tr></thead><tbody></tbody></table>
+      <table id="lines"><thead><tr><th>line</th><th>left to right</th><th>right to left</th>
+        </tr></thead><tbody></tbody></table>
+      <ol id="analytics-events" reversed></ol>
+    </section>
     <section>
       <h2>Tracks <span id="tracks-note"></span></h2>
       <table id="tracks"><thead><tr><th>id</th><th>state</th><th>x m</th><th>y m</th>
@@ -73,6 +81,9 @@ const canvas = document.getElementById("floor");
 const ctx = canvas.getContext("2d");
 let floor = { cameras: [], bounds: null };
 let layouts = {};
+let site = { regions: [], lines: [] };  // /site.json: the geometry (mvtrack web --regions)
+let counts = null;                      // the latest site_counts event
+const MAX_EVENTS = 20;                  // analytics events listed
 let latest = null;            // the latest tracks event
 const trails = new Map();     // id -> [[x, y, t_ms], ...]
 const TRAIL_MS = 5000;
@@ -95,6 +106,8 @@ function bounds() {
     b[2] = Math.max(b[2], x); b[3] = Math.max(b[3], y);
   };
   if (latest) for (const t of latest.tracks) if (t.position[0] !== null) grow(t.position[0], t.position[1]);
+  for (const r of site.regions) for (const p of r.polygon) grow(p[0], p[1]);
+  for (const l of site.lines) { grow(l.from[0], l.from[1]); grow(l.to[0], l.to[1]); }
   if (!b) b = [-5, -5, 5, 5];
   const pad = 0.5;
   return [b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad];
@@ -121,6 +134,24 @@ function draw() {
     }
     ctx.fillStyle = "#35a"; ctx.fillRect(px(c.position[0]) - 5, py(c.position[1]) - 5, 10, 10);
     ctx.fillText("cam " + c.id, px(c.position[0]) + 7, py(c.position[1]) - 7);
+  }
+  // regions (with the people inside now) and lines (with their crossings)
+  const countOf = (list, name) => (counts ? counts[list].find((c) => c.name === name) : null);
+  for (const r of site.regions) {
+    const c = countOf("regions", r.name);
+    ctx.fillStyle = c && c.occupancy > 0 ? "rgba(60, 160, 90, 0.16)" : "rgba(60, 160, 90, 0.05)";
+    ctx.strokeStyle = "rgba(40, 130, 70, 0.8)"; ctx.lineWidth = 1.5;
+    ctx.beginPath(); ctx.moveTo(px(r.polygon[0][0]), py(r.polygon[0][1]));
+    for (const p of r.polygon) ctx.lineTo(px(p[0]), py(p[1]));
+    ctx.closePath(); ctx.fill(); ctx.stroke();
+    ctx.fillStyle = "#1a5"; ctx.fillText(r.name + (c ? ": " + c.occupancy : ""), px(r.polygon[0][0]) + 4, py(r.polygon[0][1]) - 4);
+  }
+  for (const l of site.lines) {
+    const c = countOf("lines", l.name);
+    ctx.strokeStyle = "#a3c"; ctx.lineWidth = 3;
+    ctx.beginPath(); ctx.moveTo(px(l.from[0]), py(l.from[1])); ctx.lineTo(px(l.to[0]), py(l.to[1])); ctx.stroke();
+    ctx.fillStyle = "#a3c";
+    ctx.fillText(l.name + (c ? " " + c.left_to_right + " / " + c.right_to_left : ""), px(l.to[0]) + 4, py(l.to[1]) - 4);
   }
   const now = performance.now();
   // trails, fading with age
@@ -240,6 +271,36 @@ function onStatus(s) {
   document.querySelector("#cameras tbody").innerHTML = rows.join("");
 }
 
+// Names come from the daemon's messages: written as text, never as HTML.
+function escapeHtml(v) {
+  return String(v).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" })[c]);
+}
+
+function onSiteCounts(c) {
+  counts = c;
+  document.getElementById("site-section").hidden = false;
+  document.querySelector("#regions tbody").innerHTML = c.regions.map((r) =>
+    '<tr data-region="' + escapeHtml(r.name) + '"><td>' + escapeHtml(r.name) + "</td><td>" + r.occupancy +
+    "</td><td>" + r.entries + "</td><td>" + r.exits + "</td></tr>").join("");
+  document.querySelector("#lines tbody").innerHTML = c.lines.map((l) =>
+    '<tr data-line="' + escapeHtml(l.name) + '"><td>' + escapeHtml(l.name) + "</td><td>" + l.left_to_right +
+    "</td><td>" + l.right_to_left + "</td></tr>").join("");
+  scheduleDraw();
+}
+
+function onAnalytics(e) {
+  document.getElementById("site-section").hidden = false;
+  const list = document.getElementById("analytics-events");
+  const item = document.createElement("li");
+  const what = e.kind === "crossing" ? "crossed " + e.name + " " + e.direction.replace(/_/g, " ")
+             : e.kind === "enter" ? "entered " + e.name
+             : "left " + e.name + " after " + e.dwell_s.toFixed(1) + " s" + (e.track_ended ? " (track ended)" : "");
+  item.textContent = "track " + e.track_id + " " + what;
+  item.dataset.kind = e.kind;
+  list.insertBefore(item, list.firstChild);
+  while (list.children.length > MAX_EVENTS) list.removeChild(list.lastChild);
+}
+
 function connect() {
   const es = new EventSource("/events");
   es.onopen = () => text("connection", "live");
@@ -247,12 +308,15 @@ function connect() {
   es.onmessage = (m) => {
     const e = JSON.parse(m.data);
     if (e.type === "tracks") onTracks(e); else if (e.type === "status") onStatus(e);
+    else if (e.type === "site_counts") onSiteCounts(e); else if (e.type === "analytics") onAnalytics(e);
   };
 }
 
-Promise.all([fetch("/floor.json").then((r) => r.json()), fetch("/layouts.json").then((r) => r.json())])
-  .then(([f, l]) => {
-    floor = f; layouts = l;
+Promise.all([fetch("/floor.json").then((r) => r.json()), fetch("/layouts.json").then((r) => r.json()),
+             fetch("/site.json").then((r) => r.json())])
+  .then(([f, l, g]) => {
+    floor = f; layouts = l; site = g;
+    if (site.regions.length || site.lines.length) document.getElementById("site-section").hidden = false;
     if (f.stale_after_s > 0) staleAfterMs = 1000 * f.stale_after_s;
     scheduleDraw();
   })

@@ -176,3 +176,62 @@ std::string FloorJson(const std::vector<geometry::CameraModel>& cameras, double 
 }
 
 }  // namespace mvtrack::web
+
+namespace mvtrack::web {
+
+std::string AnalyticsEventJson(const transport::AnalyticsEventMessage& e) {
+  const bool exit = e.kind == analytics::Event::Kind::kExit;
+  const bool crossing = e.kind == analytics::Event::Kind::kCrossing;
+  const Json o = {
+      {"type", "analytics"},
+      {"kind", analytics::ToString(e.kind)},
+      {"name", e.name},
+      {"track_id", e.track_id},
+      {"utime", e.utime},
+      {"enter_utime", e.enter_utime},
+      {"dwell_s", exit ? Json(static_cast<double>(e.utime - e.enter_utime) * 1e-6) : Json(nullptr)},
+      {"direction", crossing ? Json(analytics::ToString(e.direction)) : Json(nullptr)},
+      {"track_ended", e.track_ended},
+      {"publish_utime", e.publish_utime}};
+  return json::Dump(o, -1, json::Ascii::kEscape);
+}
+
+std::string SiteCountsEventJson(const transport::SiteCounts& c) {
+  Json regions = Json::array();
+  for (std::size_t i = 0; i < c.regions.size() && i < c.region_names.size(); ++i) {
+    regions.push_back({{"name", c.region_names[i]},
+                       {"occupancy", c.regions[i].occupancy},
+                       {"entries", c.regions[i].entries},
+                       {"exits", c.regions[i].exits}});
+  }
+  Json lines = Json::array();
+  for (std::size_t i = 0; i < c.lines.size() && i < c.line_names.size(); ++i) {
+    lines.push_back({{"name", c.line_names[i]},
+                     {"left_to_right", c.lines[i].left_to_right},
+                     {"right_to_left", c.lines[i].right_to_left}});
+  }
+  const Json o = {{"type", "site_counts"},
+                  {"utime", c.utime},
+                  {"publish_utime", c.publish_utime},
+                  {"regions", std::move(regions)},
+                  {"lines", std::move(lines)}};
+  return json::Dump(o, -1, json::Ascii::kEscape);
+}
+
+std::string SiteJson(const analytics::Site& site) {
+  const auto xy = [](const Vec2& p) { return Json::array({p.x(), p.y()}); };
+  Json regions = Json::array();
+  for (const analytics::Region& r : site.regions) {
+    Json polygon = Json::array();
+    for (const Vec2& p : r.polygon) polygon.push_back(xy(p));
+    regions.push_back({{"name", r.name}, {"polygon", std::move(polygon)}});
+  }
+  Json lines = Json::array();
+  for (const analytics::Line& l : site.lines) {
+    lines.push_back({{"name", l.name}, {"from", xy(l.from)}, {"to", xy(l.to)}});
+  }
+  const Json o = {{"regions", std::move(regions)}, {"lines", std::move(lines)}};
+  return json::Dump(o, -1, json::Ascii::kEscape);
+}
+
+}  // namespace mvtrack::web

@@ -28,6 +28,19 @@ std::string TracksEventJson(const transport::TracksMessage& message);
 std::string StatusEventJson(const transport::TrackerStatus& status,
                             const service::HealthReport& source = {service::Health::kOk, {}});
 
+/// {"type":"analytics", "kind":"enter"|"exit"|"crossing", "name", "track_id", "utime",
+/// "enter_utime", "dwell_s" (exit; else null), "direction" (crossing: "left_to_right" or
+/// "right_to_left"; else null), "track_ended", "publish_utime"} on one line.
+std::string AnalyticsEventJson(const transport::AnalyticsEventMessage& event);
+
+/// {"type":"site_counts", "utime", "publish_utime", "regions":[{"name", "occupancy", "entries",
+/// "exits"}], "lines":[{"name", "left_to_right", "right_to_left"}]} on one line.
+std::string SiteCountsEventJson(const transport::SiteCounts& counts);
+
+/// {"regions":[{"name", "polygon":[[x,y], ...]}], "lines":[{"name", "from":[x,y],
+/// "to":[x,y]}]}: the site the page draws (empty lists without one).
+std::string SiteJson(const analytics::Site& site);
+
 /// {"cameras":[{"id", "position":[x,y,z], "fov":[[x,y], ...]}], "bounds":[x_min, y_min, x_max,
 /// y_max]}: each camera's centre and the polygon its image covers on the floor z = 0 (the rays
 /// through the image border, cut at 25 m from the camera where they do not reach the floor);

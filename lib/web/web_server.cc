@@ -58,13 +58,16 @@ class EventHub {
   EventHub(std::size_t capacity, std::size_t max_bytes)
       : capacity_(capacity), max_bytes_(max_bytes) {}
 
-  // A new client, or nullptr when `max_clients` are connected. It first gets the latest status
-  // and tracks events, so a page shows something at once.
+  // Which latest event of a kind a new client gets first (kNone: not kept).
+  enum class Retain { kStatus, kTracks, kCounts, kNone };
+
+  // A new client, or nullptr when `max_clients` are connected. It first gets the latest status,
+  // tracks and site counts events, so a page shows something at once.
   std::shared_ptr<Client> Connect(int max_clients) {
     std::lock_guard<std::mutex> lock(mu_);
     if (closed_ || static_cast<int>(clients_.size()) >= max_clients) return nullptr;
     auto c = std::make_shared<Client>();
-    for (const auto& e : {last_status_, last_tracks_}) {
+    for (const auto& e : {last_status_, last_tracks_, last_counts_}) {
       if (!e) continue;
       c->queue.push_back(e);
       c->queued_bytes += e->size();
@@ -86,11 +89,13 @@ class EventHub {
     clients_.erase(std::remove(clients_.begin(), clients_.end(), c), clients_.end());
   }
 
-  void Publish(std::string event, bool is_status) {
+  void Publish(std::string event, Retain retain) {
     auto e = std::make_shared<const std::string>(std::move(event));
     {
       std::lock_guard<std::mutex> lock(mu_);
-      (is_status ? last_status_ : last_tracks_) = e;
+      if (retain == Retain::kStatus) last_status_ = e;
+      if (retain == Retain::kTracks) last_tracks_ = e;
+      if (retain == Retain::kCounts) last_counts_ = e;
       for (const std::shared_ptr<Client>& c : clients_) {
         if (c->dropped) continue;
         if (c->queue.size() >= capacity_ || c->queued_bytes + e->size() > max_bytes_) {
@@ -153,6 +158,7 @@ class EventHub {
   std::vector<std::shared_ptr<Client>> clients_;
   std::shared_ptr<const std::string> last_status_;
   std::shared_ptr<const std::string> last_tracks_;
+  std::shared_ptr<const std::string> last_counts_;
   std::int64_t dropped_ = 0;
   bool closed_ = false;
 };
@@ -257,6 +263,7 @@ class WebServer::Impl {
       : options_(std::move(options)),
         hub_(options_.client_queue_events, options_.client_queue_bytes),
         floor_json_(FloorJson(options_.cameras, options_.stale_after_s)),
+        site_json_(SiteJson(options_.site)),
         layouts_json_(LayoutsJson()) {}
 
   ~Impl() { StopHttp(); }
@@ -268,8 +275,13 @@ class WebServer::Impl {
       return false;
     }
     if (lcm_->subscribeFunction(options_.tracks_channel, &Impl::OnTracks, this) == nullptr ||
-        lcm_->subscribeFunction(options_.status_channel, &Impl::OnStatus, this) == nullptr) {
-      *why = "cannot subscribe to " + options_.tracks_channel + " and " + options_.status_channel;
+        lcm_->subscribeFunction(options_.status_channel, &Impl::OnStatus, this) == nullptr ||
+        lcm_->subscribeFunction(options_.analytics_events_channel, &Impl::OnAnalyticsEvent, this) ==
+            nullptr ||
+        lcm_->subscribeFunction(options_.site_counts_channel, &Impl::OnSiteCounts, this) ==
+            nullptr) {
+      *why = "cannot subscribe to " + options_.tracks_channel + ", " + options_.status_channel +
+             ", " + options_.analytics_events_channel + " and " + options_.site_counts_channel;
       return false;
     }
     const std::optional<std::string> listening = ListeningPort(options_.host, options_.port);
@@ -386,7 +398,40 @@ class WebServer::Impl {
       std::lock_guard<std::mutex> lock(self->mu_);
       ++(d.ok() ? self->counters_.tracks_messages : self->counters_.decode_errors);
     }
-    if (d.ok()) self->hub_.Publish(TracksEventJson(d.message), false);
+    if (d.ok()) self->hub_.Publish(TracksEventJson(d.message), EventHub::Retain::kTracks);
+  }
+
+  static void OnAnalyticsEvent(const lcm::ReceiveBuffer* rbuf, const std::string&, Impl* self) {
+    const transport::AnalyticsEventDecodeResult d =
+        transport::DecodeAnalyticsEvent(rbuf->data, rbuf->data_size);
+    {
+      std::lock_guard<std::mutex> lock(self->mu_);
+      if (!d.ok()) {
+        ++self->counters_.decode_errors;
+        return;
+      }
+      ++self->counters_.analytics_events;
+      if (d.message.kind == analytics::Event::Kind::kExit) {
+        self->dwell_[d.message.name].Add(
+            static_cast<double>(d.message.utime - d.message.enter_utime) * 1e-6);
+      }
+    }
+    self->hub_.Publish(AnalyticsEventJson(d.message), EventHub::Retain::kNone);
+  }
+
+  static void OnSiteCounts(const lcm::ReceiveBuffer* rbuf, const std::string&, Impl* self) {
+    const transport::SiteCountsDecodeResult d =
+        transport::DecodeSiteCounts(rbuf->data, rbuf->data_size);
+    {
+      std::lock_guard<std::mutex> lock(self->mu_);
+      if (!d.ok()) {
+        ++self->counters_.decode_errors;
+        return;
+      }
+      ++self->counters_.site_counts_messages;
+      self->counts_ = d.message;
+    }
+    self->hub_.Publish(SiteCountsEventJson(d.message), EventHub::Retain::kCounts);
   }
 
   static void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&, Impl* self) {
@@ -405,7 +450,7 @@ class WebServer::Impl {
       self->source_.Add(d.message, Seconds(self->status_at_));
       source = self->source_.Assess(Seconds(self->status_at_));
     }
-    self->hub_.Publish(StatusEventJson(d.message, source), true);
+    self->hub_.Publish(StatusEventJson(d.message, source), EventHub::Retain::kStatus);
   }
 
   static double Seconds(SteadyClock::time_point t) {
@@ -451,6 +496,7 @@ class WebServer::Impl {
     if (path == "/") return Ok(conn, IndexPage(), "text/html; charset=utf-8", head);
     if (path == "/floor.json") return Ok(conn, floor_json_, "application/json", head);
     if (path == "/layouts.json") return Ok(conn, layouts_json_, "application/json", head);
+    if (path == "/site.json") return Ok(conn, site_json_, "application/json", head);
     if (path == "/status.json" || path == "/tracks.json") {
       const bool status = path == "/status.json";
       const std::shared_ptr<const std::string> e = hub_.last(status);
@@ -466,12 +512,18 @@ class WebServer::Impl {
     }
     if (path == "/metrics") {
       const auto s = LatestStatus();
+      std::string site;
+      {
+        std::lock_guard<std::mutex> lock(mu_);
+        site = SiteMetricsText(counts_, dwell_);
+      }
       return Ok(conn,
                 PrometheusText(s ? std::optional(s->status) : std::nullopt,
                                s ? s->age_s : 0.0,
                                options_.stale_after_s,
                                Counters(),
-                               s ? s->source : service::HealthReport{service::Health::kOk, {}}),
+                               s ? s->source : service::HealthReport{service::Health::kOk, {}}) +
+                    site,
                 "text/plain; version=0.0.4",
                 head);
     }
@@ -543,6 +595,7 @@ class WebServer::Impl {
   WebOptions options_;
   EventHub hub_;
   const std::string floor_json_;
+  const std::string site_json_;
   const std::string layouts_json_;
   std::unique_ptr<lcm::LCM> lcm_;
   mg_context* http_ = nullptr;
@@ -552,6 +605,8 @@ class WebServer::Impl {
   std::atomic<std::int64_t> events_sent_{0};
   mutable std::mutex mu_;
   WebCounters counters_;
+  std::optional<transport::SiteCounts> counts_;  // the latest site_counts_t
+  std::map<std::string, DwellHistogram> dwell_;  // by region: the visits ended (exit events)
   std::optional<transport::TrackerStatus> status_;
   SteadyClock::time_point status_at_;
   service::StatusSourceWatch source_{options_.stale_after_s};

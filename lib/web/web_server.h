@@ -1,15 +1,17 @@
 #pragma once
 /// @file
 /// `mvtrack web` (issue 15): a small HTTP server (civetweb) that subscribes to the daemon's
-/// tracks and status channels over LCM and serves
+/// tracks, status and site analytics channels over LCM and serves
 ///   /             the live floor view (page.cc; everything it needs is in the page itself),
-///   /events       Server-Sent Events: one JSON object per tracks and per status message
+///   /events       Server-Sent Events: one JSON object per tracks, status, analytics event and
+///                 site counts message
 ///                 (web_json.h; docs/FORMATS.md "Live events"),
 ///   /metrics      Prometheus text (metrics.h),
 ///   /healthz      200 when tracking (OK or WARNING, with the reasons), 503 with the reason
 ///                 when not (no status yet, status older than stale_after_s, CRITICAL),
 ///   /floor.json   the cameras and their fields of view on the floor (from the calibration),
 ///   /layouts.json keypoint layouts (joint names and bones) for drawing skeletons,
+///   /site.json    the site's regions and lines (from --regions), drawn with their live counts,
 ///   /status.json, /tracks.json  the latest status and tracks event.
 /// Each /events client has a queue bounded in events and bytes: a client that does not keep up is
 /// disconnected and counted (clients_dropped); neither LCM nor the other clients ever wait for
@@ -21,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "analytics/site_analytics.h"
 #include "geometry/camera_model.h"
 #include "web/metrics.h"
 
@@ -33,8 +36,13 @@ struct WebOptions {
   std::string lcm_url = "udpm://239.255.76.67:7667?ttl=0";  ///< where the daemon publishes
   std::string tracks_channel = "MVTRACK_TRACKS";
   std::string status_channel = "MVTRACK_STATUS";
+  std::string analytics_events_channel = "MVTRACK_ANALYTICS_EVENTS";  ///< analytics_event_t
+  std::string site_counts_channel = "MVTRACK_SITE_COUNTS";            ///< site_counts_t
   std::vector<geometry::CameraModel> cameras;  ///< the floor view's cameras (may be empty)
-  std::size_t client_queue_events = 256;       ///< per-client queue bound, events (>= 1)
+  /// The daemon's site (its regions and lines), which the page draws with their counts; empty:
+  /// the counts are still shown, without the drawing.
+  analytics::Site site;
+  std::size_t client_queue_events = 256;  ///< per-client queue bound, events (>= 1)
   /// Per-client queue bound, bytes of JSON (>= 1): also bounds the server's memory, as the
   /// events are shared between clients.
   std::size_t client_queue_bytes = std::size_t{32} << 20;

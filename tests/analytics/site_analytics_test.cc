@@ -164,6 +164,27 @@ TEST_CASE("analytics: standing on the border for minutes is at most one entry", 
   CHECK(e[0].time_s == Approx(2.0));
 }
 
+TEST_CASE("analytics: a change holds only on the new side of the border", "[unit]") {
+  // Appears 0.6 m inside (past the band), walks out over the border 0.4 s later and stays just
+  // outside, within the band, for longer than hold_s: it never held the inside, no visit (it
+  // was once confirmed with a visit of zero dwell).
+  SiteAnalytics analytics(Room());
+  std::vector<Vec2> path = Straight({0.6, 2}, {-0.1, 2});
+  for (int i = 0; i < 30; ++i) path.push_back({-0.1, 2});
+  path = Concat(path, Straight({-0.1, 2}, {-2, 2}));
+  Walk(&analytics, path);
+  CHECK(analytics.region_counts()[0].entries == 0);
+  // Back inside after standing in the band: the visit counts from the first crossing.
+  SiteAnalytics back(Room());
+  path = Straight({0.6, 2}, {-0.1, 2});
+  for (int i = 0; i < 30; ++i) path.push_back({-0.1, 2});
+  path = Concat(path, Straight({-0.1, 2}, {2, 2}));
+  const std::vector<Event> e = Walk(&back, path);
+  CHECK(back.region_counts()[0].entries == 1);
+  REQUIRE_FALSE(e.empty());
+  CHECK(e[0].time_s == Approx(0.0));
+}
+
 TEST_CASE("analytics: a track lost for a moment is one visit, lost for longer it ended", "[unit]") {
   Site site = Room();
   SiteAnalytics analytics(site);

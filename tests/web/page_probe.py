@@ -3,7 +3,8 @@
 then for each MESSAGES_i in turn waits until the page has shown that many tracks messages (or,
 for a phase written @FILE, until FILE exists, e.g. when the daemon stopped a while ago),
 prints one JSON line with what the page's DOM shows (frame, tracks as id/x/y from the track
-table's data attributes, messages, the page's latency figures, health, connection, camera rows)
+table's data attributes, messages, the page's latency figures, health, connection, camera rows,
+the site's region rows with their counts)
 and creates the file PHASE_PREFIX.i (so a test can act between phases, e.g. restart the daemon
 while the same page stays open). A PNG screenshot is saved after the first phase.
 
@@ -60,7 +61,10 @@ PROBE = """JSON.stringify({
   connection: document.getElementById('connection').textContent,
   stale: document.body.dataset.stale || '',
   tracks_note: document.getElementById('tracks-note').textContent,
-  cameras: [...document.querySelectorAll('#cameras tbody tr')].map(r => r.dataset.camera)
+  cameras: [...document.querySelectorAll('#cameras tbody tr')].map(r => r.dataset.camera),
+  regions: [...document.querySelectorAll('#regions tbody tr')].map(r => ({
+    name: r.dataset.region, inside: Number(r.cells[1].textContent),
+    entries: Number(r.cells[2].textContent), exits: Number(r.cells[3].textContent)}))
 })"""
 
 call("Page.enable")

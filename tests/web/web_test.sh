@@ -34,9 +34,12 @@ DEMO=$SRC/examples/demo
 URL="udpm://239.255.76.67:7667?ttl=0"
 sed -e "s|calibration: calibration.yaml|calibration: $DEMO/calibration.yaml|" \
   "$DEMO/mvtrackd.yaml" > "$OUT/daemon.yaml"
+# The site analytics (issue 41): the demo room's regions and line, in the daemon and the page.
+SITE=$SRC/docs/examples/sites/demo.yaml
+printf 'analytics:\n  site: %s\n' "$SITE" >> "$OUT/daemon.yaml"
 # The same daemon reading udpm:// live, for the cameras that go silent.
 sed -e "s|lcm_url: \"memq://\"|lcm_url: \"$URL\"|" "$OUT/daemon.yaml" > "$OUT/daemon_live.yaml"
-export MVTRACKD MVTRACK SRC OUT DEMO URL PY
+export MVTRACKD MVTRACK SRC OUT DEMO URL PY SITE
 unshare -n bash -euc '
   ip link set lo up
   ip route add 224.0.0.0/4 dev lo
@@ -45,7 +48,7 @@ unshare -n bash -euc '
       --input-speed 1 --output-url "$URL" --tracks-jsonl "$OUT/$1.jsonl" > "$OUT/$1.log" 2>&1
   }
   "$MVTRACK" web --listen 127.0.0.1:18080 --url "$URL" --calibration "$DEMO/calibration.yaml" \
-    --stale-after 1.5 --client-queue 64 > "$OUT/web.log" 2>&1 &
+    --regions "$SITE" --stale-after 1.5 --client-queue 64 > "$OUT/web.log" 2>&1 &
   WEB=$!
   chromium --headless --no-sandbox --disable-gpu --remote-debugging-port=19222 \
     --window-size=1400,820 about:blank > "$OUT/chromium.log" 2>&1 &
@@ -77,6 +80,7 @@ time.sleep(14)
   curl -s -o "$OUT/healthz_live.txt" -w "%{http_code}\n" http://127.0.0.1:18080/healthz \
     > "$OUT/healthz_live.code"
   curl -s http://127.0.0.1:18080/metrics > "$OUT/metrics_live.txt"
+  curl -s http://127.0.0.1:18080/site.json > "$OUT/site.json"
   # A request with a body (only GET exists) is refused unread: 413, memory unchanged.
   head -c 50000000 /dev/zero > "$OUT/big.bin"
   rss_before=$(awk "/VmRSS/ {print \$2}" /proc/$WEB/status)
@@ -102,6 +106,7 @@ time.sleep(14)
   for _ in $(seq 600); do [ -e "$OUT/phase.3" ] && break; sleep 0.05; done
   wait $STUCK || true
   curl -s http://127.0.0.1:18080/metrics > "$OUT/metrics_end.txt"
+  curl -s -N --max-time 1 http://127.0.0.1:18080/events > "$OUT/events_end.txt" || true
   kill -TERM $SECOND 2> /dev/null || true
   wait $SECOND || true
   # A live daemon whose cameras go silent: it keeps publishing status, no tracks.
@@ -216,6 +221,30 @@ print(f"page: frame {first['frame']} with tracks {sorted(got)} as published; pub
       f"{first['latency_count']} messages; stopped: {stopped['health']}, tracks "
       f"{stopped['tracks_note']}; {second['messages']} messages after a daemon restart")
 EOF
+
+# The site analytics (issue 41): the daemon's counts reach /events, /metrics and the page, whose
+# regions table shows the latest counts; /site.json is the site file's geometry.
+"$PY" - "$OUT/site.json" "$OUT/events_end.txt" "$OUT/probe.jsonl" "$OUT/metrics_end.txt" << 'EOF' ||
+import json, sys
+site = json.load(open(sys.argv[1]))
+assert [r["name"] for r in site["regions"]] == ["room", "centre", "west_strip"], site
+assert site["lines"][0] == {"name": "middle", "from": [3.0, 0.0], "to": [3.0, 6.0]}, site
+events = [json.loads(l[6:]) for l in open(sys.argv[2]) if l.startswith("data: ")]
+counts = [e for e in events if e["type"] == "site_counts"]
+assert counts, "no site_counts event on /events"
+c = counts[-1]
+assert [r["name"] for r in c["regions"]] == ["room", "centre", "west_strip"], c
+# The demo's three people are in the room from the start: three visits of the room begun.
+assert c["regions"][0]["entries"] == 3, c
+page = json.loads(open(sys.argv[3]).readline())
+assert [r["name"] for r in page["regions"]] == ["room", "centre", "west_strip"], page
+assert page["regions"][0]["entries"] >= 1, page
+metrics = open(sys.argv[4]).read()
+assert 'mvtrack_region_entries_total{region="room"} 3' in metrics, metrics[-2000:]
+assert 'mvtrack_line_crossings_total{line="middle",direction="left_to_right"}' in metrics
+print(f"site analytics: counts {c['regions']}, lines {c['lines']}; page {page['regions']}")
+EOF
+  fail "the site analytics did not reach /events, /metrics or the page"
 
 # The stuck client was disconnected and counted; the page got every message meanwhile.
 dropped=$(grep -E "^mvtrack_web_clients_dropped_total " "$OUT/metrics_end.txt" | awk '{print $2}')

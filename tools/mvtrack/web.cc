@@ -11,6 +11,7 @@
 
 #include "config/calibration.h"
 #include "config/config_error.h"
+#include "config/site.h"
 #include "mvtrack/cli.h"
 #include "web/web_server.h"
 
@@ -30,21 +31,32 @@ int RunWeb(int argc, char** argv) {
       .Option("calibration",
               "the daemon's calibration (mvtrack.calibration/1): draws the cameras "
               "and their fields of view on the floor")
+      .Option("regions",
+              "the daemon's site file (mvtrack.site/1, its analytics.site): draws the regions "
+              "and lines with their live counts")
       .Option("tracks-channel", "channel of the tracks3d_t messages", "MVTRACK_TRACKS")
       .Option("status-channel", "channel of the tracker_status_t messages", "MVTRACK_STATUS")
+      .Option(
+          "events-channel", "channel of the analytics_event_t messages", "MVTRACK_ANALYTICS_EVENTS")
+      .Option("counts-channel", "channel of the site_counts_t messages", "MVTRACK_SITE_COUNTS")
       .Option("max-clients", "concurrent /events clients (browsers, scripts)", "8")
       .Option("client-queue", "events a client may fall behind before it is disconnected", "256")
       .Option("stale-after", "seconds without a status after which /healthz says 503", "5");
   if (!args.Parse(argc,
                   argv,
-                  "mvtrack web [--listen ADDR:PORT] [--url LCM_URL] [--calibration FILE]",
+                  "mvtrack web [--listen ADDR:PORT] [--url LCM_URL] [--calibration FILE] "
+                  "[--regions SITE.yaml]",
                   "Serves a live view of the tracker (docs/OPERATING.md): subscribes to the\n"
-                  "daemon's tracks and status channels and serves, over HTTP,\n"
+                  "daemon's tracks, status and site analytics channels and serves, over HTTP,\n"
                   "  /          a floor view in the browser: tracks with ids and fading trails,\n"
-                  "             skeletons from above in pose mode, camera health in words;\n"
-                  "  /events    the same data as Server-Sent Events, one JSON object per tracks\n"
-                  "             and per status message (docs/FORMATS.md \"Live events\");\n"
-                  "  /metrics   Prometheus text of the status counters, per camera and totals;\n"
+                  "             skeletons from above in pose mode, camera health in words, the\n"
+                  "             regions and lines (--regions) with their live counts;\n"
+                  "  /events    the same data as Server-Sent Events, one JSON object per tracks,\n"
+                  "             status, analytics event and site counts message\n"
+                  "             (docs/FORMATS.md \"Live events\");\n"
+                  "  /metrics   Prometheus text of the status counters, per camera and totals,\n"
+                  "             and of the site's counts (occupancy, entries, exits, crossings,\n"
+                  "             dwell);\n"
                   "  /healthz   200 when tracking (OK or WARNING), 503 with the reason when not.\n"
                   "Runs until SIGINT or SIGTERM. The page needs nothing from the internet.")) {
     return 0;
@@ -62,6 +74,8 @@ int RunWeb(int argc, char** argv) {
   o.lcm_url = args.Get("url");
   o.tracks_channel = args.Get("tracks-channel");
   o.status_channel = args.Get("status-channel");
+  o.analytics_events_channel = args.Get("events-channel");
+  o.site_counts_channel = args.Get("counts-channel");
   const std::int64_t max_clients = args.GetInt("max-clients");
   const std::int64_t queue = args.GetInt("client-queue");
   if (max_clients < 1 || max_clients > 1000)
@@ -71,9 +85,10 @@ int RunWeb(int argc, char** argv) {
   o.client_queue_events = static_cast<std::size_t>(queue);
   o.stale_after_s = args.GetDouble("stale-after");
   if (!(o.stale_after_s > 0.0)) throw UsageError("--stale-after: must be > 0 seconds");
-  if (args.Has("calibration")) {
+  if (args.Has("calibration") || args.Has("regions")) {
     try {
-      o.cameras = config::LoadCalibration(args.Get("calibration"));
+      if (args.Has("calibration")) o.cameras = config::LoadCalibration(args.Get("calibration"));
+      if (args.Has("regions")) o.site = config::LoadSiteFile(args.Get("regions"));
     } catch (const config::ConfigError& e) {
       std::cerr << "mvtrack web: " << e.what() << "\n";
       return 1;
