@@ -32,11 +32,12 @@ rm -rf "$OUT"
 mkdir -p "$OUT"
 DEMO=$SRC/examples/demo
 URL="udpm://239.255.76.67:7667?ttl=0"
-sed -e "s|calibration: calibration.yaml|calibration: $DEMO/calibration.yaml|" \
-  "$DEMO/mvtrackd.yaml" > "$OUT/daemon.yaml"
 # The site analytics (issue 41): the demo room's regions and line, in the daemon and the page.
 SITE=$SRC/docs/examples/sites/demo.yaml
-printf 'analytics:\n  site: %s\n' "$SITE" >> "$OUT/daemon.yaml"
+sed -e "s|calibration: calibration.yaml|calibration: $DEMO/calibration.yaml|" \
+  -e "s|site: ../../docs/examples/sites/demo.yaml|site: $SITE|" \
+  "$DEMO/mvtrackd.yaml" > "$OUT/daemon.yaml"
+grep -q "site: $SITE" "$OUT/daemon.yaml" || fail "the demo configuration names no site
 # The same daemon reading udpm:// live, for the cameras that go silent.
 sed -e "s|lcm_url: \"memq://\"|lcm_url: \"$URL\"|" "$OUT/daemon.yaml" > "$OUT/daemon_live.yaml"
 export MVTRACKD MVTRACK SRC OUT DEMO URL PY SITE
