@@ -37,7 +37,7 @@ SITE=$SRC/docs/examples/sites/demo.yaml
 sed -e "s|calibration: calibration.yaml|calibration: $DEMO/calibration.yaml|" \
   -e "s|site: ../../docs/examples/sites/demo.yaml|site: $SITE|" \
   "$DEMO/mvtrackd.yaml" > "$OUT/daemon.yaml"
-grep -q "site: $SITE" "$OUT/daemon.yaml" || fail "the demo configuration names no site
+grep -q "site: $SITE" "$OUT/daemon.yaml" || fail "the demo configuration names no site"
 # The same daemon reading udpm:// live, for the cameras that go silent.
 sed -e "s|lcm_url: \"memq://\"|lcm_url: \"$URL\"|" "$OUT/daemon.yaml" > "$OUT/daemon_live.yaml"
 export MVTRACKD MVTRACK SRC OUT DEMO URL PY SITE
