@@ -48,7 +48,7 @@ struct AnalyticsOptions {
   /// metres, >= 0.
   double hysteresis_m = 0.3;
   /// A change of side counts once it has held this long, seconds, >= 0.
-  double hold_s = 1.0;
+  double hold_s = 0.5;
   /// A track missing from the messages for longer than this has ended, seconds, > 0.
   double max_gap_s = 5.0;
 };

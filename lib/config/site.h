@@ -13,7 +13,7 @@
 ///         to: [0.0, 3.0]
 ///     rules:              # optional; these are the defaults
 ///       hysteresis_m: 0.3
-///       hold_s: 1.0
+///       hold_s: 0.5
 ///       max_gap_s: 5.0
 ///
 /// Loading is strict like the rest of lib/config: unknown keys (with a did-you-mean), wrong

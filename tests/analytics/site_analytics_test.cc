@@ -16,6 +16,7 @@ Site Room() {
   Site site;
   site.regions.push_back({"room", {{0, 0}, {4, 0}, {4, 4}, {0, 4}}});
   site.lines.push_back({"door", {0, 1}, {0, 3}});
+  site.options.hold_s = 1.0;  // the tests' times below assume 1 s, whatever the default
   return site;
 }
 

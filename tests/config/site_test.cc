@@ -24,7 +24,7 @@ lines:
     from: [0, 1]
     to: [0, 3]
 rules:
-  hold_s: 0.5
+  hold_s: 0.75
 )";
 
 }  // namespace
@@ -40,7 +40,7 @@ TEST_CASE("site file: the documented example and a minimal site", "[unit]") {
   CHECK(site.regions[0].name == "shelf");
   CHECK(site.regions[0].polygon[2] == Vec2(2, 1));
   CHECK(site.lines[0].to == Vec2(0, 3));
-  CHECK(site.options.hold_s == 0.5);
+  CHECK(site.options.hold_s == 0.75);
   CHECK(site.options.max_gap_s == analytics::AnalyticsOptions{}.max_gap_s);
   CHECK(LooksLikeSite(kSite));
   CHECK_FALSE(LooksLikeSite("tracker: {}\n"));
@@ -83,14 +83,14 @@ TEST_CASE("site file: mistakes are errors naming the line and the key", "[unit]"
   text.replace(text.find("[2, 0]"), 6, "[.nan, 0]");
   CheckLocated(error(text), "s.yaml", LineOf(text, "polygon"), "regions[0].polygon[1][0]", "");
   text = std::string(kSite) + "  - name: door\n    from: [5, 5]\n    to: [6, 6]\n";
-  text.replace(text.find("rules:\n  hold_s: 0.5\n"), 21, "");
+  text.replace(text.find("rules:\n  hold_s: 0.75\n"), 22, "");
   CheckLocated(error(text),
                "s.yaml",
                LineOf(text, "  - name: door\n    from: [5"),
                "lines[1].name",
                "another line is named 'door'");
   text = kSite;
-  text.replace(text.find("hold_s: 0.5"), 11, "hold_s: -1");
+  text.replace(text.find("hold_s: 0.75"), 12, "hold_s: -1");
   CheckLocated(error(text), "s.yaml", LineOf(text, "hold_s"), "rules.hold_s", "[0, 3600]");
   text = kSite;
   text.replace(text.find("name: shelf"), 11, "name: caf\xc3\xa9");
