@@ -28,7 +28,8 @@ cv::Scalar CellColor(const config::CalibrationReport& report, std::size_t cell) 
 
 cv::Mat RenderCoverageMap(const std::vector<geometry::CameraModel>& cameras,
                           const config::CalibrationReport& report,
-                          int max_side_px) {
+                          int max_side_px,
+                          const analytics::Site* site) {
   const config::CoverageGrid& grid = report.grid;
   const FloorMapping mapping = FloorMapping::Fit(grid.region, max_side_px);
   cv::Mat map(mapping.height_px, mapping.width_px, CV_8UC3, kBackground);
@@ -75,6 +76,7 @@ cv::Mat RenderCoverageMap(const std::vector<geometry::CameraModel>& cameras,
                 cv::LINE_AA);
   }
   DrawCameras(mapping, cameras, &map, false);
+  if (site != nullptr) DrawSite(mapping, *site, &map);
 
   // Legend.
   cv::Mat out(map.rows + kLegendBandPx, map.cols, CV_8UC3, cv::Scalar(0, 0, 0));

@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "analytics/site_analytics.h"
 #include "config/calibration_check.h"
 #include "geometry/camera_model.h"
 
@@ -33,8 +34,11 @@ inline constexpr int kLegendBandPx = 128;
 /// The coverage picture: the map (longer side `max_side_px`, via FloorMapping::Fit of the
 /// report's region) with cells, grid, cameras (no fields of view) and the overlap graph, and a
 /// legend band of kLegendBandPx below it. `cameras` are the ones the report was computed from.
+/// With `site`, its regions and lines are drawn over the map (DrawSite), so the cameras' coverage
+/// of each region can be seen.
 cv::Mat RenderCoverageMap(const std::vector<geometry::CameraModel>& cameras,
                           const config::CalibrationReport& report,
-                          int max_side_px = 900);
+                          int max_side_px = 900,
+                          const analytics::Site* site = nullptr);
 
 }  // namespace mvtrack::viz

@@ -189,6 +189,75 @@ void DrawCameras(const FloorMapping& mapping,
   }
 }
 
+void DrawSite(const FloorMapping& mapping, const analytics::Site& site, cv::Mat* image) {
+  const cv::Scalar& region_color = kRegionColor;
+  const cv::Scalar& line_color = kLineColor;
+  const double font = FontScale(*image);
+  const int width = std::max(1, Thickness(mapping.px_per_m, 0.04));
+  cv::Mat overlay = image->clone();
+  for (const analytics::Region& r : site.regions) {
+    std::vector<cv::Point> polygon;
+    for (const Vec2& p : r.polygon) polygon.push_back(mapping.ToPoint(p.x(), p.y()));
+    cv::fillPoly(overlay, std::vector<std::vector<cv::Point>>{polygon}, region_color, cv::LINE_AA);
+  }
+  cv::addWeighted(overlay, 0.15, *image, 0.85, 0.0, *image);
+  for (const analytics::Region& r : site.regions) {
+    std::vector<cv::Point> polygon;
+    for (const Vec2& p : r.polygon) polygon.push_back(mapping.ToPoint(p.x(), p.y()));
+    cv::polylines(*image, polygon, true, region_color, width, cv::LINE_AA);
+    cv::putText(*image,
+                r.name,
+                polygon[0] + cv::Point(4, -4),
+                cv::FONT_HERSHEY_SIMPLEX,
+                font,
+                region_color,
+                1,
+                cv::LINE_AA);
+  }
+  for (const analytics::Line& l : site.lines) {
+    const cv::Point a = mapping.ToPoint(l.from.x(), l.from.y());
+    const cv::Point b = mapping.ToPoint(l.to.x(), l.to.y());
+    cv::line(*image, a, b, line_color, 2 * width, cv::LINE_AA);
+    // The left_to_right direction: the line's direction turned clockwise, in world terms.
+    const Vec2 mid = 0.5 * (l.from + l.to);
+    const Vec2 along = (l.to - l.from).normalized();
+    const Vec2 right(along.y(), -along.x());
+    const double half_m = 0.3;
+    cv::arrowedLine(*image,
+                    mapping.ToPoint(mid.x() - half_m * right.x(), mid.y() - half_m * right.y()),
+                    mapping.ToPoint(mid.x() + half_m * right.x(), mid.y() + half_m * right.y()),
+                    line_color,
+                    width,
+                    cv::LINE_AA,
+                    0,
+                    0.3);
+    cv::putText(*image,
+                l.name,
+                b + cv::Point(4, -4),
+                cv::FONT_HERSHEY_SIMPLEX,
+                font,
+                line_color,
+                1,
+                cv::LINE_AA);
+  }
+}
+
+void IncludeSite(const analytics::Site& site, double margin_m, config::FloorRegion* region) {
+  const auto grow = [&](const Vec2& p) {
+    region->x_min_m = std::min(region->x_min_m, p.x() - margin_m);
+    region->y_min_m = std::min(region->y_min_m, p.y() - margin_m);
+    region->x_max_m = std::max(region->x_max_m, p.x() + margin_m);
+    region->y_max_m = std::max(region->y_max_m, p.y() + margin_m);
+  };
+  for (const analytics::Region& r : site.regions) {
+    for (const Vec2& p : r.polygon) grow(p);
+  }
+  for (const analytics::Line& l : site.lines) {
+    grow(l.from);
+    grow(l.to);
+  }
+}
+
 cv::Mat RenderFloorView(const FloorMapping& mapping,
                         const std::vector<geometry::CameraModel>& cameras,
                         const std::vector<tracker::Frame3D>& frames,
@@ -198,6 +267,7 @@ cv::Mat RenderFloorView(const FloorMapping& mapping,
   cv::Mat image(mapping.height_px, mapping.width_px, CV_8UC3, kBackground);
   DrawFloorGrid(mapping, options.grid_m, &image);
   if (options.show_cameras) DrawCameras(mapping, cameras, &image);
+  if (options.site != nullptr) DrawSite(mapping, *options.site, &image);
 
   // Trails: consecutive positions of each id, fading with age (oldest first, so newer segments
   // are drawn on top).

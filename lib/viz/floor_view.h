@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "analytics/site_analytics.h"
 #include "config/calibration_check.h"
 #include "core/types.h"
 #include "geometry/camera_model.h"
@@ -57,6 +58,8 @@ struct FloorViewOptions {
   bool show_cameras = true;
   /// Spacing of the floor grid, metres (0: no grid).
   double grid_m = 1.0;
+  /// The site's regions and lines to draw under the tracks (DrawSite); null: none.
+  const analytics::Site* site = nullptr;
 };
 
 /// Draws cameras (centre marker with the optical axis direction, label "C<id>", and when
@@ -65,6 +68,19 @@ void DrawCameras(const FloorMapping& mapping,
                  const std::vector<geometry::CameraModel>& cameras,
                  cv::Mat* image,
                  bool fields_of_view = true);
+
+/// Colour of the regions (BGR: yellow, visible on the floor view and on the coverage map).
+inline const cv::Scalar kRegionColor{40, 200, 240};
+/// Colour of the lines (purple).
+inline const cv::Scalar kLineColor{190, 50, 170};
+
+/// Draws a site's regions (translucent, outlined, named at their first vertex) and lines (named
+/// at their `to` end, with a small arrow across the middle pointing from the line's left to its
+/// right: the left_to_right direction of docs/FORMATS.md "Site file") onto `image`.
+void DrawSite(const FloorMapping& mapping, const analytics::Site& site, cv::Mat* image);
+
+/// Grows `region` to hold every vertex of `site` with `margin_m` around it.
+void IncludeSite(const analytics::Site& site, double margin_m, config::FloorRegion* region);
 
 /// Draws the floor grid (lines every `grid_m` metres, x = 0 and y = 0 brighter) onto `image`.
 void DrawFloorGrid(const FloorMapping& mapping, double grid_m, cv::Mat* image);

@@ -26,6 +26,39 @@ tracker::Frame3D MakeFrame(FrameIndex frame, std::vector<std::pair<TrackId3D, Ve
   return f;
 }
 
+TEST_CASE("A site's regions and lines are drawn under the tracks, with the line's direction",
+          "[unit]") {
+  const FloorMapping m = FloorMapping::Fit({0.0, 0.0, 10.0, 10.0}, 500);  // 50 px per metre
+  analytics::Site site;
+  site.regions.push_back({"shelf", {{2, 2}, {4, 2}, {4, 4}, {2, 4}}});
+  site.lines.push_back({"door", {7, 1}, {7, 9}});
+  FloorViewOptions options;
+  options.grid_m = 0.0;
+  options.site = &site;
+  const cv::Mat image = RenderFloorView(m, {}, {MakeFrame(0, {{5, Vec2(3.0, 3.0)}})}, 0, options);
+  // The region's outline in its colour; inside it, the translucent fill (neither background nor
+  // the full colour); the track drawn over it.
+  CHECK(ColorDistance(PixelAt(image, m.ToPoint(2.0, 3.5)), kRegionColor) < 1.0);
+  const cv::Scalar fill = PixelAt(image, m.ToPoint(2.5, 3.5));
+  CHECK(ColorDistance(fill, kBackground) > 5.0);
+  CHECK(ColorDistance(fill, kRegionColor) > 50.0);
+  CHECK(ColorDistance(PixelAt(image, m.ToPoint(3.0, 3.0)), TrackColor(5)) == 0.0);
+  // The line, and its left_to_right arrow from x < 7 to x > 7 (going north, the left is west).
+  CHECK(ColorDistance(PixelAt(image, m.ToPoint(7.0, 2.0)), kLineColor) < 1.0);
+  CHECK(ColorDistance(PixelAt(image, m.ToPoint(7.25, 5.0)), kLineColor) < 1.0);
+  // Without the site: background there.
+  options.site = nullptr;
+  const cv::Mat plain = RenderFloorView(m, {}, {MakeFrame(0, {})}, 0, options);
+  CHECK(ColorDistance(PixelAt(plain, m.ToPoint(2.0, 3.5)), kBackground) == 0.0);
+  // IncludeSite grows a view to the site.
+  config::FloorRegion region{5.0, 5.0, 6.0, 6.0};
+  IncludeSite(site, 0.5, &region);
+  CHECK(region.x_min_m == 1.5);
+  CHECK(region.y_min_m == 0.5);
+  CHECK(region.x_max_m == 7.5);
+  CHECK(region.y_max_m == 9.5);
+}
+
 TEST_CASE("FloorMapping puts x to the right and y up at a uniform scale", "[unit]") {
   const config::FloorRegion region{-2.0, 1.0, 6.0, 5.0};  // 8 m x 4 m
   const FloorMapping m = FloorMapping::Fit(region, 800);

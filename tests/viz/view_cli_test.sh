@@ -27,6 +27,19 @@ assert height == 390, height
 assert width > 360 + 190, width
 PY
 
+# With a site file: the same picture with its regions and lines (pixels differ), and a broken
+# site file is an error naming it.
+printf 'format: mvtrack.site/1\nregions:\n  - name: shelf\n    polygon: [[0, 0], [2, 0], [2, 2]]\n' \
+  > "$OUT/site.yaml"
+expect_exit 0 "$OUT/png_site.txt" "$MVTRACK" view "$IN/reference.jsonl" --calibration \
+  "$IN/calibration.yaml" --frame 100 --png "$OUT/frame100_site.png" --height 360 \
+  --regions "$OUT/site.yaml" --no-detections-panels
+cmp -s "$OUT/frame100_site.png" "$OUT/frame100.png" && fail "--regions drew nothing"
+printf 'format: mvtrack.site/1\nregion: []\n' > "$OUT/bad_site.yaml"
+expect_exit 1 "$OUT/bad_site.txt" "$MVTRACK" view "$IN/reference.jsonl" --frame 100 \
+  --png "$OUT/x.png" --regions "$OUT/bad_site.yaml"
+expect_grep "bad_site.yaml:2:1: region: unknown key" "$OUT/bad_site.txt"
+
 # PNG frames of a range, every 10th frame.
 expect_exit 0 "$OUT/dir.txt" "$MVTRACK" view "$IN/reference.jsonl" --calibration "$IN/calibration.yaml" \
   --frames 40:99 --every 10 --png-dir "$OUT/frames" --height 200 --quiet

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "config/calibration.h"
 #include "config/calibration_check.h"
 #include "config/calibration_import.h"
+#include "config/site.h"
 #include "mvtrack/cli.h"
 #include "viz/coverage_map.h"
 #include "viz/image_io.h"
@@ -289,6 +291,8 @@ int RunCheck(int argc, char** argv) {
   Args args;
   args.Positional("CAL.yaml", "calibration file (mvtrack.calibration/1)")
       .Option("png", "write the coverage picture (cameras per floor cell, overlap graph) here")
+      .Option("regions",
+              "with --png: also draw this site file's regions and lines (mvtrack.site/1)")
       .Option("region",
               "floor region to sample, X0,Y0,X1,Y1 in metres (default: the camera "
               "centres and where their optical axes meet the sample plane, + --margin)")
@@ -316,6 +320,9 @@ int RunCheck(int argc, char** argv) {
                   "Exit status: 0 ok (warnings allowed), 1 invalid calibration, 2 usage error,\n"
                   "3 warnings with --strict.")) {
     return 0;
+  }
+  if (args.Has("regions") && !args.Has("png")) {
+    throw UsageError("--regions draws on the coverage picture: give --png too");
   }
   config::CalibrationCheckOptions options;
   options.margin_m = args.GetDouble("margin");
@@ -351,7 +358,11 @@ int RunCheck(int argc, char** argv) {
   const config::CalibrationReport report = config::CheckCalibration(cameras, options);
   PrintReport(path, cameras, report);
   if (args.Has("png")) {
-    if (!viz::WriteImage(args.Get("png"), viz::RenderCoverageMap(cameras, report), &why)) {
+    std::optional<analytics::Site> site;
+    if (args.Has("regions")) site = config::LoadSiteFile(args.Get("regions"));
+    if (!viz::WriteImage(args.Get("png"),
+                         viz::RenderCoverageMap(cameras, report, 900, site ? &*site : nullptr),
+                         &why)) {
       throw std::runtime_error(why);
     }
     std::cout << "wrote " << args.Get("png") << "\n";

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "config/calibration.h"
+#include "config/site.h"
 #include "core/detection.h"
 #include "formats/tracks_io.h"
 #include "mvtrack/cli.h"
@@ -151,6 +152,8 @@ int RunView(int argc, char** argv) {
       .Option("calibration",
               "camera calibration (mvtrack.calibration/1): cameras and their "
               "fields of view on the floor, and one panel per camera")
+      .Option("regions",
+              "a site file (mvtrack.site/1): draws its regions and lines on the floor view")
       .Option("detections",
               "detections log: the 2D detections drawn under the reprojected "
               "tracks in the camera panels (needs --calibration)")
@@ -185,7 +188,9 @@ int RunView(int argc, char** argv) {
                   "same in every frame and picture) and a fading trail, the cameras and their\n"
                   "fields of view on the floor; with --calibration one panel per camera with the\n"
                   "3D tracks reprojected (poses: skeletons; footprints: a standing person's box)\n"
-                  "over the 2D detections of --detections (grey). Several outputs may be given.\n\n"
+                  "over the 2D detections of --detections (grey); with --regions the site's\n"
+                  "regions and lines (an arrow marks each line's left_to_right direction).\n"
+                  "Several outputs may be given.\n\n"
                   "Exit status: 0 ok, 1 error (unreadable input), 2 usage error.")) {
     return 0;
   }
@@ -235,6 +240,8 @@ int RunView(int argc, char** argv) {
 
   std::vector<geometry::CameraModel> cameras;
   if (args.Has("calibration")) cameras = config::LoadCalibration(args.Get("calibration"));
+  std::optional<analytics::Site> site;
+  if (args.Has("regions")) site = config::LoadSiteFile(args.Get("regions"));
 
   std::vector<std::size_t> selected;
   for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -263,10 +270,12 @@ int RunView(int argc, char** argv) {
   }
 
   // Rendering setup.
-  const viz::FloorMapping mapping =
-      viz::FloorMapping::Fit(viz::ViewRegion(cameras, frames, 1.0), static_cast<int>(height));
+  config::FloorRegion region = viz::ViewRegion(cameras, frames, 1.0);
+  if (site) viz::IncludeSite(*site, 0.5, &region);
+  const viz::FloorMapping mapping = viz::FloorMapping::Fit(region, static_cast<int>(height));
   viz::FloorViewOptions floor_options;
   floor_options.trail_frames = static_cast<int>(trail);
+  floor_options.site = site ? &*site : nullptr;
   const cv::Size grid = viz::PanelGrid(panels ? static_cast<int>(cameras.size()) : 0);
   const std::string title_prefix = args.Has("title")
                                        ? args.Get("title")
