@@ -68,6 +68,26 @@ expect_grep "^  line door: left_to_right 1 \(0\) error n/a %, right_to_left 0 \(
   "$OUT/gt.txt"
 expect_grep "^  shelf, left +1 \(1\) +0.00 +1 \(1\) +0.00 +100.00 +0.00 +1 / 1 +0.00 +0.00$" "$OUT/gt.txt"
 
+# --plots: the pictures, drawn by the helper mvtrack-pictures (when it is built).
+expect_exit 2 "$OUT/plots_usage.txt" "$MVTRACK" analytics --tracks "$OUT/tracks.jsonl" \
+  --regions "$OUT/site.yaml" --plots
+expect_grep "--plots needs --out DIR" "$OUT/plots_usage.txt"
+if [ -x "$(dirname "$MVTRACK")/mvtrack-pictures" ]; then
+  expect_exit 0 "$OUT/plots.txt" "$MVTRACK" analytics --tracks "$OUT/tracks.jsonl" \
+    --regions "$OUT/site.yaml" --out "$OUT/plots" --plots
+  expect_grep "wrote occupancy.png, dwell.png and heatmap.png" "$OUT/plots.txt"
+  cmp "$OUT/plots/visits.csv" "$OUT/csv/visits.csv" || fail "--plots changed visits.csv"
+  py - "$OUT/plots" <<'PY' || fail "the analytics pictures are not PNGs of the expected sizes"
+import struct, sys
+for name, width in (("occupancy.png", 900), ("dwell.png", 900), ("heatmap.png", None)):
+    data = open(f"{sys.argv[1]}/{name}", "rb").read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", name
+    w, h = struct.unpack(">II", data[16:24])
+    assert width is None or w == width, (name, w)
+    assert h > 100, (name, h)
+PY
+fi
+
 # Errors: a site file mistake (file:line:column: key: reason), unreadable tracks, no --regions.
 sed 's/hold_s: 0.5/hold_s: -1/' "$OUT/site.yaml" >"$OUT/bad.yaml"
 expect_exit 1 "$OUT/bad.txt" "$MVTRACK" analytics --tracks "$OUT/tracks.jsonl" \

@@ -128,13 +128,18 @@ std::string CountError(std::int64_t count, std::int64_t truth) {
 
 }  // namespace
 
-int RunAnalytics(int argc, char** argv) {
+int RunAnalytics(int argc, char** argv) { return RunAnalyticsWith(argc, argv, nullptr); }
+
+int RunAnalyticsWith(int argc, char** argv, AnalyticsPlots plots) {
   Args args;
   args.Option("tracks", "track output to analyse (tracks JSONL or an LCM tracks log)")
       .Option("regions", "site file with the regions and lines (format mvtrack.site/1)")
       .Option("out", "write visits.csv, crossings.csv and summary.csv into this directory")
       .Option("gt", "ground-truth tracks (JSONL or log): also analysed, and the counts compared")
       .Option("json", "also write the counts (and the comparison) as JSON to this file")
+      .Flag("plots",
+            "with --out: also draw occupancy.png (per region over time), dwell.png (histogram "
+            "per region) and heatmap.png (time spent on the floor, with the site)")
       .Option("fps", "frame rate for files without capture times (every utime 0)", "25")
       .Flag("quiet", "no progress lines on stderr");
   if (!args.Parse(
@@ -149,7 +154,8 @@ int RunAnalytics(int argc, char** argv) {
           "Times are the tracks' capture times in seconds (utime / 1e6).\n\n"
           "With --out DIR: visits.csv (region,track,enter_s,exit_s,dwell_s,ended_by),\n"
           "crossings.csv (line,track,time_s,direction) and summary.csv (per region and\n"
-          "hour: visits begun and their mean dwell; per line and hour: crossings).\n"
+          "hour: visits begun and their mean dwell; per line and hour: crossings); with\n"
+          "--plots also occupancy.png, dwell.png and heatmap.png.\n"
           "With --gt: the ground truth's tracks are analysed with the same site and rules,\n"
           "and per region the entries, exits, occupancy (per ground-truth frame, from the\n"
           "visits) and dwell (visits matched by time overlap), per line the crossings, are\n"
@@ -158,6 +164,9 @@ int RunAnalytics(int argc, char** argv) {
     return 0;
   }
   if (!args.Has("tracks")) throw UsageError("--tracks is required");
+  if (args.Has("plots") && !args.Has("out")) throw UsageError("--plots needs --out DIR");
+  // The pictures need OpenCV, which only the helper links: run the whole command there.
+  if (args.Has("plots") && plots == nullptr) return ExecPictures("analytics", argc - 1, argv + 1);
   if (!args.Has("regions")) throw UsageError("--regions is required");
   const double fps = args.GetDouble("fps");
   if (!(fps > 0.0 && fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
@@ -186,8 +195,8 @@ int RunAnalytics(int argc, char** argv) {
   progress("analysing " + std::to_string(tracks.frames.size()) + " frames, " +
            std::to_string(site.regions.size()) + " region(s), " +
            std::to_string(site.lines.size()) + " line(s)");
-  const analytics::RecordingAnalytics result =
-      analytics::AnalyzeRecording(site, Messages(tracks, fps));
+  const std::vector<analytics::TimedPositions> messages = Messages(tracks, fps);
+  const analytics::RecordingAnalytics result = analytics::AnalyzeRecording(site, messages);
   if (result.ignored_messages > 0) {
     std::cerr << "mvtrack analytics: warning: " << result.ignored_messages
               << " frame(s) ignored: their time went backwards\n";
@@ -325,6 +334,15 @@ int RunAnalytics(int argc, char** argv) {
       return 1;
     }
     progress("wrote visits.csv, crossings.csv and summary.csv in " + dir.string());
+    if (plots != nullptr && args.Has("plots")) {
+      try {
+        plots(dir.string(), site, messages, result);
+      } catch (const std::exception& e) {
+        std::cerr << "mvtrack analytics: " << e.what() << "\n";
+        return 1;
+      }
+      progress("wrote occupancy.png, dwell.png and heatmap.png in " + dir.string());
+    }
   }
   return 0;
 }

@@ -1,11 +1,16 @@
+#include <unistd.h>
+
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "core/suggest.h"
 #include "mvtrack/cli.h"
@@ -202,6 +207,33 @@ int RunSubcommand(
     std::cerr << program << " " << name << ": error: " << e.what() << "\n";
     return 1;
   }
+}
+
+std::string PicturesHelper() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return "";
+  const std::filesystem::path helper = self.parent_path() / "mvtrack-pictures";
+  return std::filesystem::exists(helper, ec) ? helper.string() : "";
+}
+
+int ExecPictures(const char* command, int argc, char** args) {
+  const std::string helper = PicturesHelper();
+  if (helper.empty()) {
+    std::cerr << "mvtrack " << command
+              << ": error: the helper mvtrack-pictures is not installed "
+                 "next to mvtrack (Debian package mvtrack-tools; a build from source has it "
+                 "when OpenCV imgproc, imgcodecs and videoio are installed: "
+                 "tools/dev/install_deps.sh pictures, then build again)\n";
+    return 1;
+  }
+  std::vector<char*> argv = {const_cast<char*>("mvtrack-pictures"), const_cast<char*>(command)};
+  for (int i = 0; i < argc; ++i) argv.push_back(args[i]);
+  argv.push_back(nullptr);
+  execv(helper.c_str(), argv.data());
+  std::cerr << "mvtrack " << command << ": error: cannot run " << helper << ": "
+            << std::strerror(errno) << "\n";
+  return 1;
 }
 
 }  // namespace mvtrack::cli

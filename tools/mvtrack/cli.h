@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "analytics/recording.h"
 #include "eval/sequence.h"
 
 namespace mvtrack::cli {
@@ -94,8 +95,25 @@ int RunEval(int argc, char** argv);
 /// `mvtrack diff`: compare two track outputs frame by frame (diff.cc).
 int RunDiff(int argc, char** argv);
 /// `mvtrack analytics`: region visits and line crossings of tracks, as CSV and against ground
-/// truth (analytics.cc).
+/// truth (analytics.cc). With --plots, mvtrack runs it in the helper mvtrack-pictures (OpenCV),
+/// which gives it `plots` (analytics_plots.cc); `plots` null: --plots execs the helper.
 int RunAnalytics(int argc, char** argv);
+/// What draws the analytics pictures into a directory (called after the CSVs are written;
+/// throws std::runtime_error when a picture cannot be written).
+using AnalyticsPlots = void (*)(const std::string& dir,
+                                const analytics::Site& site,
+                                const std::vector<analytics::TimedPositions>& messages,
+                                const analytics::RecordingAnalytics& result);
+int RunAnalyticsWith(int argc, char** argv, AnalyticsPlots plots);
+/// `mvtrack analytics` in mvtrack-pictures: with the pictures (analytics_plots.cc).
+int RunAnalyticsPictures(int argc, char** argv);
+
+/// The helper mvtrack-pictures next to the running executable (build tree and install alike),
+/// or "" when it is not there.
+std::string PicturesHelper();
+/// Replaces this process by `mvtrack-pictures COMMAND ARGS...` (`args` without the command);
+/// returns 1 with a message on stderr when that is not possible.
+int ExecPictures(const char* command, int argc, char** args);
 /// `mvtrack check-config`: validate an options file (and a calibration) (check_config.cc).
 int RunCheckConfig(int argc, char** argv);
 /// `mvtrack convert`: datasets and JSON-lines detections -> detections log, calibration,

@@ -1,11 +1,7 @@
 // mvtrack: the command-line program. A thin dispatcher: one file per subcommand.
 
-#include <unistd.h>
-
-#include <cerrno>
 #include <cstring>
 #include <exception>
-#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -23,15 +19,6 @@ struct Command {
   const char* summary;
   int (*run)(int, char**);
 };
-
-// The pictures helper next to this executable (build tree and install alike), or "".
-std::string PicturesHelper() {
-  std::error_code ec;
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) return "";
-  const std::filesystem::path helper = self.parent_path() / "mvtrack-pictures";
-  return std::filesystem::exists(helper, ec) ? helper.string() : "";
-}
 
 constexpr Command kCommands[] = {
     {"demo", "simulate a small scene, track it, print tracks and accuracy", mvtrack::cli::RunDemo},
@@ -86,22 +73,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[1], c.name) != 0) continue;
     if (c.run != nullptr)
       return mvtrack::cli::RunSubcommand("mvtrack", c.name, c.run, argc - 1, argv + 1);
-    const std::string helper = PicturesHelper();
-    if (helper.empty()) {
-      std::cerr << "mvtrack " << c.name
-                << ": error: the helper mvtrack-pictures is not installed "
-                   "next to mvtrack (Debian package mvtrack-tools; a build from source has it "
-                   "when OpenCV imgproc, imgcodecs and videoio are installed: "
-                   "tools/dev/install_deps.sh pictures, then build again)\n";
-      return 1;
-    }
-    std::vector<char*> args(argv, argv + argc);
-    args[0] = const_cast<char*>("mvtrack-pictures");
-    args.push_back(nullptr);
-    execv(helper.c_str(), args.data());
-    std::cerr << "mvtrack " << c.name << ": error: cannot run " << helper << ": "
-              << std::strerror(errno) << "\n";
-    return 1;
+    return mvtrack::cli::ExecPictures(c.name, argc - 2, argv + 2);
   }
   std::vector<std::string> names;
   for (const Command& c : kCommands) names.emplace_back(c.name);

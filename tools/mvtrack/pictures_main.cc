@@ -1,7 +1,7 @@
 // mvtrack-pictures: the subcommands that draw with OpenCV (bench's plot, view, calib check
-// --png), in their own executable so that `mvtrack` itself never loads OpenCV (issue 16: a
-// replay's start-up was mostly OpenCV's libraries). `mvtrack bench|view|calib ...` runs this
-// program with the same arguments; it can also be run directly.
+// --png, analytics --plots), in their own executable so that `mvtrack` itself never loads OpenCV
+// (issue 16: a replay's start-up was mostly OpenCV's libraries). `mvtrack bench|view|calib ...`
+// runs this program with the same arguments; it can also be run directly.
 
 #include <cstring>
 #include <iostream>
@@ -19,6 +19,7 @@ constexpr Command kCommands[] = {
     {"bench", mvtrack::cli::RunBench},
     {"view", mvtrack::cli::RunView},
     {"calib", mvtrack::cli::RunCalib},
+    {"analytics", mvtrack::cli::RunAnalyticsPictures},
 };
 
 }  // namespace
@@ -31,7 +32,7 @@ int main(int argc, char** argv) {
       }
     }
   }
-  std::cerr << "usage: mvtrack-pictures bench|view|calib [options]   (run as mvtrack bench|view|"
-               "calib; see mvtrack --help)\n";
+  std::cerr << "usage: mvtrack-pictures bench|view|calib|analytics [options]   (run as mvtrack "
+               "bench|view|calib, mvtrack analytics --plots; see mvtrack --help)\n";
   return 2;
 }
