@@ -14,7 +14,10 @@ const cv::Scalar kInk(30, 30, 30);
 const cv::Scalar kGrid(220, 220, 220);
 const cv::Scalar kPaper(255, 255, 255);
 
-void Text(cv::Mat* img, const std::string& text, cv::Point at, double scale = 0.45,
+void Text(cv::Mat* img,
+          const std::string& text,
+          cv::Point at,
+          double scale = 0.45,
           const cv::Scalar& color = kInk) {
   cv::putText(*img, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, color, 1, cv::LINE_AA);
 }
@@ -78,11 +81,15 @@ cv::Mat RenderOccupancyPlot(const std::vector<std::string>& names,
     const std::vector<int>& s = occupancy[r];
     for (std::size_t k = 1; k < s.size() && k < times_s.size(); ++k) {
       // A step: the value holds until the next time.
-      cv::line(img, {px(times_s[k - 1]), py(s[k - 1])}, {px(times_s[k]), py(s[k - 1])}, color, 2,
+      cv::line(img,
+               {px(times_s[k - 1]), py(s[k - 1])},
+               {px(times_s[k]), py(s[k - 1])},
+               color,
+               2,
                cv::LINE_AA);
       if (s[k] != s[k - 1]) {
-        cv::line(img, {px(times_s[k]), py(s[k - 1])}, {px(times_s[k]), py(s[k])}, color, 2,
-                 cv::LINE_AA);
+        cv::line(
+            img, {px(times_s[k]), py(s[k - 1])}, {px(times_s[k]), py(s[k])}, color, 2, cv::LINE_AA);
       }
     }
     const int y = top + 15 + 18 * static_cast<int>(r);
@@ -119,14 +126,15 @@ cv::Mat RenderDwellHistogram(const std::vector<std::string>& names,
     std::vector<double> sorted = dwell_s[r];
     std::sort(sorted.begin(), sorted.end());
     const std::string median = sorted.empty() ? "-" : Number(sorted[(sorted.size() - 1) / 2], 1);
-    Text(&img, names[r] + ": " + std::to_string(sorted.size()) + " visits, median " + median + " s",
+    Text(&img,
+         names[r] + ": " + std::to_string(sorted.size()) + " visits, median " + median + " s",
          {left, top - 4});
     const double bar = static_cast<double>(right - left) / bins;
     for (int b = 0; b < bins; ++b) {
       const int x0 = left + static_cast<int>(std::lround(b * bar));
       const int x1 = left + static_cast<int>(std::lround((b + 1) * bar)) - 1;
-      const int h = static_cast<int>(std::lround(static_cast<double>(counts[static_cast<std::size_t>(b)]) /
-                                                 peak * (bottom - top - 8)));
+      const int h = static_cast<int>(std::lround(
+          static_cast<double>(counts[static_cast<std::size_t>(b)]) / peak * (bottom - top - 8)));
       if (h > 0) cv::rectangle(img, {x0, bottom - h}, {x1, bottom}, SeriesColor(r), cv::FILLED);
     }
     cv::line(img, {left, bottom}, {right, bottom}, kInk, 1);
@@ -167,20 +175,20 @@ cv::Mat RenderHeatMap(const FloorMapping& mapping,
     for (int c = 0; c < cols; ++c) {
       const double v = seconds.at<double>(r, c);
       level.at<unsigned char>(r, c) =
-          v > 0.0 && peak > 0.0
-              ? static_cast<unsigned char>(std::lround(40.0 + 215.0 * std::log1p(v) / std::log1p(peak)))
-              : 0;
+          v > 0.0 && peak > 0.0 ? static_cast<unsigned char>(
+                                      std::lround(40.0 + 215.0 * std::log1p(v) / std::log1p(peak)))
+                                : 0;
     }
   }
   cv::Mat colored;
   cv::applyColorMap(level, colored, cv::COLORMAP_BONE);  // grey-blue: the site stays visible
   cv::Mat image;
-  cv::resize(colored, image, cv::Size(mapping.width_px, mapping.height_px), 0, 0,
-             cv::INTER_NEAREST);
+  cv::resize(
+      colored, image, cv::Size(mapping.width_px, mapping.height_px), 0, 0, cv::INTER_NEAREST);
   DrawSite(mapping, site, &image);
   char legend[96];
-  std::snprintf(legend, sizeof(legend), "time spent per %.2f m cell, log scale, max %.0f s", cell_m,
-                peak);
+  std::snprintf(
+      legend, sizeof(legend), "time spent per %.2f m cell, log scale, max %.0f s", cell_m, peak);
   Text(&image, legend, {8, mapping.height_px - 10}, 0.45, cv::Scalar(255, 255, 255));
   return image;
 }

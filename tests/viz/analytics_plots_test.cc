@@ -50,7 +50,9 @@ TEST_CASE("analytics plots: occupancy steps, dwell bars, heat where people staye
   dwell.push_back(10.0);
   const cv::Mat bars = RenderDwellHistogram({"shelf"}, {dwell}, 20, 900, 140);
   // Bars of bin [1, 1.5) and [9, 9.5) (x = 60 + 840 * t / 10), none at 5 s.
-  const auto column = [&](double t) { return cv::Rect(60 + static_cast<int>(84 * t) + 10, 50, 10, 70); };
+  const auto column = [&](double t) {
+    return cv::Rect(60 + static_cast<int>(84 * t) + 10, 50, 10, 70);
+  };
   CHECK(CountColor(bars, column(1.0), color) > 100);
   CHECK(CountColor(bars, column(9.0), color) > 0);
   CHECK(CountColor(bars, column(5.0), color) == 0);

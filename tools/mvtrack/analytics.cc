@@ -1,6 +1,7 @@
 // mvtrack analytics: region visits and line crossings of a recorded track output (issue 41),
 // written as CSV, and compared with the ground truth's under the same rules (--gt).
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -19,13 +20,6 @@
 
 namespace mvtrack::cli {
 namespace {
-
-std::string Fixed(double value, int digits) {
-  if (!std::isfinite(value)) return "";
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.*f", digits, value);
-  return buf;
-}
 
 // A CSV field: quoted when it holds a comma, a quote or a line break (names are free text).
 std::string Field(const std::string& text) {
@@ -196,7 +190,18 @@ int RunAnalyticsWith(int argc, char** argv, AnalyticsPlots plots) {
            std::to_string(site.regions.size()) + " region(s), " +
            std::to_string(site.lines.size()) + " line(s)");
   const std::vector<analytics::TimedPositions> messages = Messages(tracks, fps);
+  const auto started = std::chrono::steady_clock::now();
   const analytics::RecordingAnalytics result = analytics::AnalyzeRecording(site, messages);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  char timing[160];
+  std::snprintf(timing,
+                sizeof(timing),
+                "analysed %zu frames in %.3f s (%.0f frames/s; reading not included)",
+                messages.size(),
+                seconds,
+                seconds > 0.0 ? static_cast<double>(messages.size()) / seconds : 0.0);
+  progress(timing);
   if (result.ignored_messages > 0) {
     std::cerr << "mvtrack analytics: warning: " << result.ignored_messages
               << " frame(s) ignored: their time went backwards\n";

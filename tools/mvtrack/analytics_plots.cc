@@ -1,6 +1,8 @@
 // `mvtrack analytics --plots` (issue 41), in the helper mvtrack-pictures: the occupancy, dwell
 // and heat-map pictures of lib/viz, next to the CSVs.
 
+#include "viz/analytics_plots.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <stdexcept>
@@ -9,7 +11,6 @@
 
 #include "analytics/recording.h"
 #include "mvtrack/cli.h"
-#include "viz/analytics_plots.h"
 #include "viz/floor_view.h"
 #include "viz/image_io.h"
 
@@ -49,8 +50,8 @@ void WriteAnalyticsPlots(const std::string& dir,
   bool any = false;
   for (const analytics::TimedPositions& m : messages) {
     for (const analytics::TrackPosition& t : m.tracks) {
-      const config::FloorRegion point{t.floor.x() - 0.5, t.floor.y() - 0.5, t.floor.x() + 0.5,
-                                      t.floor.y() + 0.5};
+      const config::FloorRegion point{
+          t.floor.x() - 0.5, t.floor.y() - 0.5, t.floor.x() + 0.5, t.floor.y() + 0.5};
       if (!any) {
         region = point;
         any = true;
@@ -64,7 +65,8 @@ void WriteAnalyticsPlots(const std::string& dir,
   if (!any) region = {-1.0, -1.0, 1.0, 1.0};
   viz::IncludeSite(site, 0.5, &region);
   const viz::FloorMapping mapping = viz::FloorMapping::Fit(region, 900);
-  Write(out / "heatmap.png", viz::RenderHeatMap(mapping, messages, site, 0.25, site.options.max_gap_s));
+  Write(out / "heatmap.png",
+        viz::RenderHeatMap(mapping, messages, site, 0.25, site.options.max_gap_s));
 }
 
 }  // namespace

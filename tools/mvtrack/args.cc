@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -207,6 +208,13 @@ int RunSubcommand(
     std::cerr << program << " " << name << ": error: " << e.what() << "\n";
     return 1;
   }
+}
+
+std::string Fixed(double value, int decimals) {
+  if (!std::isfinite(value)) return "";
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.*f", decimals, value);
+  return buf;
 }
 
 std::string PicturesHelper() {

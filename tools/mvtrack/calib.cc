@@ -43,12 +43,6 @@ const char kFormats[] =
     "                                  --image-size required, --floor-unit M (default 1 m),\n"
     "                                  --focal PX (default: from each homography)\n";
 
-std::string Fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
 // One of the homography options, finite (and > 0 when `positive`).
 double FiniteOption(const Args& args, const std::string& name, bool positive) {
   const double v = args.GetDouble(name);

@@ -108,6 +108,10 @@ int RunAnalyticsWith(int argc, char** argv, AnalyticsPlots plots);
 /// `mvtrack analytics` in mvtrack-pictures: with the pictures (analytics_plots.cc).
 int RunAnalyticsPictures(int argc, char** argv);
 
+/// `value` with `decimals` digits after the point ("%.*f"); "" when it is not finite (a figure
+/// that does not exist, e.g. the median of no visits).
+std::string Fixed(double value, int decimals);
+
 /// The helper mvtrack-pictures next to the running executable (build tree and install alike),
 /// or "" when it is not there.
 std::string PicturesHelper();
