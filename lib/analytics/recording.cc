@@ -18,6 +18,26 @@ void Collect(const std::vector<Event>& events, RecordingAnalytics* out) {
   }
 }
 
+// The visits of `region`.
+std::vector<const Visit*> OfRegion(const std::vector<Visit>& visits, int region) {
+  std::vector<const Visit*> out;
+  for (const Visit& v : visits) {
+    if (v.region == region) out.push_back(&v);
+  }
+  return out;
+}
+
+// +1 at each visit's enter time, -1 at its exit time, in time order.
+std::vector<std::pair<double, int>> Changes(const std::vector<const Visit*>& visits) {
+  std::vector<std::pair<double, int>> out;
+  for (const Visit* v : visits) {
+    out.emplace_back(v->enter_s, +1);
+    out.emplace_back(v->exit_s, -1);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace
 
 RecordingAnalytics AnalyzeRecording(const Site& site, const std::vector<TimedPositions>& messages) {
@@ -63,19 +83,10 @@ AnalyticsComparison CompareAnalytics(const Site& site,
       c.exits = predicted.regions[r].exits;
     }
     // Occupancy per frame: both sides' visits, swept once over the sorted frame times.
-    std::vector<std::pair<double, int>> changes_gt, changes_pred;
-    for (const Visit& v : truth.visits) {
-      if (v.region != region) continue;
-      changes_gt.emplace_back(v.enter_s, +1);
-      changes_gt.emplace_back(v.exit_s, -1);
-    }
-    for (const Visit& v : predicted.visits) {
-      if (v.region != region) continue;
-      changes_pred.emplace_back(v.enter_s, +1);
-      changes_pred.emplace_back(v.exit_s, -1);
-    }
-    std::sort(changes_gt.begin(), changes_gt.end());
-    std::sort(changes_pred.begin(), changes_pred.end());
+    const std::vector<const Visit*> gt = OfRegion(truth.visits, region);
+    const std::vector<const Visit*> pred = OfRegion(predicted.visits, region);
+    const std::vector<std::pair<double, int>> changes_gt = Changes(gt),
+                                              changes_pred = Changes(pred);
     std::vector<double> times = frame_times_s;
     std::sort(times.begin(), times.end());
     std::size_t ig = 0, ip = 0;
@@ -91,18 +102,28 @@ AnalyticsComparison CompareAnalytics(const Site& site,
       c.occupancy_abs_error_sum += std::abs(occ_gt - occ_pred);
     }
     // Dwell: visits matched one to one, the largest overlap first.
-    std::vector<const Visit*> gt, pred;
-    for (const Visit& v : truth.visits) {
-      if (v.region == region) gt.push_back(&v);
-    }
-    for (const Visit& v : predicted.visits) {
-      if (v.region == region) pred.push_back(&v);
-    }
     c.gt_visits = static_cast<std::int64_t>(gt.size());
     c.visits = static_cast<std::int64_t>(pred.size());
+    // The overlapping pairs only (a day of visits would make every pair too many): the
+    // tracker's visits sorted by enter time, each ground-truth visit scanning those that enter
+    // before it ends and no earlier than the longest visit before it begins.
+    std::vector<std::size_t> by_enter(pred.size());
+    double longest = 0.0;
+    for (std::size_t j = 0; j < pred.size(); ++j) {
+      by_enter[j] = j;
+      longest = std::max(longest, pred[j]->dwell_s());
+    }
+    std::sort(by_enter.begin(), by_enter.end(), [&](std::size_t a, std::size_t b) {
+      return pred[a]->enter_s < pred[b]->enter_s;
+    });
     std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
     for (std::size_t i = 0; i < gt.size(); ++i) {
-      for (std::size_t j = 0; j < pred.size(); ++j) {
+      auto k = std::lower_bound(
+          by_enter.begin(), by_enter.end(), gt[i]->enter_s - longest, [&](std::size_t j, double t) {
+            return pred[j]->enter_s < t;
+          });
+      for (; k != by_enter.end() && pred[*k]->enter_s < gt[i]->exit_s; ++k) {
+        const std::size_t j = *k;
         const double overlap =
             std::min(gt[i]->exit_s, pred[j]->exit_s) - std::max(gt[i]->enter_s, pred[j]->enter_s);
         if (overlap > 0.0) pairs.emplace_back(-overlap, i, j);
