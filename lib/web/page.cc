@@ -288,8 +288,13 @@ function onSiteCounts(c) {
   scheduleDraw();
 }
 
+const analyticsLatencies = [];  // publish -> shown, ms, of the analytics events
 function onAnalytics(e) {
   document.getElementById("site-section").hidden = false;
+  analyticsLatencies.push(Date.now() - e.publish_utime / 1000);
+  if (analyticsLatencies.length > 5000) analyticsLatencies.shift();
+  document.body.dataset.analyticsLatencyMaxMs = Math.max(...analyticsLatencies).toFixed(1);
+  document.body.dataset.analyticsEvents = analyticsLatencies.length;
   const list = document.getElementById("analytics-events");
   const item = document.createElement("li");
   const what = e.kind === "crossing" ? "crossed " + e.name + " " + e.direction.replace(/_/g, " ")

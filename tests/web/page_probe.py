@@ -62,6 +62,8 @@ PROBE = """JSON.stringify({
   stale: document.body.dataset.stale || '',
   tracks_note: document.getElementById('tracks-note').textContent,
   cameras: [...document.querySelectorAll('#cameras tbody tr')].map(r => r.dataset.camera),
+  analytics_events: Number(document.body.dataset.analyticsEvents || 0),
+  analytics_latency_max_ms: Number(document.body.dataset.analyticsLatencyMaxMs || -1),
   regions: [...document.querySelectorAll('#regions tbody tr')].map(r => ({
     name: r.dataset.region, inside: Number(r.cells[1].textContent),
     entries: Number(r.cells[2].textContent), exits: Number(r.cells[3].textContent)}))

@@ -243,7 +243,12 @@ assert page["regions"][0]["entries"] >= 1, page
 metrics = open(sys.argv[4]).read()
 assert 'mvtrack_region_entries_total{region="room"} 3' in metrics, metrics[-2000:]
 assert 'mvtrack_line_crossings_total{line="middle",direction="left_to_right"}' in metrics
-print(f"site analytics: counts {c['regions']}, lines {c['lines']}; page {page['regions']}")
+# Each analytics event reached the page: publish (the daemon, right after the tracks message
+# that confirmed it) -> in the DOM. Sanity only (timing belongs to benchmarks).
+assert page["analytics_events"] >= 3, page
+assert 0 <= page["analytics_latency_max_ms"] < 1000, page
+print(f"site analytics: counts {c['regions']}, lines {c['lines']}; page {page['regions']}; "
+      f"{page['analytics_events']} events, publish -> DOM max {page['analytics_latency_max_ms']} ms")
 EOF
   fail "the site analytics did not reach /events, /metrics or the page"
 
