@@ -223,6 +223,18 @@ void DwellHistogram::Add(double dwell_s) {
   sum_s += dwell_s;
 }
 
+bool AddDwell(std::map<std::string, DwellHistogram>* dwell,
+              const std::string& name,
+              double dwell_s) {
+  auto it = dwell->find(name);
+  if (it == dwell->end()) {
+    if (dwell->size() >= static_cast<std::size_t>(analytics::kMaxRegions)) return false;
+    it = dwell->emplace(name, DwellHistogram{}).first;
+  }
+  it->second.Add(dwell_s);
+  return true;
+}
+
 std::string SiteMetricsText(const std::optional<transport::SiteCounts>& counts,
                             const std::map<std::string, DwellHistogram>& dwell) {
   Exposition e;

@@ -49,6 +49,13 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
                            const WebCounters& web,
                            const service::HealthReport& source = {service::Health::kOk, {}});
 
+/// Adds a visit's dwell to `name`'s histogram in `dwell`. Names come from messages (untrusted):
+/// at most analytics::kMaxRegions of them are kept, a visit of another name once the map is
+/// full is not counted; returns whether it was.
+bool AddDwell(std::map<std::string, DwellHistogram>* dwell,
+              const std::string& name,
+              double dwell_s);
+
 /// The site analytics' series (docs/OPERATING.md "Metrics"): per region of the latest counts
 /// mvtrack_region_occupancy, mvtrack_region_entries_total, mvtrack_region_exits_total; per line
 /// mvtrack_line_crossings_total{direction}; per region with ended visits

@@ -412,8 +412,9 @@ class WebServer::Impl {
       }
       ++self->counters_.analytics_events;
       if (d.message.kind == analytics::Event::Kind::kExit) {
-        self->dwell_[d.message.name].Add(
-            static_cast<double>(d.message.utime - d.message.enter_utime) * 1e-6);
+        AddDwell(&self->dwell_,
+                 d.message.name,
+                 static_cast<double>(d.message.utime - d.message.enter_utime) * 1e-6);
       }
     }
     self->hub_.Publish(AnalyticsEventJson(d.message), EventHub::Retain::kNone);

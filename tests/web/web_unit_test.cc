@@ -330,4 +330,39 @@ TEST_CASE("metrics: Prometheus text of the status, per camera, and the web count
 }
 
 }  // namespace
+TEST_CASE("site metrics: counts per region and line, dwell histogram, bounded names", "[unit]") {
+  CHECK(SiteMetricsText(std::nullopt, {}).empty());
+  transport::SiteCounts counts;
+  counts.region_names = {"door \"A\""};
+  counts.regions = {{2, 10, 8}};
+  counts.line_names = {"gate"};
+  counts.lines = {{4, 5}};
+  std::map<std::string, DwellHistogram> dwell;
+  CHECK(AddDwell(&dwell, "door \"A\"", 0.5));
+  CHECK(AddDwell(&dwell, "door \"A\"", 42.0));
+  CHECK(AddDwell(&dwell, "x", -1.0));
+  CHECK(dwell.at("x").count == 0);  // a negative dwell is not counted
+  dwell.erase("x");
+  const std::string text = SiteMetricsText(counts, dwell);
+  CHECK_THAT(text, Catch::Contains("mvtrack_region_occupancy{region=\"door \\\"A\\\"\"} 2\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_region_entries_total{region=\"door \\\"A\\\"\"} 10\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_region_exits_total{region=\"door \\\"A\\\"\"} 8\n"));
+  CHECK_THAT(text,
+             Catch::Contains(
+                 "mvtrack_line_crossings_total{line=\"gate\",direction=\"right_to_left\"} 5\n"));
+  CHECK_THAT(text,
+             Catch::Contains(
+                 "mvtrack_region_dwell_seconds_bucket{region=\"door \\\"A\\\"\",le=\"1\"} 1\n"));
+  CHECK_THAT(text,
+             Catch::Contains(
+                 "mvtrack_region_dwell_seconds_bucket{region=\"door \\\"A\\\"\",le=\"60\"} 2\n"));
+  CHECK_THAT(text,
+             Catch::Contains("mvtrack_region_dwell_seconds_count{region=\"door \\\"A\\\"\"} 2\n"));
+  // Hostile names: at most kMaxRegions histograms.
+  for (int i = 0; i < analytics::kMaxRegions + 50; ++i)
+    AddDwell(&dwell, "r" + std::to_string(i), 1.0);
+  CHECK(dwell.size() == static_cast<std::size_t>(analytics::kMaxRegions));
+  CHECK_FALSE(AddDwell(&dwell, "one more", 1.0));
+}
+
 }  // namespace mvtrack::web
