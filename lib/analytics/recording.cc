@@ -27,17 +27,6 @@ std::vector<const Visit*> OfRegion(const std::vector<Visit>& visits, int region)
   return out;
 }
 
-// +1 at each visit's enter time, -1 at its exit time, in time order.
-std::vector<std::pair<double, int>> Changes(const std::vector<const Visit*>& visits) {
-  std::vector<std::pair<double, int>> out;
-  for (const Visit* v : visits) {
-    out.emplace_back(v->enter_s, +1);
-    out.emplace_back(v->exit_s, -1);
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 }  // namespace
 
 RecordingAnalytics AnalyzeRecording(const Site& site, const std::vector<TimedPositions>& messages) {
@@ -57,6 +46,29 @@ int OccupancyAt(const std::vector<Visit>& visits, int region, double time_s) {
   return n;
 }
 
+std::vector<int> OccupancyOver(const std::vector<Visit>& visits,
+                               int region,
+                               const std::vector<double>& sorted_times_s) {
+  // +1 at each visit's enter time, -1 at its exit time, in time order.
+  std::vector<std::pair<double, int>> changes;
+  for (const Visit& v : visits) {
+    if (v.region != region) continue;
+    changes.emplace_back(v.enter_s, +1);
+    changes.emplace_back(v.exit_s, -1);
+  }
+  std::sort(changes.begin(), changes.end());
+  std::vector<int> out;
+  out.reserve(sorted_times_s.size());
+  std::size_t next = 0;
+  int open = 0;
+  for (const double t : sorted_times_s) {
+    // Open at t: enter_s <= t < exit_s.
+    while (next < changes.size() && changes[next].first <= t) open += changes[next++].second;
+    out.push_back(open);
+  }
+  return out;
+}
+
 double Quantile(const std::vector<double>& sorted, double q) {
   if (sorted.empty()) return std::numeric_limits<double>::quiet_NaN();
   const double rank = std::ceil(std::clamp(q, 0.0, 1.0) * static_cast<double>(sorted.size()));
@@ -71,6 +83,8 @@ AnalyticsComparison CompareAnalytics(const Site& site,
   AnalyticsComparison out;
   out.regions.resize(site.regions.size());
   out.lines.resize(site.lines.size());
+  std::vector<double> times = frame_times_s;
+  std::sort(times.begin(), times.end());
   for (std::size_t r = 0; r < site.regions.size(); ++r) {
     RegionComparison& c = out.regions[r];
     const int region = static_cast<int>(r);
@@ -82,25 +96,16 @@ AnalyticsComparison CompareAnalytics(const Site& site,
       c.entries = predicted.regions[r].entries;
       c.exits = predicted.regions[r].exits;
     }
-    // Occupancy per frame: both sides' visits, swept once over the sorted frame times.
+    // Occupancy per frame.
+    const std::vector<int> occ_gt = OccupancyOver(truth.visits, region, times);
+    const std::vector<int> occ_pred = OccupancyOver(predicted.visits, region, times);
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      ++c.occupancy_frames;
+      c.occupancy_frames_equal += occ_gt[k] == occ_pred[k];
+      c.occupancy_abs_error_sum += std::abs(occ_gt[k] - occ_pred[k]);
+    }
     const std::vector<const Visit*> gt = OfRegion(truth.visits, region);
     const std::vector<const Visit*> pred = OfRegion(predicted.visits, region);
-    const std::vector<std::pair<double, int>> changes_gt = Changes(gt),
-                                              changes_pred = Changes(pred);
-    std::vector<double> times = frame_times_s;
-    std::sort(times.begin(), times.end());
-    std::size_t ig = 0, ip = 0;
-    int occ_gt = 0, occ_pred = 0;
-    for (const double t : times) {
-      // Open at t: enter_s <= t < exit_s.
-      while (ig < changes_gt.size() && changes_gt[ig].first <= t) occ_gt += changes_gt[ig++].second;
-      while (ip < changes_pred.size() && changes_pred[ip].first <= t) {
-        occ_pred += changes_pred[ip++].second;
-      }
-      ++c.occupancy_frames;
-      c.occupancy_frames_equal += occ_gt == occ_pred;
-      c.occupancy_abs_error_sum += std::abs(occ_gt - occ_pred);
-    }
     // Dwell: visits matched one to one, the largest overlap first.
     c.gt_visits = static_cast<std::int64_t>(gt.size());
     c.visits = static_cast<std::int64_t>(pred.size());

@@ -51,6 +51,11 @@ RecordingAnalytics AnalyzeRecording(const Site& site, const std::vector<TimedPos
 /// Visits of `region` open at `time_s` (enter_s <= time_s < exit_s).
 int OccupancyAt(const std::vector<Visit>& visits, int region, double time_s);
 
+/// OccupancyAt at each of `sorted_times_s` (ascending), in one sweep over the visits.
+std::vector<int> OccupancyOver(const std::vector<Visit>& visits,
+                               int region,
+                               const std::vector<double>& sorted_times_s);
+
 /// A tracker's counts against the ground truth's (both analysed with the same site and rules).
 struct RegionComparison {
   std::int64_t gt_entries = 0, entries = 0;

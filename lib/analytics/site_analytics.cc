@@ -173,9 +173,14 @@ SiteAnalytics::SiteAnalytics(Site site) : site_(std::move(site)) {
 
 // The one rule, for a region or a line: `d` is the signed distance now (a region: positive
 // inside; a line: positive on its left), `confirmed` the side the track has. Returns true when a
-// change of side has now held for hold_s.
-bool SiteAnalytics::Step(
-    SideState* state, double d, double previous_time_s, double time_s, bool first) const {
+// change of side has now held for hold_s; `crossed_now` (when given): whether the border was
+// crossed towards the other side between the previous sample and this one.
+bool SiteAnalytics::Step(SideState* state,
+                         double d,
+                         double previous_time_s,
+                         double time_s,
+                         bool first,
+                         bool* crossed_now) const {
   const double half = 0.5 * site_.options.hysteresis_m;
   // Distances towards the side the track is not on: positive = past the border.
   const double e = state->confirmed ? -d : d;
@@ -185,8 +190,7 @@ bool SiteAnalytics::Step(
     if (e > 0.0 && (first || e_before <= 0.0)) {
       // When the border was crossed; a track appearing on the far side crossed "now".
       state->cross_time_s = first ? time_s : CrossingTime(previous_time_s, e_before, time_s, e);
-      state->counted = true;
-      state->crossed_now = !first;
+      if (crossed_now != nullptr) *crossed_now = !first;
     }
     if (e > half) state->pending = true;
   } else if (e < -half) {
@@ -274,10 +278,10 @@ void SiteAnalytics::UpdateTrack(TrackId3D id,
       }
       continue;
     }
-    const bool done = Step(&state, d, track->last_seen_s, time_s, /*first=*/false);
-    if (state.crossed_now) {
+    bool crossed_now = false;
+    const bool done = Step(&state, d, track->last_seen_s, time_s, /*first=*/false, &crossed_now);
+    if (crossed_now) {
       // Counted only when the path crossed the segment itself, not the line beyond its ends.
-      state.crossed_now = false;
       const double t = time_s > track->last_seen_s ? (state.cross_time_s - track->last_seen_s) /
                                                          (time_s - track->last_seen_s)
                                                    : 1.0;
@@ -317,16 +321,13 @@ std::vector<Event> SiteAnalytics::Update(double time_s, const std::vector<TrackP
   }
   last_time_s_ = time_s;
   // Tracks not seen for max_gap_s have ended.
-  std::vector<std::pair<TrackId3D, TrackState>> kept;
-  kept.reserve(tracks_.size());
-  for (auto& [id, track] : tracks_) {
-    if (time_s - track.last_seen_s > site_.options.max_gap_s) {
-      EndTrack(id, &track, &events);
-    } else {
-      kept.emplace_back(id, std::move(track));
-    }
+  const auto ended = [&](const std::pair<TrackId3D, TrackState>& entry) {
+    return time_s - entry.second.last_seen_s > site_.options.max_gap_s;
+  };
+  for (auto& entry : tracks_) {
+    if (ended(entry)) EndTrack(entry.first, &entry.second, &events);
   }
-  tracks_ = std::move(kept);
+  std::erase_if(tracks_, ended);
   // This message's tracks, by id (a repeated id or a non-finite position is skipped).
   std::vector<const TrackPosition*> order;
   order.reserve(tracks.size());

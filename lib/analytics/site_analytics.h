@@ -162,7 +162,6 @@ class SiteAnalytics {
     double last_distance = 0.0;  // signed distance at the previous sample
     double cross_time_s = 0.0;   // when the border was last crossed towards !confirmed
     bool counted = true;         // a line: that crossing went through the segment
-    bool crossed_now = false;    // the border was crossed between the last two samples
     double enter_time_s = 0.0;   // a region: when the open visit began
   };
   struct TrackState {
@@ -171,7 +170,12 @@ class SiteAnalytics {
     std::vector<SideState> regions;
     std::vector<SideState> lines;
   };
-  bool Step(SideState* state, double d, double previous_time_s, double time_s, bool first) const;
+  bool Step(SideState* state,
+            double d,
+            double previous_time_s,
+            double time_s,
+            bool first,
+            bool* crossed_now = nullptr) const;
   void Confirm(TrackId3D id,
                std::size_t r,
                SideState* state,

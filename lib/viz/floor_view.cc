@@ -194,20 +194,22 @@ void DrawSite(const FloorMapping& mapping, const analytics::Site& site, cv::Mat*
   const cv::Scalar& line_color = kLineColor;
   const double font = FontScale(*image);
   const int width = std::max(1, Thickness(mapping.px_per_m, 0.04));
-  cv::Mat overlay = image->clone();
+  std::vector<std::vector<cv::Point>> polygons;
   for (const analytics::Region& r : site.regions) {
-    std::vector<cv::Point> polygon;
-    for (const Vec2& p : r.polygon) polygon.push_back(mapping.ToPoint(p.x(), p.y()));
+    polygons.emplace_back();
+    for (const Vec2& p : r.polygon) polygons.back().push_back(mapping.ToPoint(p.x(), p.y()));
+  }
+  cv::Mat overlay = image->clone();
+  for (const std::vector<cv::Point>& polygon : polygons) {
+    // One at a time: several contours in one call would leave nested regions as holes.
     cv::fillPoly(overlay, std::vector<std::vector<cv::Point>>{polygon}, region_color, cv::LINE_AA);
   }
   cv::addWeighted(overlay, 0.15, *image, 0.85, 0.0, *image);
-  for (const analytics::Region& r : site.regions) {
-    std::vector<cv::Point> polygon;
-    for (const Vec2& p : r.polygon) polygon.push_back(mapping.ToPoint(p.x(), p.y()));
-    cv::polylines(*image, polygon, true, region_color, width, cv::LINE_AA);
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    cv::polylines(*image, polygons[i], true, region_color, width, cv::LINE_AA);
     cv::putText(*image,
-                r.name,
-                polygon[0] + cv::Point(4, -4),
+                site.regions[i].name,
+                polygons[i][0] + cv::Point(4, -4),
                 cv::FONT_HERSHEY_SIMPLEX,
                 font,
                 region_color,

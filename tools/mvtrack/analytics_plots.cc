@@ -32,11 +32,9 @@ void WriteAnalyticsPlots(const std::string& dir,
   std::vector<double> times;
   const std::size_t step = std::max<std::size_t>(1, messages.size() / 2000);
   for (std::size_t k = 0; k < messages.size(); k += step) times.push_back(messages[k].time_s);
-  std::vector<std::vector<int>> occupancy(site.regions.size());
+  std::vector<std::vector<int>> occupancy;
   for (std::size_t r = 0; r < site.regions.size(); ++r) {
-    for (const double t : times) {
-      occupancy[r].push_back(analytics::OccupancyAt(result.visits, static_cast<int>(r), t));
-    }
+    occupancy.push_back(analytics::OccupancyOver(result.visits, static_cast<int>(r), times));
   }
   const std::filesystem::path out(dir);
   Write(out / "occupancy.png", viz::RenderOccupancyPlot(names, times, occupancy));
