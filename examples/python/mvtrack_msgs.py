@@ -1,4 +1,5 @@
-"""Shared helpers of the mvtrack Python examples: decoding by fingerprint and printing tracks.
+"""Shared helpers of the mvtrack Python examples: decoding by fingerprint, printing tracks and
+site analytics (events and counts).
 
 Needs the generated types (`pip install mvtrack_lcmtypes-*.whl`, or PYTHONPATH=<build>/lcmtypes/
 python) and nothing else; the examples that talk to LCM also need PyPI's `lcm`.
@@ -11,10 +12,13 @@ import mvtrack
 TRACKS_CHANNEL = "MVTRACK_TRACKS"
 STATUS_CHANNEL = "MVTRACK_STATUS"
 DETECTIONS_PREFIX = "MVTRACK_DETECTIONS"
+EVENTS_CHANNEL = "MVTRACK_ANALYTICS_EVENTS"  # analytics_event_t (daemon key analytics.events_channel)
+COUNTS_CHANNEL = "MVTRACK_SITE_COUNTS"       # site_counts_t (analytics.counts_channel)
 
 # Every top-level message type, by the 8-byte fingerprint that starts its encoding.
 TYPES = {t._get_packed_fingerprint(): t
-         for t in (mvtrack.tracks3d_t, mvtrack.camera_detections_t, mvtrack.tracker_status_t)}
+         for t in (mvtrack.tracks3d_t, mvtrack.camera_detections_t, mvtrack.tracker_status_t,
+                   mvtrack.analytics_event_t, mvtrack.site_counts_t)}
 
 STATE_NAMES = {mvtrack.track3d_t.STATE_TENTATIVE: "tentative",
                mvtrack.track3d_t.STATE_CONFIRMED: "confirmed",
@@ -67,4 +71,59 @@ def format_tracks(msg):
                      f"cameras {list(t.camera_ids)}"
                      + (f"  joints {joints}/{t.num_joints} ({msg.keypoint_layout})"
                         if t.num_joints else ""))
+    return lines
+
+
+EVENT_KINDS = {mvtrack.analytics_event_t.KIND_ENTER: "enter",
+               mvtrack.analytics_event_t.KIND_EXIT: "exit",
+               mvtrack.analytics_event_t.KIND_CROSSING: "crossing"}
+DIRECTIONS = {mvtrack.analytics_event_t.DIRECTION_LEFT_TO_RIGHT: "left_to_right",
+              mvtrack.analytics_event_t.DIRECTION_RIGHT_TO_LEFT: "right_to_left"}
+
+
+def event_to_dict(e):
+    """An analytics_event_t as a plain dict: enter/exit of a region (exit: with the visit's
+    enter_utime and dwell) or a crossing of a line (with its direction)."""
+    kind = EVENT_KINDS.get(e.kind, str(e.kind))
+    d = {"utime": e.utime, "publish_utime": e.publish_utime, "kind": kind, "name": e.name,
+         "track_id": e.track_id, "track_ended": bool(e.track_ended)}
+    if kind == "exit":
+        d["enter_utime"] = e.enter_utime
+        d["dwell_s"] = (e.utime - e.enter_utime) / 1e6
+    if kind == "crossing":
+        d["direction"] = DIRECTIONS.get(e.direction, str(e.direction))
+    return d
+
+
+def format_event(e):
+    """One human-readable line for an analytics_event_t."""
+    d = event_to_dict(e)
+    text = f"{d['utime'] / 1e6:.3f} track {d['track_id']}: {d['kind']} {d['name']}"
+    if "dwell_s" in d:
+        text += f" after {d['dwell_s']:.1f} s"
+    if "direction" in d:
+        text += f" {d['direction']}"
+    return text + (" (track ended)" if d["track_ended"] else "")
+
+
+def counts_to_dict(c):
+    """A site_counts_t as a plain dict: per region occupancy, entries and exits since the daemon
+    started; per line the crossings in each direction."""
+    return {"utime": c.utime, "publish_utime": c.publish_utime,
+            "regions": {n: {"occupancy": c.occupancy[i], "entries": c.entries[i],
+                            "exits": c.exits[i]} for i, n in enumerate(c.region_names)},
+            "lines": {n: {"left_to_right": c.left_to_right[i],
+                          "right_to_left": c.right_to_left[i]}
+                      for i, n in enumerate(c.line_names)}}
+
+
+def format_counts(c):
+    """Human-readable lines for one site_counts_t."""
+    lines = [f"counts at {c.utime / 1e6:.3f}:"]
+    for i, n in enumerate(c.region_names):
+        lines.append(f"  region {n}: {c.occupancy[i]} inside, {c.entries[i]} entries, "
+                     f"{c.exits[i]} exits")
+    for i, n in enumerate(c.line_names):
+        lines.append(f"  line {n}: {c.left_to_right[i]} left_to_right, "
+                     f"{c.right_to_left[i]} right_to_left")
     return lines

@@ -34,6 +34,9 @@ constexpr double kSpawnDistanceM = 0.5;    // spawn this far outside a wall
 constexpr double kExitDistanceM = 0.8;     // exit goals this far outside a wall
 constexpr double kDespawnDistanceM = 0.4;  // leaving people vanish this far outside the room
 constexpr double kCornerAvoidanceM = 0.5;  // doors keep this far from the corners
+constexpr double kLingerSwayM = 0.2;       // people standing at a linger spot shift within this
+constexpr double kMinSwayS = 2.0;          // ... choosing a new place to stand every 2-6 s
+constexpr double kMaxSwayS = 6.0;
 
 enum class Mode { kEntering, kInside, kLeaving };
 
@@ -67,6 +70,10 @@ struct CrowdSimulator::State {
     double pause_left_s = 0.0;
     double blocked_s = 0.0;
     double stay_left_s = 0.0;  // enter_and_leave only
+    int spot = -1;             // the linger spot it walks to or stands at, else -1
+    bool lingering = false;    // standing at `spot` (arrived)
+    double linger_left_s = 0.0;
+    double sway_left_s = 0.0;
     Random rng{0};
     std::shared_ptr<const PersonAppearance> appearance;  // embedding_dim > 0 only
     int visits = 0;                                      // earlier visits of this id (re-entries)
@@ -96,6 +103,7 @@ struct CrowdSimulator::State {
   std::vector<Departed> departed;  // in order of leaving
   double time_s = 0.0;             // simulated time (sum of sub-steps)
   std::vector<Slot> slots;
+  std::vector<char> spot_taken;  // per linger spot: someone stands at or walks to it
   int substeps = 1;
   double substep_s = 0.0;
 
@@ -173,6 +181,7 @@ struct CrowdSimulator::State {
     grid_nx = static_cast<int>(std::ceil((o.room_width_m + 2.0 * kOutsideBandM + 2.0) / cell_m));
     grid_ny = static_cast<int>(std::ceil((o.room_depth_m + 2.0 * kOutsideBandM + 2.0) / cell_m));
     cells.assign(static_cast<std::size_t>(grid_nx) * static_cast<std::size_t>(grid_ny), {});
+    spot_taken.assign(o.linger_spots.size(), 0);
 
     // Initial positions: a shuffled, jittered grid over the waypoint area (see
     // InitialGridPitch), which keeps everyone at least min_separation_m + 0.1 apart.
@@ -275,10 +284,43 @@ struct CrowdSimulator::State {
     return true;
   }
 
+  // Gives up the walker's linger spot (if any): it stands there no longer.
+  void ReleaseSpot(Walker* w) {
+    if (w->spot >= 0) spot_taken[static_cast<std::size_t>(w->spot)] = 0;
+    w->spot = -1;
+    w->lingering = false;
+  }
+
+  // A place to stand within kLingerSwayM of the walker's spot (uniform over the disc).
+  Vec2 SwayGoal(Walker* w) {
+    const double r = kLingerSwayM * std::sqrt(w->rng.Uniform());
+    const double a = w->rng.Uniform(0.0, 2.0 * kPi);
+    return o.linger_spots[static_cast<std::size_t>(w->spot)] +
+           Vec2(r * std::cos(a), r * std::sin(a));
+  }
+
   void NewGoal(Walker* w) {
     w->blocked_s = 0.0;
+    if (w->lingering) {  // blocked while shifting about: stand somewhere else near the spot
+      w->goal = SwayGoal(w);
+      return;
+    }
+    const bool had_spot = w->spot >= 0;
+    ReleaseSpot(w);  // blocked on the way, or leaving: someone else may take it
     if (w->mode != Mode::kLeaving) {
-      w->goal = RandomWaypoint(&w->rng);
+      // A free linger spot if there is one (not the one just given up), else a random waypoint.
+      std::vector<std::size_t> free;
+      for (std::size_t i = 0; i < spot_taken.size() && !had_spot; ++i) {
+        if (spot_taken[i] == 0) free.push_back(i);
+      }
+      if (free.empty()) {
+        w->goal = RandomWaypoint(&w->rng);
+        return;
+      }
+      const std::size_t i = free[w->rng.Index(free.size())];
+      spot_taken[i] = 1;
+      w->spot = static_cast<int>(i);
+      w->goal = o.linger_spots[i];
       return;
     }
     if (InRoom(w->position, 0.0)) {
@@ -295,7 +337,18 @@ struct CrowdSimulator::State {
 
   void StepWalker(Walker* w, double dt) {
     GatherNeighbours(w->position);
-    if (o.enter_and_leave && w->mode == Mode::kInside) {
+    if (w->lingering) {
+      w->linger_left_s -= dt;
+      w->sway_left_s -= dt;
+      if (w->linger_left_s <= 0.0) {
+        ReleaseSpot(w);
+        w->goal = RandomWaypoint(&w->rng);
+      } else if (w->sway_left_s <= 0.0) {
+        w->goal = SwayGoal(w);
+        w->sway_left_s = w->rng.Uniform(kMinSwayS, kMaxSwayS);
+      }
+    }
+    if (o.enter_and_leave && w->mode == Mode::kInside && !w->lingering) {
       w->stay_left_s -= dt;
       if (w->stay_left_s <= 0.0) {
         w->mode = Mode::kLeaving;
@@ -311,7 +364,13 @@ struct CrowdSimulator::State {
       return;
     }
     Vec2 to_goal = w->goal - w->position;
-    if (w->mode == Mode::kInside && to_goal.norm() < kArrivalRadiusM) {
+    if (w->mode == Mode::kInside && w->spot >= 0 && !w->lingering &&
+        to_goal.norm() < kArrivalRadiusM) {
+      w->lingering = true;
+      w->linger_left_s = w->rng.Uniform(0.5, 1.5) * o.mean_linger_s;
+      w->sway_left_s = w->rng.Uniform(kMinSwayS, kMaxSwayS);
+    }
+    if (w->mode == Mode::kInside && !w->lingering && to_goal.norm() < kArrivalRadiusM) {
       const bool pause = w->rng.Bernoulli(o.pause_probability);
       const double pause_s = w->rng.Uniform(0.5, o.max_pause_s);
       NewGoal(w);

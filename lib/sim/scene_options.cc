@@ -120,6 +120,16 @@ bool SceneOptions::Validate(std::string* why) const {
   if (!finite(max_reentry_absence_s) || max_reentry_absence_s < min_reentry_absence_s) {
     return fail("max_reentry_absence_s must be >= min_reentry_absence_s");
   }
+  if (linger_spots.size() > 64) return fail("at most 64 linger_spots");
+  for (const Vec2& spot : linger_spots) {
+    if (!finite(spot.x()) || !finite(spot.y()) || spot.x() < 0.2 || spot.y() < 0.2 ||
+        spot.x() > room_width_m - 0.2 || spot.y() > room_depth_m - 0.2) {
+      return fail("linger_spots must be at least 0.2 m inside the room");
+    }
+  }
+  if (!finite(mean_linger_s) || mean_linger_s <= 0.0 || mean_linger_s > 1e6) {
+    return fail("mean_linger_s must be in (0, 1e6]");
+  }
   const int capacity = InitialCapacity(*this);
   if (num_people > capacity) {
     return fail("num_people = " + std::to_string(num_people) + " do not fit in the room: at most " +

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/types.h"
 
@@ -118,6 +119,13 @@ struct SceneOptions {
   double reentry_probability = 0.0;
   double min_reentry_absence_s = 10.0;  ///< see reentry_probability; finite, >= 0
   double max_reentry_absence_s = 60.0;  ///< see reentry_probability; >= min_reentry_absence_s
+  /// Places where people stop and stand for minutes (a shelf, a kiosk, a door frame), floor
+  /// points at least 0.2 m inside the walls; at most 64. A person in the room choosing where to
+  /// walk next takes a free place (no one standing at or walking to it) when there is one, stands
+  /// there for U[0.5, 1.5] x mean_linger_s, shifting about within 0.2 m of it, then walks on
+  /// (with enter_and_leave the stay in the room is extended by the standing time).
+  std::vector<Vec2> linger_spots;
+  double mean_linger_s = 120.0;  ///< see linger_spots; in (0, 1e6]
 
   /// Checks ranges and feasibility (e.g. that num_people fit in the room at the initial spacing).
   /// On failure returns false and, if `why` is not null, sets it to a reason naming the field.

@@ -1,11 +1,11 @@
 # Sourced by tests/python/*_test.sh: arguments, helpers, the venv, and a small tracks log made by
 # `mvtrack replay` from a simulated recording (tests/tools/make_sim_log).
 set -euo pipefail
-if [ $# -ne 7 ]; then
-  echo "usage: $0 PYTHON VENV_DIR WHEEL MVTRACK MAKE_SIM_LOG WORK_DIR SOURCE_DIR" >&2
+if [ $# -ne 7 ] && [ $# -ne 8 ]; then
+  echo "usage: $0 PYTHON VENV_DIR WHEEL MVTRACK MAKE_SIM_LOG WORK_DIR SOURCE_DIR [MVTRACKD]" >&2
   exit 2
 fi
-PYTHON=$1 VENV=$2 WHEEL=$3 MVTRACK=$4 MAKE_SIM_LOG=$5 WORK=$6 SRC=$7
+PYTHON=$1 VENV=$2 WHEEL=$3 MVTRACK=$4 MAKE_SIM_LOG=$5 WORK=$6 SRC=$7 MVTRACKD=${8:-}
 # shellcheck source=../support/shell_asserts.sh
 . "$SRC/tests/support/shell_asserts.sh"
 # shellcheck source=venv.sh

@@ -258,6 +258,56 @@ TEST_CASE("enter_and_leave: people enter and leave through the walls", "[unit][s
   CHECK(first.size() == static_cast<std::size_t>(entered) + truth.front().people.size());
 }
 
+TEST_CASE("linger_spots: people stand at them for minutes, shifting a little", "[unit][sim]") {
+  SceneOptions o;
+  o.seed = 3;
+  o.num_people = 6;
+  o.num_frames = 30 * 240;
+  o.enter_and_leave = true;
+  o.linger_spots = {Vec2(2.0, 3.0), Vec2(4.0, 3.0)};
+  o.mean_linger_s = 60.0;
+  const std::vector<FrameTruth> truth = SimulatePeople(o);
+  // Per spot: the runs of frames in which one person stands within 0.4 m of it.
+  for (const Vec2& spot : o.linger_spots) {
+    INFO("spot " << spot.transpose());
+    int run_id = -1;
+    std::size_t run_start = 0;
+    std::size_t longest = 0, stood = 0;
+    double sway = 0.0;  // largest distance from the spot during runs of at least 20 s
+    std::vector<double> run_distances;
+    for (std::size_t f = 0; f < truth.size(); ++f) {
+      int here = -1;
+      double d = 0.0;
+      for (const PersonTruth& p : truth[f].people) {
+        const double dp = (p.footprint_m.head<2>() - spot).norm();
+        if (dp < 0.4 && (here == -1 || dp < d)) {
+          here = p.id;
+          d = dp;
+        }
+      }
+      if (here != run_id || f + 1 == truth.size()) {
+        const std::size_t length = f - run_start;
+        if (run_id >= 0 && length >= 20 * 30u) {
+          sway = std::max(sway, *std::max_element(run_distances.begin(), run_distances.end()));
+          stood += length;
+        }
+        longest = std::max(longest, run_id >= 0 ? length : 0u);
+        run_id = here;
+        run_start = f;
+        run_distances.clear();
+      }
+      if (here >= 0) run_distances.push_back(d);
+    }
+    // Someone stands there for at least half the mean time (U[0.5, 1.5] x 60 s), the spot is
+    // taken much of the run, and standing people stay within the sway radius (0.2 m) plus the
+    // arrival radius (0.2 m) but do not stand stock still.
+    CHECK(longest >= 30 * 30u);
+    CHECK(stood >= truth.size() / 3);
+    CHECK(sway <= 0.4);
+    CHECK(sway >= 0.1);
+  }
+}
+
 TEST_CASE("coarse frame rates are integrated in sub-steps", "[unit][sim]") {
   SceneOptions o;
   o.seed = 2;

@@ -53,6 +53,10 @@ TEST_CASE("invalid scene options are rejected with the field named", "[unit][sim
       {"false_positives_per_frame", [](SceneOptions* o) { o->false_positives_per_frame = -0.1; }},
       {"occlusion_threshold", [](SceneOptions* o) { o->occlusion_threshold = 0.0; }},
       {"num_people", [](SceneOptions* o) { o->num_people = 100; }},  // 6 x 6 m room is too small
+      {"linger_spots", [](SceneOptions* o) { o->linger_spots = {Vec2(0.1, 3.0)}; }},
+      {"linger_spots", [&](SceneOptions* o) { o->linger_spots = {Vec2(3.0, nan)}; }},
+      {"linger_spots", [](SceneOptions* o) { o->linger_spots.assign(65, Vec2(3.0, 3.0)); }},
+      {"mean_linger_s", [](SceneOptions* o) { o->mean_linger_s = 0.0; }},
   };
   for (const Case& c : cases) {
     SceneOptions o;

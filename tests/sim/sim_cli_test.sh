@@ -67,6 +67,23 @@ expect_exit 2 "$OUT/e3.txt" "$MVTRACK" sim --out "$OUT/x" --people 500 --room 6x
 expect_grep "do not fit" "$OUT/e3.txt"
 expect_exit 2 "$OUT/e4.txt" "$MVTRACK" sim --out "$OUT/x" --layout dome
 expect_grep "layout" "$OUT/e4.txt"
+expect_exit 2 "$OUT/e5.txt" "$MVTRACK" sim --out "$OUT/x" --linger-at "2,3;4"
+expect_grep "linger-at: expected X,Y" "$OUT/e5.txt"
+expect_exit 2 "$OUT/e6.txt" "$MVTRACK" sim --out "$OUT/x" --linger-at "0.1,3"
+expect_grep "linger_spots must be at least 0.2 m inside" "$OUT/e6.txt"
+# Lingering: someone stands at the spot (the description names it).
+expect_exit 0 "$OUT/linger.txt" "$MVTRACK" sim --out "$OUT/linger" --cameras 3 --people 4 \
+  --frames 600 --mode boxes --linger-at "3,3" --linger-s 30
+expect_grep "1 linger spots, 30 s mean" "$OUT/linger.txt"
+"$PYTHON" -S - "$OUT/linger/gt.jsonl" <<'PY' || fail "--linger-at 3,3: nobody stood there"
+import json, math, sys
+near = 0
+for line in open(sys.argv[1]):
+    frame = json.loads(line)
+    near += any(math.hypot(t["position"][0] - 3, t["position"][1] - 3) < 0.4 for t in frame["tracks"])
+print("frames with someone within 0.4 m of (3, 3):", near)
+sys.exit(0 if near >= 300 else 1)
+PY
 expect_exit 0 "$OUT/help.txt" "$MVTRACK" sim --help
 expect_grep "gt.jsonl" "$OUT/help.txt"
 echo "sim_cli_test: ok"

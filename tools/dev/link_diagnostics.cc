@@ -5,6 +5,7 @@
 //
 //   mvtrack_link_diagnostics --cameras 4 --people 12 --frames 9000 --mode boxes --seed 11
 //                            --enter-leave [--embedding-dim 128] [--options tracker.yaml]
+//                            [--linger-at X,Y;X,Y] [--linger-s 120]
 //                            [--decisions out.tsv] [--coverage out.tsv]
 //
 // --coverage writes, per frame and ground-truth person, the number of cameras that detected it.
@@ -17,6 +18,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -45,6 +47,8 @@ struct Args {
   std::uint64_t seed = 11;
   bool enter_leave = false;
   double mean_stay_s = 8.0;
+  std::vector<mvtrack::Vec2> linger_spots;
+  double mean_linger_s = 120.0;
   int embedding_dim = 0;
   std::string options_file;
   std::string decisions_file;
@@ -80,6 +84,15 @@ Args Parse(int argc, char** argv) {
       a.enter_leave = true;
     } else if (k == "--mean-stay") {
       a.mean_stay_s = std::stod(value());
+    } else if (k == "--linger-at") {  // X,Y;X,Y (as mvtrack sim --linger-at)
+      std::string text = value();
+      for (char& c : text) c = (c == ';' || c == ',') ? ' ' : c;
+      std::istringstream in(text);
+      double x = 0.0, y = 0.0;
+      while (in >> x >> y) a.linger_spots.emplace_back(x, y);
+      if (!in.eof()) Usage("--linger-at: expected X,Y[;X,Y...]");
+    } else if (k == "--linger-s") {
+      a.mean_linger_s = std::stod(value());
     } else if (k == "--embedding-dim") {
       a.embedding_dim = std::stoi(value());
     } else if (k == "--options") {
@@ -196,6 +209,8 @@ int main(int argc, char** argv) {
   o.num_frames = args.frames;
   o.enter_and_leave = args.enter_leave;
   o.mean_stay_s = args.mean_stay_s;
+  o.linger_spots = args.linger_spots;
+  o.mean_linger_s = args.mean_linger_s;
   o.embedding_dim = args.embedding_dim;
   std::string why;
   if (!o.Validate(&why)) Usage(why.c_str());

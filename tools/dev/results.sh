@@ -264,6 +264,23 @@ for mode in boxes poses; do
   analytics_run "analytics_sim_enter_leave_$mode" "sim_enter_leave_$mode" \
     "sim_enter_leave_$mode" docs/examples/sites/sim_enter_leave.yaml
 done
+# The same room with four places where people stand for minutes (mean 2 min, shifting within
+# 0.2 m), each on the border of a region or on a line of the site file; its analytics with the
+# default rules and with none (band 0, hold 0: what the rules prevent).
+linger_spots="2.5,3.5;4.5,3;3.5,4.5;1.5,5"
+for mode in boxes poses; do
+  sim_scene "sim_linger_$mode" --cameras 4 --people 12 --enter-leave --frames 9000 --seed 11 \
+    --mode $mode --linger-at "'$linger_spots'"
+done
+experiment sim_linger_boxes sim_linger_boxes boxes none - --threshold 0.5
+experiment sim_linger_poses sim_linger_poses poses coco17 - --threshold 0.5
+run "{ cat docs/examples/sites/sim_enter_leave.yaml; printf 'rules:\\n  hysteresis_m: 0\\n  hold_s: 0\\n'; } > \$R/sim_linger_no_rules.yaml"
+for mode in boxes poses; do
+  analytics_run "analytics_sim_linger_$mode" "sim_linger_$mode" "sim_linger_$mode" \
+    docs/examples/sites/sim_enter_leave.yaml
+  analytics_run "analytics_sim_linger_${mode}_no_rules" "sim_linger_$mode" "sim_linger_$mode" \
+    "\$R/sim_linger_no_rules.yaml"
+done
 analytics_run analytics_wildtrack_annotated_all wildtrack_annotated_all_tracking_1m \
   wildtrack_annotated_all docs/examples/sites/wildtrack.yaml
 analytics_run analytics_wildtrack_annotated_all_default wildtrack_annotated_all_default_tracking_1m \

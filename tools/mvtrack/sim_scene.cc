@@ -1,8 +1,11 @@
 #include "mvtrack/sim_scene.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "sim/scene_presets.h"
 
@@ -22,6 +25,30 @@ std::pair<double, double> ParsePair(const std::string& text, const std::string& 
   } catch (const std::exception&) {
     throw UsageError("--" + option + ": expected WIDTHxHEIGHT (e.g. 20x15), got '" + text + "'");
   }
+}
+
+// "X,Y;X,Y" -> points; UsageError otherwise.
+std::vector<Vec2> ParsePoints(const std::string& text, const std::string& option) {
+  std::vector<Vec2> points;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(';', start), text.size());
+    const std::string item = text.substr(start, end - start);
+    const std::size_t comma = item.find(',');
+    char* stop = nullptr;
+    const double x = comma == std::string::npos ? 0.0 : std::strtod(item.c_str(), &stop);
+    const bool x_ok = comma != std::string::npos && comma > 0 && stop == item.c_str() + comma;
+    const double y = x_ok ? std::strtod(item.c_str() + comma + 1, &stop) : 0.0;
+    if (!x_ok || comma + 1 == item.size() || stop != item.c_str() + item.size() ||
+        !std::isfinite(x) || !std::isfinite(y)) {
+      throw UsageError("--" + option +
+                       ": expected X,Y[;X,Y...] in metres (e.g. 2.5,3.5;4.5,3), got '" + text +
+                       "'");
+    }
+    points.emplace_back(x, y);
+    start = end + 1;
+  }
+  return points;
 }
 
 }  // namespace
@@ -71,7 +98,11 @@ void DeclareSceneOptions(Args* args) {
               "0")
       .Option("reentry-absence",
               "--reentry: MIN-MAX seconds away before a return (e.g. 10-60)",
-              "10-60");
+              "10-60")
+      .Option("linger-at",
+              "floor points X,Y[;X,Y...] (metres) where people stop and stand for minutes, "
+              "shifting within 0.2 m (a free one is taken whenever someone picks where to go)")
+      .Option("linger-s", "--linger-at: mean standing time, seconds (uniform 0.5-1.5 x)", "120");
 }
 
 sim::SceneOptions SceneOptionsFromArgs(const Args& args) {
@@ -150,6 +181,8 @@ sim::SceneOptions SceneOptionsFromArgs(const Args& args) {
     o.min_reentry_absence_s = lo;
     o.max_reentry_absence_s = hi;
   }
+  if (args.Has("linger-at")) o.linger_spots = ParsePoints(args.Get("linger-at"), "linger-at");
+  o.mean_linger_s = args.GetDouble("linger-s");
   if (o.reentry_probability > 0.0 && !o.enter_and_leave) {
     throw UsageError("--reentry needs --enter-leave");
   }
@@ -180,6 +213,14 @@ std::string EmbeddingText(const sim::SceneOptions& o) {
                   o.reentry_probability,
                   o.min_reentry_absence_s,
                   o.max_reentry_absence_s);
+    text += part;
+  }
+  if (!o.linger_spots.empty()) {
+    std::snprintf(part,
+                  sizeof(part),
+                  "; %zu linger spots, %.0f s mean",
+                  o.linger_spots.size(),
+                  o.mean_linger_s);
     text += part;
   }
   return text;
