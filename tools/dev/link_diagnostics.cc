@@ -5,7 +5,11 @@
 //
 //   mvtrack_link_diagnostics --cameras 4 --people 12 --frames 9000 --mode boxes --seed 11
 //                            --enter-leave [--embedding-dim 128] [--options tracker.yaml]
-//                            [--linger-at X,Y;X,Y] [--linger-s 120]
+//                            [--linger-at X,Y;X,Y] [--linger-s 120] [--dump-window N]
+//
+// --dump-window N prints window N's PDNC clusters (each 2D tracklet with the person it shows),
+// the persons made of them, and Eq. 4 between the tracklets of every person shown in a cluster
+// of two or more tracklets, to stderr.
 //                            [--decisions out.tsv] [--coverage out.tsv]
 //
 // --coverage writes, per frame and ground-truth person, the number of cameras that detected it.
@@ -22,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "association/tracklet_distance.h"
 #include "config/tracker_options.h"
 #include "core/appearance.h"
 #include "sim/cameras.h"
@@ -53,6 +58,7 @@ struct Args {
   std::string options_file;
   std::string decisions_file;
   std::string coverage_file;
+  std::int64_t dump_window = -1;  // print this window's clusters and distances to stderr
 };
 
 [[noreturn]] void Usage(const char* why) {
@@ -99,6 +105,8 @@ Args Parse(int argc, char** argv) {
       a.options_file = value();
     } else if (k == "--decisions") {
       a.decisions_file = value();
+    } else if (k == "--dump-window") {
+      a.dump_window = std::stoll(value());
     } else if (k == "--coverage") {
       a.coverage_file = value();
     } else {
@@ -278,6 +286,69 @@ int main(int argc, char** argv) {
   sim::CrowdSimulator crowd(o);
 
   auto inspect = [&](const tracker::WindowOutput& w) {
+    if (w.window_id == args.dump_window) {
+      auto name = [&](int i) {
+        const core::Tracklet2D& t = w.tracklets[static_cast<std::size_t>(i)];
+        return std::to_string(t.camera_id) + ":" + std::to_string(t.track_id) + "[" +
+               std::to_string(t.frames.front()) + "-" + std::to_string(t.frames.back()) +
+               "]=" + std::to_string(label_2d(t));
+      };
+      std::fprintf(stderr,
+                   "window %lld [%lld, %lld)\n",
+                   static_cast<long long>(w.window_id),
+                   static_cast<long long>(w.begin),
+                   static_cast<long long>(w.end));
+      std::set<int> shown;  // people shown by a cluster of two or more tracklets
+      for (std::size_t c = 0; c < w.clusters.size(); ++c) {
+        std::fprintf(stderr, "  cluster %zu:", c);
+        for (const int i : w.clusters[c]) {
+          std::fprintf(stderr, " %s", name(i).c_str());
+          if (w.clusters[c].size() >= 2)
+            shown.insert(label_2d(w.tracklets[static_cast<std::size_t>(i)]));
+        }
+        std::fprintf(stderr, "\n");
+      }
+      for (std::size_t p = 0; p < w.persons.size(); ++p) {
+        std::fprintf(stderr, "  person %zu (label %d):", p, LabelOf(w.persons[p], truth));
+        for (const int i : w.persons[p].source_tracklets)
+          std::fprintf(stderr, " %s", name(i).c_str());
+        std::fprintf(stderr, "\n");
+      }
+      mvtrack::association::AssociationOptions ao = topt.association;
+      if (topt.mode == tracker::InputMode::kBoxes && !topt.box_ends_in_association)
+        ao.num_points = 1;
+      if (topt.mode == tracker::InputMode::kBoxes &&
+          topt.box_point == tracker::BoxPoint::kCenterEnds && topt.box_ends_in_association) {
+        ao.floor_point = tracker::kBoxBottomPoint;
+        ao.floor_height_m = topt.ground_height_m;
+      }
+      const auto d = mvtrack::association::ComputeDistanceMatrix(
+          mvtrack::geometry::CameraRig(cameras), w.tracklets, ao);
+      const int n = static_cast<int>(w.tracklets.size());
+      for (const int label : shown) {
+        if (label < 0) continue;
+        std::vector<int> of;
+        for (int i = 0; i < n; ++i) {
+          if (label_2d(w.tracklets[static_cast<std::size_t>(i)]) == label) of.push_back(i);
+        }
+        std::fprintf(stderr,
+                     "  Eq. 4 between the tracklets of person %d (lambda %.3f):\n",
+                     label,
+                     ao.lambda);
+        for (std::size_t a = 0; a < of.size(); ++a) {
+          for (std::size_t b = a + 1; b < of.size(); ++b) {
+            const auto v = d.at(of[a], of[b]);
+            const std::string text =
+                v.kind == mvtrack::association::TrackletDistance::Kind::kValue
+                    ? std::to_string(v.value)
+                    : (v.kind == mvtrack::association::TrackletDistance::Kind::kEmpty ? "empty"
+                                                                                      : "inf");
+            std::fprintf(
+                stderr, "    %s  %s  %s\n", name(of[a]).c_str(), name(of[b]).c_str(), text.c_str());
+          }
+        }
+      }
+    }
     const linking::LinkResult& link = w.link;
     std::set<TrackId3D> linked_now;
     std::map<int, int> persons_of_label;
