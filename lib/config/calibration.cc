@@ -164,6 +164,42 @@ void AppendMatrix(std::string* out, const Mat3& m) {
   *out += ']';
 }
 
+// Camera centres farther apart than this, or farther from the floor plane z = 0, cannot be one
+// rig of overlapping views in metres: a unit mistake.
+constexpr double kMaxRigSpreadM = 1000.0;
+constexpr double kMaxCameraHeightM = 100.0;
+
+// Why `cameras` (translations in metres) cannot be a rig in metres, naming the likely unit;
+// nullopt when plausible.
+std::optional<std::string> ImplausibleScale(const std::vector<geometry::CameraModel>& cameras) {
+  double spread = 0.0;
+  double height = 0.0;
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    const Vec3 a = cameras[i].CenterInWorld();
+    height = std::max(height, std::abs(a.z()));
+    for (std::size_t j = i + 1; j < cameras.size(); ++j) {
+      spread = std::max(spread, (a - cameras[j].CenterInWorld()).norm());
+    }
+  }
+  if (spread <= kMaxRigSpreadM && height <= kMaxCameraHeightM) return std::nullopt;
+  // A ceiling camera is 2-10 m up: in millimetres that is 2000-10000, in centimetres 200-1000.
+  const bool mm = height > 10.0 * kMaxCameraHeightM || spread > 10.0 * kMaxRigSpreadM;
+  char text[400];
+  std::snprintf(text,
+                sizeof text,
+                "the cameras are up to %.0f m apart and %.0f m from the floor plane: the "
+                "translations t look like %s, not metres; write 'units: %s' to have them "
+                "converted (rigs wider than %.0f m or cameras higher than %.0f m are refused as "
+                "a unit mistake)",
+                spread,
+                height,
+                mm ? "millimetres" : "centimetres",
+                mm ? "mm" : "cm",
+                kMaxRigSpreadM,
+                kMaxCameraHeightM);
+  return std::string(text);
+}
+
 }  // namespace
 
 namespace internal {
@@ -179,9 +215,18 @@ CalibrationDocument ParseCalibrationNode(const NodeRef& root) {
     format.Fail("unsupported format '" + format.node().Scalar() + "' (expected '" +
                 std::string(kCalibrationFormat) + "')");
   }
-  if (const std::optional<NodeRef> units = map.Find("units")) {
-    if (GetString(*units) != "m") {
-      units->Fail("unsupported units '" + units->node().Scalar() + "' (only 'm', metres)");
+  // Translations in another unit are converted to metres (`units: cm` / `mm`).
+  double metres_per_unit = 1.0;
+  const std::optional<NodeRef> units = map.Find("units");
+  if (units) {
+    const std::string unit = GetString(*units);
+    if (unit == "cm") {
+      metres_per_unit = 0.01;
+    } else if (unit == "mm") {
+      metres_per_unit = 0.001;
+    } else if (unit != "m") {
+      units->Fail("unsupported units '" + units->node().Scalar() +
+                  "' (m, cm or mm: the unit of every camera's t)");
     }
   }
   const NodeRef cameras_node = map.Get("cameras");
@@ -201,7 +246,11 @@ CalibrationDocument ParseCalibrationNode(const NodeRef& root) {
                     std::to_string(cameras[it->second].line()) + ")");
     }
     if (name.has_value()) document.names.emplace(camera.id, std::move(*name));
+    camera.cam_from_world.translation *= metres_per_unit;
     document.cameras.push_back(std::move(camera));
+  }
+  if (const std::optional<std::string> why = ImplausibleScale(document.cameras)) {
+    (units ? *units : cameras_node).Fail(*why);
   }
   return document;
 }

@@ -300,6 +300,34 @@ TEST_CASE("The strictness base file is valid", "[unit]") {
   CHECK(cameras[1].K(1, 1) == 510.0);
 }
 
+TEST_CASE("Calibration units: cm and mm are converted to metres, a unit mistake is refused",
+          "[unit]") {
+  const std::vector<geometry::CameraModel> metres = ParseCalibration(kBase, "calib.yaml");
+  std::string mm = kBase;
+  mm.replace(mm.find("units: m"), 8, "units: mm");
+  mm.replace(mm.find("t: [-1.0, 0.0, 5.0]"), 19, "t: [-1000.0, 0.0, 5000.0]");
+  const std::vector<geometry::CameraModel> from_mm = ParseCalibration(mm, "mm.yaml");
+  REQUIRE(from_mm.size() == metres.size());
+  CHECK((from_mm[1].cam_from_world.translation - metres[1].cam_from_world.translation).norm() <
+        1e-12);
+  std::string cm = kBase;
+  cm.replace(cm.find("units: m"), 8, "units: cm");
+  cm.replace(cm.find("t: [-1.0, 0.0, 5.0]"), 19, "t: [-100.0, 0.0, 500.0]");
+  CHECK((ParseCalibration(cm, "cm.yaml")[1].cam_from_world.translation -
+         metres[1].cam_from_world.translation)
+            .norm() < 1e-12);
+  // Centimetres without a unit: refused, naming centimetres (cameras 5 m up = 500 "m").
+  std::string bare = cm;
+  bare.replace(bare.find("units: cm\n"), 10, "");
+  try {
+    ParseCalibration(bare, "bare.yaml");
+    FAIL("a rig 500 m up was accepted");
+  } catch (const ConfigError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("look like centimetres"));
+    CHECK_THAT(e.what(), Catch::Contains("write 'units: cm'"));
+  }
+}
+
 TEST_CASE("Calibration strictness: every error names file, line and key path", "[unit]") {
   struct Case {
     std::string name;
@@ -328,12 +356,18 @@ TEST_CASE("Calibration strictness: every error names file, line and key path", "
        "format:",
        "format",
        "unsupported format 'mvtrack.calibration/2'"},
-      {"units other than metres",
+      {"units other than metres, centimetres and millimetres",
        "units: m",
-       "units: mm",
+       "units: ft",
        "units:",
        "units",
-       "unsupported units 'mm' (only 'm', metres)"},
+       "unsupported units 'ft' (m, cm or mm: the unit of every camera's t)"},
+      {"translations in millimetres said to be metres",
+       "    t: [-1.0, 0.0, 5.0]",
+       "    t: [-1000.0, 0.0, 5000.0]",
+       "units:",
+       "units",
+       "the translations t look like millimetres, not metres; write 'units: mm'"},
       {"missing format",
        "format: mvtrack.calibration/1\n",
        "",

@@ -213,7 +213,8 @@ int RunReplay(int argc, char** argv) {
           "that do not decode are skipped, counted, and the first few are printed. A\n"
           "truncated or damaged log is tracked up to the damage.\n\n"
           "Every finalized frame is written as tracks3d_t (event timestamp and publish_utime\n"
-          "= the frame's capture utime, latency_us = 0) and/or as one canonical JSON line.\n"
+          "= the frame's capture utime, latency_us = 0) and/or as one canonical JSON line\n"
+          "(at least one of --out and --jsonl).\n"
           "The decoded detections are held in memory while tracking, so the reported speed\n"
           "measures tracking only (from the first camera-frame submitted to the end of the\n"
           "final flush; reading, decoding and writing excluded).\n\n"
@@ -221,7 +222,8 @@ int RunReplay(int argc, char** argv) {
           "--layout than the log's, gets a warning (both run: box mode from pose detections\n"
           "and mapping between layouts are features).\n\n"
           "Exit status: 0 done (also when messages were skipped), 1 failure (unreadable\n"
-          "input, calibration or options error, output not writable, or nothing to track:\n"
+          "input, calibration or options error, output not writable, pose mode on a log\n"
+          "without keypoints, or nothing to track:\n"
           "no detections message in the log, or not one camera-frame accepted, e.g. camera\n"
           "ids the calibration does not have), 2 usage error.")) {
     return 0;
@@ -244,6 +246,11 @@ int RunReplay(int argc, char** argv) {
   }
   if (!out_path.empty() && !jsonl_path.empty() && SamePath(out_path, jsonl_path)) {
     throw UsageError("--out and --jsonl name the same file");
+  }
+  if (out_path.empty() && jsonl_path.empty()) {
+    throw UsageError(
+        "nothing would be written: give --jsonl TRACKS.jsonl ('-': stdout) and/or --out "
+        "TRACKS.lcmlog");
   }
   const bool jsonl_to_stdout = jsonl_path == "-";
   std::ostream& report = jsonl_to_stdout ? std::cerr : std::cout;
@@ -305,13 +312,22 @@ int RunReplay(int argc, char** argv) {
   // What the log says about the mode and layout it was recorded for.
   std::map<std::string, std::int64_t> log_layouts;  // keypoint layout name -> detections
   std::set<CameraId> log_cameras;
+  std::int64_t log_detections = 0;
   for (const core::CameraFrame& f : in.frames) {
     log_cameras.insert(f.camera_id);
+    log_detections += static_cast<std::int64_t>(f.detections.size());
     for (const core::Detection2D& d : f.detections) {
       if (d.layout != core::KeypointLayoutId::kNone) {
         ++log_layouts[core::GetKeypointLayout(d.layout).name];
       }
     }
+  }
+  if (log_layouts.empty() && log_detections > 0 && options.mode == tracker::InputMode::kPoses) {
+    progress.Finish();
+    throw std::runtime_error("the tracker runs in pose mode, but none of the log's " +
+                             std::to_string(log_detections) +
+                             " detections carries keypoints (a log of boxes): --mode boxes "
+                             "tracks them");
   }
   if (!log_layouts.empty() && options.mode == tracker::InputMode::kBoxes) {
     progress.Finish();
