@@ -35,6 +35,7 @@ const std::string& IndexPage() {
   section h2 { font-size: 1em; margin: 0 0 0.3em 0; }
   #reasons { color: #fdd; }
   #tracks.stale td { color: #999; } #tracks-note { color: #a30; }
+  .swatch { display: inline-block; width: 0.8em; height: 0.8em; border-radius: 50%; margin-right: 0.3em; }
 </style>
 </head>
 <body>
@@ -71,7 +72,7 @@ const std::string& IndexPage() {
     <section>
       <h2>Tracks <span id="tracks-note"></span></h2>
       <table id="tracks"><thead><tr><th>id</th><th>state</th><th>x m</th><th>y m</th>
-        <th>cameras</th></tr></thead><tbody></tbody></table>
+        <th>in view s</th><th>cameras</th></tr></thead><tbody></tbody></table>
     </section>
   </div>
 </main>
@@ -98,6 +99,21 @@ let statusStale = false, tracksStale = false;
 
 function text(id, v) { document.getElementById(id).textContent = v; }
 
+// A track's colour: its id alone decides it, so it is the same in every frame and the same hue
+// as in `mvtrack view` (viz::TrackColor: hue = frac(id x 0.618...), ids modulo 1000003), darker
+// for this light page.
+function trackHue(id) {
+  const turns = (((id % 1000003) + 1000003) % 1000003) * 0.6180339887498949;
+  return 360 * (turns - Math.floor(turns));
+}
+function trackColor(id, alpha) {
+  const h = trackHue(id).toFixed(1);
+  return alpha === undefined ? "hsl(" + h + ", 85%, 40%)" : "hsla(" + h + ", 85%, 40%, " + alpha.toFixed(3) + ")";
+}
+// The stream's frame period (s), from consecutive tracks messages (capture utime per frame).
+let framePeriodS = null;
+let previousTracks = null;
+
 function bounds() {
   let b = floor.bounds ? floor.bounds.slice() : null;
   const grow = (x, y) => {
@@ -119,6 +135,7 @@ function draw() {
   const s = Math.min(canvas.width / (x1 - x0), canvas.height / (y1 - y0));
   const px = (x) => (x - x0) * s;
   const py = (y) => canvas.height - (y - y0) * s;   // +y up
+  window.floorToCanvas = (x, y) => [px(x), py(y)];  // for tests: where a floor point is drawn
   ctx.clearRect(0, 0, canvas.width, canvas.height);
   // metre grid
   ctx.strokeStyle = "#eee"; ctx.lineWidth = 1;
@@ -154,12 +171,13 @@ function draw() {
     ctx.fillText(l.name + (c ? " " + c.left_to_right + " / " + c.right_to_left : ""), px(l.to[0]) + 4, py(l.to[1]) - 4);
   }
   const now = performance.now();
-  // trails, fading with age
+  // trails in their track's colour, fading with age
   for (const [id, pts] of trails) {
     for (let i = 1; i < pts.length; i++) {
       const a = 1 - (now - pts[i][2]) / TRAIL_MS;
       if (a <= 0) continue;
-      ctx.strokeStyle = "rgba(200, 60, 40, " + (0.6 * a).toFixed(3) + ")"; ctx.lineWidth = 2;
+      ctx.strokeStyle = tracksStale ? "rgba(150, 150, 150, " + (0.6 * a).toFixed(3) + ")" : trackColor(id, 0.6 * a);
+      ctx.lineWidth = 2;
       ctx.beginPath(); ctx.moveTo(px(pts[i - 1][0]), py(pts[i - 1][1])); ctx.lineTo(px(pts[i][0]), py(pts[i][1])); ctx.stroke();
     }
   }
@@ -174,10 +192,25 @@ function draw() {
       if (!ja || !jb || ja[0] === null || jb[0] === null) continue;
       ctx.beginPath(); ctx.moveTo(px(ja[0]), py(ja[1])); ctx.lineTo(px(jb[0]), py(jb[1])); ctx.stroke();
     }
-    ctx.fillStyle = tracksStale ? "#999" : t.state === "confirmed" ? "#c33" : "#e90";
-    ctx.beginPath(); ctx.arc(px(t.position[0]), py(t.position[1]), 6, 0, 2 * Math.PI); ctx.fill();
+    // confirmed: a filled disc in the track's colour; tentative or lost: a ring
+    const colour = tracksStale ? "#999" : trackColor(t.id);
+    ctx.beginPath(); ctx.arc(px(t.position[0]), py(t.position[1]), 6, 0, 2 * Math.PI);
+    if (t.state === "confirmed") { ctx.fillStyle = colour; ctx.fill(); }
+    else { ctx.strokeStyle = colour; ctx.lineWidth = 2.5; ctx.stroke(); }
     ctx.fillStyle = "#000"; ctx.fillText(String(t.id), px(t.position[0]) + 8, py(t.position[1]) + 4);
   }
+  drawScale(s);
+}
+
+// A scale bar in the bottom-left corner: the longest of 1-2-5 x 10^k metres up to 160 px.
+function drawScale(pxPerM) {
+  let m = Math.pow(10, Math.floor(Math.log10(160 / pxPerM)));
+  for (const f of [5, 2]) if (f * m * pxPerM <= 160) { m *= f; break; }
+  const len = m * pxPerM, x = 12, y = canvas.height - 12;
+  ctx.strokeStyle = "#222"; ctx.lineWidth = 2;
+  ctx.beginPath(); ctx.moveTo(x, y - 5); ctx.lineTo(x, y); ctx.lineTo(x + len, y); ctx.lineTo(x + len, y - 5); ctx.stroke();
+  ctx.fillStyle = "#222"; ctx.fillText((m >= 1 ? m.toFixed(0) : m.toPrecision(1)) + " m", x + len / 2 - 8, y - 7);
+  canvas.dataset.scaleM = m; canvas.dataset.scalePx = len.toFixed(1); canvas.dataset.pxPerM = pxPerM.toFixed(4);
 }
 
 function scheduleDraw() { if (!drawPending) { drawPending = true; requestAnimationFrame(draw); } }
@@ -201,6 +234,10 @@ function checkStale() {
 }
 
 function onTracks(e) {
+  if (previousTracks && e.frame > previousTracks.frame && e.utime > previousTracks.utime) {
+    framePeriodS = (e.utime - previousTracks.utime) / 1e6 / (e.frame - previousTracks.frame);
+  }
+  previousTracks = e;
   latest = e;
   messages++;
   const now = performance.now();
@@ -222,9 +259,12 @@ function onTracks(e) {
   for (const t of e.tracks) {
     const x = t.position[0] === null ? "" : t.position[0].toFixed(3);
     const y = t.position[1] === null ? "" : t.position[1].toFixed(3);
-    rows.push('<tr data-id="' + t.id + '" data-x="' + x + '" data-y="' + y + '"><td>' + t.id +
-              "</td><td>" + t.state + "</td><td>" + x + "</td><td>" + y + "</td><td>" +
-              t.cameras.join(" ") + "</td></tr>");
+    // time in view: the track's age (frames since its first) at the stream's frame period
+    const age = framePeriodS === null ? "" : (t.age_frames * framePeriodS).toFixed(1);
+    rows.push('<tr data-id="' + t.id + '" data-x="' + x + '" data-y="' + y + '" data-color="' + trackColor(t.id) +
+              '" data-age-s="' + age + '"><td><span class="swatch" style="background:' + trackColor(t.id) + '"></span>' +
+              t.id + "</td><td>" + t.state + "</td><td>" + x + "</td><td>" + y + "</td><td>" + age +
+              "</td><td>" + t.cameras.join(" ") + "</td></tr>");
   }
   document.querySelector("#tracks tbody").innerHTML = rows.join("");
   text("frame", e.frame);

@@ -3,7 +3,8 @@
 then for each MESSAGES_i in turn waits until the page has shown that many tracks messages (or,
 for a phase written @FILE, until FILE exists, e.g. when the daemon stopped a while ago),
 prints one JSON line with what the page's DOM shows (frame, tracks as id/x/y from the track
-table's data attributes, messages, the page's latency figures, health, connection, camera rows,
+table's data attributes with each track's colour, the floor canvas's pixel where it is drawn
+and its time in view, the floor's scale bar, messages, the page's latency figures, health, connection, camera rows,
 the site's region rows with their counts)
 and creates the file PHASE_PREFIX.i (so a test can act between phases, e.g. restart the daemon
 while the same page stays open). A PNG screenshot is saved after the first phase.
@@ -48,11 +49,25 @@ def call(method, **params):
             return reply["result"]
 
 
-PROBE = """JSON.stringify({
+PROBE = """(() => {
+const floor = document.getElementById('floor');
+const paint = document.createElement('canvas').getContext('2d');
+// A CSS colour as [r, g, b] (painted on a scratch canvas), and the floor canvas's pixel where
+// the page draws floor point (x, y).
+const rgbOf = (c) => { paint.fillStyle = c; paint.fillRect(0, 0, 1, 1); return [...paint.getImageData(0, 0, 1, 1).data.slice(0, 3)]; };
+const drawnAt = (x, y) => {
+  if (!window.floorToCanvas) return null;
+  const [u, v] = window.floorToCanvas(x, y);
+  return [...floor.getContext('2d').getImageData(Math.round(u), Math.round(v), 1, 1).data.slice(0, 3)];
+};
+return JSON.stringify({
   frame: Number(document.body.dataset.frame === undefined ? -1 : document.body.dataset.frame),
   messages: Number(document.getElementById('tracks-messages').textContent),
   tracks: [...document.querySelectorAll('#tracks tbody tr')].map(r => ({
-    id: Number(r.dataset.id), x: Number(r.dataset.x), y: Number(r.dataset.y)})),
+    id: Number(r.dataset.id), x: Number(r.dataset.x), y: Number(r.dataset.y),
+    state: r.cells[1].textContent, color: r.dataset.color, rgb: rgbOf(r.dataset.color), drawn: drawnAt(Number(r.dataset.x), Number(r.dataset.y)),
+    age_s: r.dataset.ageS === '' ? null : Number(r.dataset.ageS)})),
+  scale: {m: Number(floor.dataset.scaleM), px: Number(floor.dataset.scalePx), px_per_m: Number(floor.dataset.pxPerM)},
   latency_p50_ms: Number(document.getElementById('web-latency-p50-ms').textContent),
   latency_max_ms: Number(document.getElementById('web-latency-max-ms').textContent),
   latency_count: Number(document.getElementById('web-latency-count').textContent),
@@ -67,7 +82,8 @@ PROBE = """JSON.stringify({
   regions: [...document.querySelectorAll('#regions tbody tr')].map(r => ({
     name: r.dataset.region, inside: Number(r.cells[1].textContent),
     entries: Number(r.cells[2].textContent), exits: Number(r.cells[3].textContent)}))
-})"""
+});
+})()"""
 
 call("Page.enable")
 call("Page.navigate", url=url)

@@ -182,8 +182,8 @@ EOF
 
 # The page's DOM shows the daemon's tracks of the frame it shows: same ids, same positions
 # (the table rounds to millimetres), and it kept going after the daemon was replaced.
-"$PY" - "$OUT/probe.jsonl" "$OUT/first.jsonl" << 'EOF' || fail "the page does not show the daemon's tracks"
-import json, sys
+"$PY" - "$OUT/probe.jsonl" "$OUT/first.jsonl" "$OUT/events.txt" << 'EOF' || fail "the page does not show the daemon's tracks"
+import json, math, sys
 phases = [json.loads(l) for l in open(sys.argv[1])]
 published = {}
 for line in open(sys.argv[2]):
@@ -199,6 +199,38 @@ assert first["health"] == "OK" and first["cameras"] == ["0", "1", "2"], first
 assert first["latency_count"] >= 150
 # Sanity only (timing belongs to benchmarks): a live page shows a frame within a second.
 assert first["latency_p50_ms"] < 1000, first
+# One colour per id (issue 42): the hue of `mvtrack view` (frac(id x 0.618...)), the same id the
+# same colour in every phase, ids of a frame told apart, and the canvas drawing a confirmed track's
+# disc in its row's colour; the scale bar is a 1-2-5 length in metres at the drawing's scale; the
+# time in view is the track's age at the stream's frame period.
+events = [json.loads(l[6:]) for l in open(sys.argv[3]) if l.startswith("data: ")]
+tr = sorted((e for e in events if e["type"] == "tracks"), key=lambda e: e["frame"])
+period = (tr[-1]["utime"] - tr[0]["utime"]) / 1e6 / (tr[-1]["frame"] - tr[0]["frame"])
+first_frame = {}
+for line in open(sys.argv[2]):
+    f = json.loads(line)
+    for t in f["tracks"]:
+        first_frame.setdefault(t["id"], f["frame"])
+colour_of = {}
+drawn_ok = drawn_all = 0
+for ph in (phases[0], phases[2]):
+    for t in ph["tracks"]:
+        turns = (t["id"] % 1000003) * 0.6180339887498949
+        assert t["color"] == "hsl(%.1f, 85%%, 40%%)" % (360 * (turns - math.floor(turns))), t
+        assert colour_of.setdefault(t["id"], t["color"]) == t["color"], (t, colour_of[t["id"]])
+        if t["state"] == "confirmed" and t["drawn"] is not None:
+            drawn_all += 1
+            drawn_ok += all(abs(a - b) <= 12 for a, b in zip(t["drawn"], t["rgb"]))
+    assert len({t["color"] for t in ph["tracks"]}) == len(ph["tracks"]), ph["tracks"]
+assert drawn_all >= 4 and drawn_ok >= 0.8 * drawn_all, (drawn_ok, drawn_all)
+sc = first["scale"]
+assert sc["m"] > 0 and round(sc["m"] / 10 ** math.floor(math.log10(sc["m"]))) in (1, 2, 5), sc
+assert abs(sc["px"] - sc["m"] * sc["px_per_m"]) < 0.2 and 40 <= sc["px"] <= 160, sc
+for t in first["tracks"]:
+    want = (first["frame"] - first_frame[t["id"]]) * period
+    assert t["age_s"] is not None and want - 0.06 <= t["age_s"] <= want + 1.5, (t, want)
+print(f"page: {len(colour_of)} ids each in its own colour, {drawn_ok} / {drawn_all} discs drawn in "
+      f"it; scale bar {sc['m']:g} m = {sc['px']} px; in view {[t['age_s'] for t in first['tracks']]} s")
 # The daemon stopped longer ago than --stale-after (issue 39: the page stayed green and "live"
 # with its last people standing still): UNKNOWN with the reason, tracks greyed out with how long
 # ago they were published.
