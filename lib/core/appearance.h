@@ -12,11 +12,14 @@
 
 namespace mvtrack::core {
 
-/// How appearance embeddings are used. Off by default: with `enabled` false (or a stream
-/// without embeddings) the output is exactly that of the same stream without embeddings.
+/// How appearance embeddings are used. On by default, which changes nothing on a stream
+/// without embeddings: with `enabled` false (or a stream without embeddings) the output is
+/// exactly that of the same stream without embeddings (docs/DECISIONS.md "Appearance": on
+/// measured better on the simulator's scenes with embeddings).
 struct AppearanceOptions {
-  /// Use the detections' embeddings. false: they are ignored (not even validated).
-  bool enabled = false;
+  /// Use the detections' embeddings (those that pass core::CheckEmbedding). false: they are
+  /// ignored (not even validated).
+  bool enabled = true;
   /// Window descriptors (the mean of a person's embeddings over one window) a long-term track
   /// keeps, newest first replacing the oldest: the gallery whose nearest entry is the track's
   /// appearance distance (DeepSORT's gallery, per window instead of per detection: one

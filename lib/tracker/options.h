@@ -109,7 +109,8 @@ struct TrackerOptions {
   /// outlier rejection, completion of joints no camera pair could triangulate;
   /// docs/ACCURACY.md). Not applied in box mode.
   triangulation::RefinementOptions refinement;
-  /// Appearance embeddings (the paper's "w/ appearance" variant); off by default.
+  /// Appearance embeddings (the paper's "w/ appearance" variant); on by default, which changes
+  /// nothing on a stream without embeddings.
   core::AppearanceOptions appearance;
 
   /// Validates these options and the nested ones; on failure `why` names the field.

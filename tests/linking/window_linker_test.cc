@@ -714,6 +714,12 @@ core::AppearanceOptions AppearanceOn() {
   return a;
 }
 
+core::AppearanceOptions AppearanceOff() {
+  core::AppearanceOptions a;
+  a.enabled = false;
+  return a;
+}
+
 // Person A walks in windows 0-1 and leaves every view; `back` comes at window `k` (~13 s
 // later at 20 frames per window) with tracks {tracks}.
 TEST_CASE("Appearance: a person who left comes back with the old id", "[unit]") {
@@ -842,7 +848,7 @@ TEST_CASE("Appearance: ambiguous, too far, too fast or off means a new id", "[un
   }
   // Appearance off: the same inputs never revive anybody, and nothing is remembered.
   {
-    WindowLinker linker;
+    WindowLinker linker({}, {}, AppearanceOff());
     LinkWindow(&linker, 0, {Looking(ConstantTracklet(0, 29, at, {1, 2}), Look(0))});
     LinkWindow(&linker, 1, {Looking(ConstantTracklet(20, 49, at, {1, 2}), Look(0))});
     linker.Link(2, 40, kSpf, {}, {});
@@ -936,7 +942,7 @@ TEST_CASE("A person whose cluster splits in time within a window keeps one id", 
   CHECK(run(&plain, at(39, 49, 0.3, {5, 6}, alike)).born.size() == 1);
   // Only the look can vouch for a piece no 2D track ties to the track: appearance off, or a
   // piece without a descriptor, is born.
-  WindowLinker blind;
+  WindowLinker blind({}, {}, AppearanceOff());
   CHECK(run(&blind, at(39, 49, 0.3, {5, 6}, alike)).born.size() == 1);
   WindowLinker faceless({}, {}, AppearanceOn());
   CHECK(run(&faceless, ConstantTracklet(39, 49, Vec3(0.3, 0.0, 1.0), {5, 6})).born.size() == 1);

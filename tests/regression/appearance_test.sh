@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Appearance on and off, end to end on a seeded simulated re-entry scene (4 cameras, 8 people
 # who leave and come back after 10-60 s with the same look, 128-d embeddings):
+#  - on is the default (issue 42): the defaults and docs/examples/appearance.yaml track alike;
 #  - off = exactly the output of the same scene without embeddings (byte-identical JSONL), and
 #    appearance on over a stream without embeddings changes nothing either;
 #  - on: at least 90 % of the returns get their old id back, none gets another person's id,
@@ -17,6 +18,7 @@ PYTHON=$(python3 -c 'import sys; print(sys.executable)')
 rm -rf "$OUT"
 mkdir -p "$OUT"
 ON=$SRC/docs/examples/appearance.yaml
+OFF=$SRC/docs/examples/appearance_off.yaml
 SCENE=(--cameras 4 --people 8 --enter-leave --frames 9000 --mode boxes --seed 21 --reentry 0.7)
 
 expect_exit 0 "$OUT/sim_plain.txt" "$MVTRACK" sim --quiet --out "$OUT/plain" "${SCENE[@]}"
@@ -28,10 +30,13 @@ replay() {  # replay DIR OUT.jsonl [config]
   expect_exit 0 "$2.txt" "$MVTRACK" replay --calibration "$1/calibration.yaml" --mode boxes \
     "${cfg[@]}" --jsonl "$2" "$1/detections.lcmlog"
 }
-replay "$OUT/plain" "$OUT/plain_off.jsonl"
-replay "$OUT/emb" "$OUT/emb_off.jsonl"
+replay "$OUT/plain" "$OUT/plain_off.jsonl" "$OFF"
+replay "$OUT/emb" "$OUT/emb_off.jsonl" "$OFF"
 replay "$OUT/plain" "$OUT/plain_on.jsonl" "$ON"
 replay "$OUT/emb" "$OUT/emb_on.jsonl" "$ON"
+replay "$OUT/emb" "$OUT/emb_default.jsonl"
+cmp -s "$OUT/emb_on.jsonl" "$OUT/emb_default.jsonl" ||
+  fail "the defaults do not use the embeddings (appearance is on by default)"
 cmp -s "$OUT/plain_off.jsonl" "$OUT/emb_off.jsonl" ||
   fail "appearance off: tracks differ between the scene with and without embeddings"
 cmp -s "$OUT/plain_off.jsonl" "$OUT/plain_on.jsonl" ||
