@@ -26,6 +26,8 @@ command -v chromium > /dev/null || skip "chromium is not installed (tools/dev/in
 command -v curl > /dev/null || skip "curl is not installed"
 command -v lcm-logplayer > /dev/null || skip "lcm-logplayer is not installed (liblcm-bin)"
 "$PY" -c "import websocket" 2> /dev/null || skip "python3-websocket is not installed"
+"$PY" -c "import prometheus_client.parser" 2> /dev/null ||
+  skip "python3-prometheus-client is not installed (tools/dev/install_deps.sh)"
 command -v ip > /dev/null || skip "the ip tool (iproute2) is not installed"
 unshare -n true 2> /dev/null || skip "cannot create a private network namespace (needs root)"
 rm -rf "$OUT"
@@ -283,6 +285,34 @@ print(f"site analytics: counts {c['regions']}, lines {c['lines']}; page {page['r
       f"{page['analytics_events']} events, publish -> DOM max {page['analytics_latency_max_ms']} ms")
 EOF
   fail "the site analytics did not reach /events, /metrics or the page"
+
+# /metrics is hand-written (docs/DECISIONS.md "Watching it live"): Prometheus' own Python client
+# parses every exposition the test took, its histograms are cumulative with _count = +Inf, and
+# mvtrack_up reads back as written (1 live, 0 once the daemon stopped, 1 again).
+"$PY" - "$OUT"/metrics_live.txt "$OUT"/metrics_stale.txt "$OUT"/metrics_end.txt << 'EOF' ||
+import sys
+from prometheus_client.parser import text_string_to_metric_families
+up = []
+for path in sys.argv[1:]:
+    families = {f.name: f for f in text_string_to_metric_families(open(path).read())}
+    up.append(families["mvtrack_up"].samples[0].value)
+    samples = sum(len(f.samples) for f in families.values())
+    for f in families.values():
+        if f.type != "histogram":
+            continue
+        by_series = {}
+        for s in f.samples:
+            key = tuple(sorted((k, v) for k, v in s.labels.items() if k != "le"))
+            by_series.setdefault(key, {}).setdefault(s.name, []).append(s)
+        for key, parts in by_series.items():
+            buckets = [s.value for s in parts[f.name + "_bucket"]]
+            assert buckets == sorted(buckets), (path, key, buckets)
+            assert parts[f.name + "_bucket"][-1].labels["le"] == "+Inf", (path, key)
+            assert parts[f.name + "_count"][0].value == buckets[-1], (path, key)
+    print(f"{path.rsplit('/', 1)[-1]}: {len(families)} families, {samples} samples parsed")
+assert up == [1.0, 0.0, 1.0], up
+EOF
+  fail "/metrics is not what Prometheus' parser reads"
 
 # The stuck client was disconnected and counted; the page got every message meanwhile.
 dropped=$(grep -E "^mvtrack_web_clients_dropped_total " "$OUT/metrics_end.txt" | awk '{print $2}')

@@ -44,7 +44,7 @@ table=(
   # ip (iproute2) brings up the loopback of the live tests' private network namespaces (without
   # it they skip: a minbase Debian has none).
   "test      catch2 libopencv-calib3d-dev libceres-dev clang-format-14 clang-tidy-14"
-  "test      chromium curl python3-websocket python3-venv ca-certificates man-db xvfb xauth"
+  "test      chromium curl python3-websocket python3-prometheus-client python3-venv ca-certificates man-db xvfb xauth"
   "test      default-jre git iproute2"
 )
 
