@@ -11,7 +11,8 @@
 #   --out DIR      work and output directory (default: build/results-run); replaced entirely
 #                  (refused when it exists, is not empty and holds no earlier manifest.tsv)
 #   --data DIR     dataset root (default: $MVTRACK_DATA, else ../shared/data)
-#   --update-docs  replace the generated part of docs/RESULTS.md (between its markers)
+#   --update-docs  replace the generated part of docs/RESULTS.md (between its markers) and
+#                  README.md's results table (copied from it; CTest docs/readme_results)
 #
 # Every command is run from the repository root exactly as it is recorded: $R stands for the
 # output directory and `mvtrack` for the chosen program (its directory is put first on PATH).
@@ -295,5 +296,6 @@ python3 tools/dev/results_tables.py --out "$R" --commit "$commit" --dirty "$dirt
   --version "$version" --mvtrack "$mvtrack_bin" --data "$data"
 if [[ $update_docs == 1 ]]; then
   python3 tools/dev/results_tables.py --splice "$R/results.md" docs/RESULTS.md
+  python3 tools/dev/results_tables.py --readme docs/RESULTS.md README.md
 fi
 echo "results: wrote $R/results.md and $R/results.json ($step steps)" >&2

@@ -25,6 +25,15 @@ import sys
 
 BEGIN = "<!-- BEGIN GENERATED RESULTS: tools/dev/results.sh --update-docs rewrites this part -->"
 END = "<!-- END GENERATED RESULTS -->"
+# The README's results table: rendered into RESULTS.md's generated part between these markers,
+# copied into README.md between the same markers by --readme (results.sh --update-docs), and
+# compared by CTest docs/readme_results (tools/dev/check_readme_results.py).
+README_BEGIN = "<!-- BEGIN README RESULTS TABLE: copied from docs/RESULTS.md by tools/dev/results.sh --update-docs -->"
+README_END = "<!-- END README RESULTS TABLE -->"
+# Published figures the README's table quotes (each peer's own paper, not re-run).
+REST_WILDTRACK = (81.6, 85.7)       # ReST (ICCV 2023), MVDeTr's boxes: MOTA, IDF1
+LMGP_WILDTRACK = (97.1, 98.2)       # LMGP (CVPR 2023), offline: MOTA, IDF1
+PAPER_WILDTRACK = (94.0, 94.7, 11)  # Yang et al. Table 8 (LMGP's detections): MOTA, IDF1, IDSW
 
 # Paper Table 6 (published numbers; each method with its own detector / input).
 # (method, actor 1, actor 2, actor 3, average PCP, MOTA or None)
@@ -282,6 +291,45 @@ def panoptic_cameras(out_dir, rid):
     return " ".join(m.group(1).split()).rstrip(",") if m else "?"
 
 
+def readme_table(R):
+    """The README's results table (markdown), every mvtrack and peer figure from the runs."""
+    def paper(rows, col):
+        return next(r[col] for r in rows if r[0] == "Yang et al. w/o appearance (the paper)")
+    m = lambda rid: R[rid]["metrics"]
+    hard = [m("campus_hard" if s == 1 else f"campus_hard_s{s}").get("pcp_average", 0.0)
+            for s in range(1, 11)]
+    w, wi = m("wildtrack"), m("wildtrack_input_mvdetr")
+    wm, wa = m("wildtrack_tracking_1m"), m("wildtrack_annotated_tracking_1m")
+    wd, e = m("wildtrack_annotated_all_default_tracking_1m"), m("epfl_05m")
+    rows = [
+        ["Shelf average PCP, actors 1-3 (standard protocol, 4D Association's head rule)",
+         pct(m("shelf")["pcp_average"]), "4D Association " + pct(m("shelf_peer_4da")["pcp_average"]),
+         f"{paper(PAPER_T6_SHELF, 4):.1f}"],
+        ["Campus average PCP, actors 1-3", pct(m("campus")["pcp_average"]),
+         "Cross-View Tracking " + pct(m("campus_peer_crossview")["pcp_average"]),
+         f"{paper(PAPER_T6_CAMPUS, 4):.1f}"],
+        ["Campus average PCP, the hard corruption level (`convert campus --corruption hard`; "
+         f"seeds 1-10: mean {pct(sum(hard) / 10)})", pct(hard[0]), "–", "–"],
+        ["WILDTRACK footprints, MODA (precision / recall), boxes, defaults",
+         f"{pct(w['moda'])} ({pct(w['precision'])} / {pct(w['recall'])})",
+         f"its input, MVDeTr's ground points: {pct(wi['moda'])} ({pct(wi['precision'])} / "
+         f"{pct(wi['recall'])})", "– (tracking only, other detections)"],
+        ["WILDTRACK tracking, test frames 360-399, 1 m: MOTA / IDF1, MVDeTr's boxes",
+         f"{pct(wm['mota'])} / {pct(wm['idf1'])}",
+         f"ReST (same input, its paper): {REST_WILDTRACK[0]} / {REST_WILDTRACK[1]}", "–"],
+        ["WILDTRACK tracking, test frames, 1 m: MOTA / IDF1 / ID switches, annotated boxes",
+         f"{pct(wa['mota'])} / {pct(wa['idf1'])} / {wa['ids']}",
+         f"LMGP (offline, its paper): {LMGP_WILDTRACK[0]} / {LMGP_WILDTRACK[1]}",
+         f"{PAPER_WILDTRACK[0]} / {PAPER_WILDTRACK[1]} / {PAPER_WILDTRACK[2]} (LMGP's detections)"],
+        ["WILDTRACK tracking, all 400 frames, annotated boxes with the default detector model, "
+         "1 m: IDF1", pct(wd["idf1"]), "–", "–"],
+        [f"EPFL Terrace ({e['gt_ids']} people, {R['epfl_05m']['replay_summary']['frames']:,} frames), annotated boxes, "
+         "0.5 m: MOTA / IDF1 / ids", f"{pct(e['mota'])} / {pct(e['idf1'])} / {e['pred_ids']}",
+         "–", "–"],
+    ]
+    return table(["", "mvtrack", "peer (its own output, our evaluator)", "paper (Table 6)"], rows)
+
+
 def render(out_dir, runs, info):
     R = runs
     md = []
@@ -293,6 +341,10 @@ def render(out_dir, runs, info):
               f"MPJPE in mm. MT/ML count ground-truth actors. HOTA (Luiten et al. 2021) in %; IDTR = "
               f"predicted ids covering two or more actors (id transfers), IDFRAG = actors "
               f"covered by two or more predicted ids (`mvtrack eval`, docs/FORMATS.md).\n")
+    md.append("\n### The README's table\n\nREADME.md's \"Results on public data\" table, copied "
+              "there by `tools/dev/results.sh --update-docs` (CTest `docs/readme_results` fails "
+              "when the two differ):\n\n" + README_BEGIN + "\n" + readme_table(R) + README_END +
+              "\n")
 
     # Targets.
     s, c = R["shelf"]["metrics"], R["campus"]["metrics"]
@@ -710,6 +762,26 @@ def splice(generated_path, doc_path):
         f.write(head + BEGIN + "\n\n" + generated + "\n" + END + tail)
 
 
+def block(text, path):
+    """The text between README_BEGIN and README_END (exactly one pair) of `text`."""
+    if text.count(README_BEGIN) != 1 or text.count(README_END) != 1:
+        sys.exit(f"results_tables.py: {path}: needs exactly one pair of markers\n"
+                 f"  {README_BEGIN}\n  {README_END}")
+    return text.split(README_BEGIN, 1)[1].split(README_END, 1)[0]
+
+
+def copy_readme_table(results_path, readme_path):
+    """Copies the README table block of RESULTS.md into README.md."""
+    with open(results_path, encoding="utf-8") as f:
+        table_text = block(f.read(), results_path)
+    with open(readme_path, encoding="utf-8") as f:
+        readme = f.read()
+    old = block(readme, readme_path)
+    with open(readme_path, "w", encoding="utf-8") as f:
+        f.write(readme.replace(README_BEGIN + old + README_END,
+                               README_BEGIN + table_text + README_END, 1))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -721,7 +793,12 @@ def main():
     ap.add_argument("--data", default="")
     ap.add_argument("--splice", nargs=2, metavar=("GENERATED_MD", "DOC"))
     ap.add_argument("--floors", metavar="R")
+    ap.add_argument("--readme", nargs=2, metavar=("RESULTS_MD", "README_MD"),
+                    help="copy RESULTS.md's README table into README.md")
     a = ap.parse_args()
+    if a.readme:
+        copy_readme_table(*a.readme)
+        return
     if a.floors:
         sys.stdout.write(floors(a.floors))
         return
