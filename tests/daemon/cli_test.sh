@@ -47,6 +47,10 @@ expect_grep "$hash1" "$OUT/check2.log"
 expect_exit 0 "$OUT/check3.log" "$MVTRACK" check-config "$SRC/docs/examples/mvtrackd.yaml" \
   --calibration "$P/calibration.yaml"
 expect_grep "from $P/calibration.yaml" "$OUT/check3.log"
+# The live example for one's own cameras (docs/PYTHON.md) is valid with a calibration given.
+expect_exit 0 "$OUT/check_own.log" "$MVTRACK" check-config \
+  "$SRC/docs/examples/mvtrackd_own_cameras.yaml" --calibration "$P/calibration.yaml"
+expect_grep "^# ok: .*mvtrackd_own_cameras.yaml: daemon configuration, .* sync utime" "$OUT/check_own.log"
 expect_exit 1 "$OUT/check_typo.log" "$MVTRACK" check-config "$OUT/typo.yaml"
 expect_grep "invalid: .*typo.yaml:[0-9]+:[0-9]+: sync.deadline_usec: unknown key" "$OUT/check_typo.log"
 sed 's/mvtrack.daemon\/1/mvtrack.daemon\/9/' "$OUT/range.yaml" > "$OUT/version.yaml"

@@ -37,4 +37,16 @@ printf '{"camera": 0, "frame": 0, "utime": 1, "detections": [{"score": 1}]}\n' >
 expect_exit 1 "$OUT/bad.txt" "$VPY" "$EXAMPLES/publish_detections.py" "$OUT/bad.jsonl" \
   --lcm-url "file://$OUT/bad.lcmlog?mode=w"
 expect_grep "bad.jsonl:1: " "$OUT/bad.txt"
+# docs/PYTHON.md's minimal publisher, as printed there, through LCM's default URL set to a
+# file:// log: one camera-frame of camera 0 with one box that read_log.py decodes.
+"$PYTHON" - "$SRC/docs/PYTHON.md" >"$OUT/snippet.py" <<'PY'
+import sys
+doc = open(sys.argv[1]).read()
+start = doc.index("```python", doc.index("A minimal publisher")) + len("```python")
+print(doc[start:doc.index("```", start)])
+PY
+LCM_DEFAULT_URL="file://$OUT/snippet.lcmlog?mode=w" PYTHONPATH="$EXAMPLES" \
+  expect_exit 0 "$OUT/snippet.txt" "$VPY" "$OUT/snippet.py"
+expect_exit 0 "$OUT/snippet_read.txt" "$VPY" "$EXAMPLES/read_log.py" "$OUT/snippet.lcmlog"
+expect_grep "camera 0: 1 camera-frame\(s\), 1 detection\(s\)" "$OUT/snippet_read.txt"
 echo "publish_detections: ok"
