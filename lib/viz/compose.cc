@@ -75,12 +75,20 @@ cv::Mat ComposeFrame(const cv::Mat& floor,
   return out;
 }
 
+int ContactSheetLabelBand(const ContactSheetOptions& options) {
+  for (const std::string& label : options.labels) {
+    if (!label.empty()) return kContactSheetLabelBandPx;
+  }
+  return 0;
+}
+
 cv::Rect ContactSheetTile(int index, cv::Size tile_size, const ContactSheetOptions& options) {
   const int cols = std::max(1, options.columns);
   const int col = index % cols;
   const int row = index / cols;
+  const int band = ContactSheetLabelBand(options);
   return {options.gap_px + col * (tile_size.width + options.gap_px),
-          options.gap_px + row * (tile_size.height + options.gap_px),
+          options.gap_px + row * (band + tile_size.height + options.gap_px) + band,
           tile_size.width,
           tile_size.height};
 }
@@ -95,8 +103,11 @@ cv::Mat MakeContactSheet(const std::vector<cv::Mat>& tiles, const ContactSheetOp
   const int tw = options.tile_width_px;
   const int th = std::max(1, Round(tw * static_cast<double>(tiles[0].rows) / tiles[0].cols));
   const int gap = options.gap_px;
-  cv::Mat sheet(
-      rows * th + (rows + 1) * gap, cols * tw + (cols + 1) * gap, CV_8UC3, cv::Scalar(0, 0, 0));
+  const int band = ContactSheetLabelBand(options);
+  cv::Mat sheet(rows * (band + th) + (rows + 1) * gap,
+                cols * tw + (cols + 1) * gap,
+                CV_8UC3,
+                cv::Scalar(0, 0, 0));
   ContactSheetOptions placement = options;
   placement.columns = cols;
   for (int i = 0; i < n; ++i) {
@@ -108,7 +119,7 @@ cv::Mat MakeContactSheet(const std::vector<cv::Mat>& tiles, const ContactSheetOp
         !options.labels[static_cast<std::size_t>(i)].empty()) {
       cv::putText(sheet,
                   options.labels[static_cast<std::size_t>(i)],
-                  where.tl() + cv::Point(6, 18),
+                  where.tl() + cv::Point(6, -6),  // in the band above the tile
                   cv::FONT_HERSHEY_SIMPLEX,
                   0.5,
                   kTextColor,

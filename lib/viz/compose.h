@@ -41,16 +41,24 @@ struct ContactSheetOptions {
   int tile_width_px = 480;
   /// Space around and between tiles, pixels (>= 0).
   int gap_px = 4;
-  /// Optional label drawn into the top-left corner of tile i (fewer labels than tiles is fine).
+  /// Optional label of tile i, drawn in a band of kContactSheetLabelBandPx above it (never over
+  /// the tile's own title); fewer labels than tiles is fine, no label at all: no band.
   std::vector<std::string> labels;
 };
+
+/// Height of the label band above every tile when any label is given, pixels.
+inline constexpr int kContactSheetLabelBandPx = 22;
+
+/// kContactSheetLabelBandPx when `options` has a non-empty label, else 0.
+int ContactSheetLabelBand(const ContactSheetOptions& options);
 
 /// Where tile `index` is placed by MakeContactSheet for `tile_size` tiles.
 cv::Rect ContactSheetTile(int index, cv::Size tile_size, const ContactSheetOptions& options);
 
 /// A grid of `tiles` (non-empty, all CV_8UC3, each resized to the tile size) in row-major order:
 /// columns c = min(columns, n), rows r = ceil(n / c), size (c * tw + (c + 1) gap) x
-/// (r * th + (r + 1) gap), tile i at ContactSheetTile(i, ...); the background is black.
+/// (r * (band + th) + (r + 1) gap) with band = ContactSheetLabelBand(options), tile i at
+/// ContactSheetTile(i, ...) with its label in the band above it; the background is black.
 cv::Mat MakeContactSheet(const std::vector<cv::Mat>& tiles,
                          const ContactSheetOptions& options = {});
 

@@ -1,5 +1,6 @@
 #include "viz/image_io.h"
 
+#include <array>
 #include <cmath>
 #include <exception>
 #include <opencv2/imgcodecs.hpp>
@@ -39,22 +40,41 @@ std::unique_ptr<VideoFileWriter> VideoFileWriter::Open(const std::string& path,
   if (frame_size.width < 2 || frame_size.height < 2) return fail("frame size too small");
   if (!(fps > 0.0) || !std::isfinite(fps) || fps > 1000.0)
     return fail("frame rate must be in (0, 1000]");
-  auto writer = std::make_unique<cv::VideoWriter>();
-  try {
-    writer->open(path, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps, frame_size, true);
-  } catch (const cv::Exception& e) {
-    return fail(std::string("cannot open an MP4 writer: ") + e.what());
+  // H.264 first (browsers and most players play it); MPEG-4 Part 2 where the installed
+  // OpenCV / FFmpeg has no H.264 encoder.
+  struct Codec {
+    int fourcc;
+    const char* name;
+  };
+  const std::array<Codec, 2> kCodecs = {
+      {{cv::VideoWriter::fourcc('a', 'v', 'c', '1'), "H.264 (avc1)"},
+       {cv::VideoWriter::fourcc('m', 'p', '4', 'v'),
+        "MPEG-4 Part 2 (mp4v): this OpenCV/FFmpeg build has no H.264 encoder, and browsers do "
+        "not play mp4v (ffmpeg -i IN.mp4 -c:v libx264 OUT.mp4 converts it)"}}};
+  std::string last_error;
+  for (const Codec& codec : kCodecs) {
+    auto writer = std::make_unique<cv::VideoWriter>();
+    try {
+      writer->open(path, codec.fourcc, fps, frame_size, true);
+    } catch (const cv::Exception& e) {
+      last_error = e.what();
+      continue;
+    }
+    if (writer->isOpened()) {
+      return std::unique_ptr<VideoFileWriter>(
+          new VideoFileWriter(std::move(writer), frame_size, codec.name));
+    }
   }
-  if (!writer->isOpened()) {
-    return fail(
-        "cannot open an MP4 writer (no MPEG-4 encoder in this OpenCV videoio build, or "
-        "the file cannot be created)");
-  }
-  return std::unique_ptr<VideoFileWriter>(new VideoFileWriter(std::move(writer), frame_size));
+  return fail(
+      "cannot open an MP4 writer (no H.264 or MPEG-4 encoder in this OpenCV videoio "
+      "build, or the file cannot be created)" +
+      (last_error.empty() ? std::string() : ": " + last_error));
 }
 
-VideoFileWriter::VideoFileWriter(std::unique_ptr<cv::VideoWriter> writer, cv::Size size)
-    : writer_(std::move(writer)), size_(size) {}
+VideoFileWriter::VideoFileWriter(std::unique_ptr<cv::VideoWriter> writer,
+                                 cv::Size size,
+                                 std::string codec)
+    : writer_(std::move(writer)), size_(size), codec_(std::move(codec)) {}
 
 VideoFileWriter::~VideoFileWriter() { Close(); }
 

@@ -21,8 +21,10 @@ bool WriteImage(const std::string& path, const cv::Mat& image, std::string* why)
 /// An MP4 (MPEG-4 part 2, fourcc "mp4v") video file of fixed frame size.
 class VideoFileWriter {
  public:
-  /// Creates `path`. Returns nullptr and sets `why` (when not null) when the frame size or rate
-  /// is invalid or OpenCV cannot encode MP4 here (videoio built without FFmpeg/GStreamer).
+  /// Creates `path`, H.264 when the installed OpenCV/FFmpeg can encode it, else MPEG-4 Part 2
+  /// (codec() says which, and why). Returns nullptr and sets `why` (when not null) when the
+  /// frame size or rate is invalid or OpenCV cannot encode MP4 here (videoio built without
+  /// FFmpeg/GStreamer).
   static std::unique_ptr<VideoFileWriter> Open(const std::string& path,
                                                cv::Size frame_size,
                                                double fps,
@@ -39,11 +41,14 @@ class VideoFileWriter {
   void Close();
   /// Frames written.
   int frames_written() const { return frames_written_; }
+  /// The codec written, in words (with the reason when it is not H.264).
+  const std::string& codec() const { return codec_; }
 
  private:
-  VideoFileWriter(std::unique_ptr<cv::VideoWriter> writer, cv::Size size);
+  VideoFileWriter(std::unique_ptr<cv::VideoWriter> writer, cv::Size size, std::string codec);
   std::unique_ptr<cv::VideoWriter> writer_;
   cv::Size size_;
+  std::string codec_;
   int frames_written_ = 0;
 };
 

@@ -1,6 +1,7 @@
 #include "viz/compose.h"
 
 #include <catch2/catch.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "viz/colors.h"
 #include "viz/viz_test_util.h"
@@ -43,6 +44,41 @@ TEST_CASE("Contact sheet: size, tile placement and order", "[unit]") {
   const cv::Mat row = MakeContactSheet({tiles[0], tiles[1]}, options);
   CHECK(row.cols == 2 * 160 + 3 * 5);
   CHECK(row.rows == 90 + 2 * 5);
+}
+
+TEST_CASE("Contact sheet labels sit in a band above their tile, never over it", "[unit]") {
+  // Tiles whose own top rows are a bright title band (as `mvtrack view` frames have).
+  std::vector<cv::Mat> tiles;
+  for (int i = 0; i < 4; ++i) {
+    cv::Mat t = Solid(320, 180, TrackColor(i));
+    t(cv::Rect(0, 0, 320, 30)).setTo(cv::Scalar(255, 255, 255));
+    tiles.push_back(t);
+  }
+  ContactSheetOptions options;
+  options.columns = 2;
+  options.tile_width_px = 160;
+  options.gap_px = 5;
+  options.labels = {"frame 0", "frame 10", "", "frame 30"};
+  const cv::Mat sheet = MakeContactSheet(tiles, options);
+  CHECK(sheet.rows == 2 * (kContactSheetLabelBandPx + 90) + 3 * 5);
+  for (int i = 0; i < 4; ++i) {
+    INFO("tile " << i);
+    const cv::Rect r = ContactSheetTile(i, cv::Size(160, 90), options);
+    CHECK(r.y == 5 + (i / 2) * (kContactSheetLabelBandPx + 95) + kContactSheetLabelBandPx);
+    // The tile is copied untouched: its title band white, the rest its colour.
+    const cv::Mat tile = sheet(r);
+    CHECK(cv::countNonZero(tile.rowRange(0, 15).reshape(1) != 255) == 0);
+    CHECK(ColorDistance(PixelAt(sheet, r.br() - cv::Point(1, 1)), TrackColor(i)) == 0.0);
+    // The label is drawn in the band above (some text pixels there), none for an empty label.
+    const cv::Mat band =
+        sheet(cv::Rect(r.x, r.y - kContactSheetLabelBandPx, r.width, kContactSheetLabelBandPx));
+    cv::Mat gray;
+    cv::cvtColor(band, gray, cv::COLOR_BGR2GRAY);
+    CHECK((cv::countNonZero(gray) > 0) == !options.labels[static_cast<std::size_t>(i)].empty());
+  }
+  // Without labels there is no band (the layout of the test above).
+  options.labels.clear();
+  CHECK(MakeContactSheet(tiles, options).rows == 2 * 90 + 3 * 5);
 }
 
 TEST_CASE("PanelGrid stacks up to three panels, then a near-square grid", "[unit]") {

@@ -164,7 +164,9 @@ int RunView(int argc, char** argv) {
       .Option("sheet",
               "write a contact sheet (a grid of --sheet-tiles frames evenly spread over "
               "the rendered ones) to this PNG file")
-      .Option("mp4", "write every rendered frame to this MP4 video (fourcc mp4v)")
+      .Option("mp4",
+              "write every rendered frame to this MP4 video (H.264 where the installed "
+              "OpenCV/FFmpeg can encode it, else mp4v; the output line says which)")
       .Option("frame", "render only this frame index")
       .Option("frames", "render the frame indices FIRST:LAST (inclusive; a side may be empty)")
       .Option("every", "render every N-th frame of the selection", "1")
@@ -365,7 +367,8 @@ int RunView(int argc, char** argv) {
   if (video) {
     const int written = video->frames_written();
     video->Close();
-    std::cout << "view: wrote " << written << " frame(s) to " << args.Get("mp4") << "\n";
+    std::cout << "view: wrote " << written << " frame(s) to " << args.Get("mp4") << ", "
+              << video->codec() << "\n";
   }
   if (args.Has("sheet")) {
     viz::ContactSheetOptions so;
