@@ -69,7 +69,11 @@ expected_files() {
         "$p/share/man/man8/mvtrackd.8.gz" ;;
     mvtrack-tools)
       printf '%s\n' "$p/bin/mvtrack" "$p/bin/mvtrack-pictures" "$doc/copyright" \
-        "$p/share/man/man1/mvtrack.1.gz" "$p/share/man/man1/mvtrack-pictures.1.gz"
+        "$p/share/man/man1/mvtrack.1.gz" "$p/share/man/man1/mvtrack-pictures.1.gz" \
+        "$doc/OPERATING.md" "$doc/FORMATS.md"
+      for f in README.md calibration.yaml detections.lcmlog gt.jsonl; do
+        echo "$p/share/mvtrack/demo/$f"
+      done
       # One page per command of `mvtrack --help` (but `version`), from the built program.
       "$BUILD/tools/mvtrack" --help | awk '/^commands:/ { l = 1; next } l && /^[ \t]*$/ { exit }
         l && /^  [a-z]/ && $1 != "version" { print "'"$p"'/share/man/man1/mvtrack-" $1 ".1.gz" }' ;;
@@ -77,8 +81,11 @@ expected_files() {
       printf '%s\n' "$p/bin/mvtrack-spy" "$p/share/java/mvtrack_lcmtypes.jar" "$doc/copyright" ;;
     python3-mvtrack-lcmtypes)
       local site=$p/lib/python3/dist-packages
-      printf '%s\n' "$site/mvtrack/__init__.py" "$doc/copyright" \
+      printf '%s\n' "$site/mvtrack/__init__.py" "$doc/copyright" "$doc/PYTHON.md" \
         "$p/share/mvtrack/python/mvtrack_lcmtypes-$VERSION-py3-none-any.whl"
+      for f in mvtrack_msgs print_site print_tracks publish_detections read_log; do
+        echo "$doc/examples/$f.py"
+      done
       for f in METADATA WHEEL top_level.txt; do echo "$site/mvtrack_lcmtypes-$VERSION.dist-info/$f"; done
       for t in $types; do echo "$site/mvtrack/$t.py"; done ;;
     mvtrack-lcmtypes-dev)
@@ -373,6 +380,17 @@ for m in $man_pages; do
   fi
 done
 zcat "$root$p/share/man/man8/mvtrackd.8.gz" | grep -q '^\.SH FILES' || fail "mvtrackd(8) has no FILES section"
+# The man pages that send the reader to OPERATING.md name where the package installs it.
+for cmd in status web; do
+  zcat "$root$p/share/man/man1/mvtrack-$cmd.1.gz" | sed 's/\\-/-/g' |
+    grep -q "$p/share/doc/mvtrack-tools/OPERATING\.md" ||
+    fail "mvtrack-$cmd(1) does not name the installed $p/share/doc/mvtrack-tools/OPERATING.md"
+done
+grep -qx "$p/share/doc/mvtrack-tools/OPERATING.md" "$WORK/mvtrack-tools/files.txt" ||
+  fail "mvtrack-tools does not install OPERATING.md"
+# The packaged demo recording passes the smoke test (the chroot test runs `--installed`).
+expect_exit 0 "$WORK/smoke.txt" "$root$p/bin/mvtrack" demo --recording "$root$p/share/mvtrack/demo"
+expect_grep "smoke test passed" "$WORK/smoke.txt"
 echo "man pages: $(echo "$man_pages" | wc -l), gzipped$(command -v man >/dev/null && echo ", rendered by man -l without warnings")"
 
 # 13. The unit starts the packaged daemon with a packaged configuration; reload needs only an

@@ -33,4 +33,17 @@ assert mota >= 0.95, mota
 assert idf1 >= 0.90, idf1
 assert mpjpe <= 0.02, mpjpe
 ' "$OUT/eval.json" || fail "demo accuracy below its floor (see $OUT/eval.txt)"
+# The recording as a smoke test (`mvtrack demo --recording DIR`; packages: `--installed`): it
+# passes as shipped, fails (exit 1, saying why) when damaged, and the two options exclude each
+# other.
+expect_exit 0 "$OUT/smoke.txt" "$MVTRACK" demo --recording "$SRC/examples/demo"
+expect_grep "^mvtrack demo: smoke test passed: MOTA 9[0-9.]+ %, IDF1 9[0-9.]+ % \(pass mark 95 %\)" "$OUT/smoke.txt"
+mkdir -p "$OUT/damaged"
+cp "$SRC/examples/demo/calibration.yaml" "$SRC/examples/demo/gt.jsonl" "$OUT/damaged/"
+head -c 100000 "$SRC/examples/demo/detections.lcmlog" > "$OUT/damaged/detections.lcmlog"
+expect_exit 1 "$OUT/smoke_damaged.txt" "$MVTRACK" demo --recording "$OUT/damaged"
+expect_grep "smoke test FAILED" "$OUT/smoke_damaged.txt"
+expect_exit 1 "$OUT/smoke_missing.txt" "$MVTRACK" demo --recording "$OUT/nowhere"
+expect_grep "nowhere/calibration.yaml" "$OUT/smoke_missing.txt"
+expect_exit 2 "$OUT/smoke_both.txt" "$MVTRACK" demo --installed --recording "$SRC/examples/demo"
 echo "PASS demo_bundle"

@@ -240,6 +240,19 @@ check demo "mvtrackd + mvtrack eval on examples/demo: $frames frames, MOTA ${mot
 in_root mvtrack demo >"$work/mvtrack-demo.txt" 2>&1 && demo2_rc=0 || demo2_rc=$?
 awk 'seen { print "  mvtrack demo: " $0; exit } /MOTA%/ { print "  mvtrack demo: " $0; seen = 1 }' "$work/mvtrack-demo.txt"
 check mvtrack_demo "mvtrack demo: exit $demo2_rc" test "$demo2_rc" -eq 0
+# The operator's documents and the demo recording are installed, and the recording is the
+# post-install smoke test (issue 42).
+docs_ok() {
+  [ -s "$root/usr/share/doc/mvtrack-tools/OPERATING.md" ] &&
+    [ -s "$root/usr/share/doc/mvtrack-tools/FORMATS.md" ] &&
+    [ -s "$root/usr/share/mvtrack/demo/detections.lcmlog" ] &&
+    [ -s "$root/usr/share/mvtrack/demo/gt.jsonl" ]
+}
+check installed_docs "OPERATING.md, FORMATS.md and the demo recording installed" docs_ok
+in_root mvtrack demo --installed >"$work/smoke.txt" 2>&1 && smoke_rc=0 || smoke_rc=$?
+smoke_line=$(grep "smoke test" "$work/smoke.txt" | head -1)
+check smoke_test "mvtrack demo --installed: exit $smoke_rc (${smoke_line#mvtrack demo: })" \
+  test "$smoke_rc" -eq 0
 view_rc=0
 rm -f "$root/tmp/demo/frame.png"
 in_root mvtrack view /tmp/demo/tracks.jsonl --calibration /tmp/demo/calibration.yaml \
