@@ -5,6 +5,8 @@ Needs the generated types (`pip install mvtrack_lcmtypes-*.whl`, or PYTHONPATH=<
 python) and nothing else; the examples that talk to LCM also need PyPI's `lcm`.
 """
 import math
+import signal
+import sys
 
 import mvtrack
 
@@ -127,3 +129,27 @@ def format_counts(c):
         lines.append(f"  line {n}: {c.left_to_right[i]} left_to_right, "
                      f"{c.right_to_left[i]} right_to_left")
     return lines
+
+
+def listen(lc, program, channel, received, count, timeout, what=""):
+    """Handles `lc`'s messages until `received[0]` reaches `count` (0: never), Ctrl-C, the end of
+    a file:// log (all: 0) or `timeout` seconds without a message (0: never; 1, with a line on
+    stderr naming `what`). Says on stderr that it listens on `channel` first."""
+    signal.signal(signal.SIGINT, lambda *_: sys.exit(0))
+    print(f"{program}: listening on {channel}", file=sys.stderr, flush=True)
+    idle = 0.0
+    step = 0.1
+    while count == 0 or received[0] < count:
+        try:
+            handled = lc.handle_timeout(int(step * 1000))
+        except (IOError, OSError):
+            return 0  # the end of a file:// log
+        if handled > 0:
+            idle = 0.0
+            continue
+        idle += step
+        if timeout and idle >= timeout:
+            got = " ".join(x for x in (str(received[0]), what, "received") if x)
+            print(f"{program}: no message for {timeout} s ({got})", file=sys.stderr)
+            return 1
+    return 0

@@ -16,13 +16,12 @@ without a message or LCM cannot start, 2 on usage errors.
 """
 import argparse
 import json
-import signal
 import sys
 
 import lcm
 
 from mvtrack_msgs import (COUNTS_CHANNEL, EVENTS_CHANNEL, counts_to_dict, decode, event_to_dict,
-                          format_counts, format_event)
+                          format_counts, format_event, listen)
 import mvtrack
 
 
@@ -74,24 +73,7 @@ def main():
     lc.subscribe(a.events_channel, on_event)
     if a.counts:
         lc.subscribe(a.counts_channel, on_counts)
-    signal.signal(signal.SIGINT, lambda *_: sys.exit(0))
-    print(f"print_site.py: listening on {a.events_channel}", file=sys.stderr, flush=True)
-    idle = 0.0
-    step = 0.1
-    while a.count == 0 or received[0] < a.count:
-        try:
-            handled = lc.handle_timeout(int(step * 1000))
-        except (IOError, OSError):
-            return 0  # the end of a file:// log
-        if handled > 0:
-            idle = 0.0
-            continue
-        idle += step
-        if a.timeout and idle >= a.timeout:
-            print(f"print_site.py: no message for {a.timeout} s ({received[0]} events received)",
-                  file=sys.stderr)
-            return 1
-    return 0
+    return listen(lc, "print_site.py", a.events_channel, received, a.count, a.timeout, "events")
 
 
 if __name__ == "__main__":

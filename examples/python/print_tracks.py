@@ -14,12 +14,12 @@ cannot start, 2 on usage errors.
 """
 import argparse
 import json
-import signal
 import sys
 
 import lcm
 
-from mvtrack_msgs import STATUS_CHANNEL, TRACKS_CHANNEL, decode, format_tracks, tracks_to_dict
+from mvtrack_msgs import (STATUS_CHANNEL, TRACKS_CHANNEL, decode, format_tracks, listen,
+                          tracks_to_dict)
 import mvtrack
 
 
@@ -70,24 +70,7 @@ def main():
     lc.subscribe(a.channel, on_tracks)
     if a.status:
         lc.subscribe(STATUS_CHANNEL, on_status)
-    signal.signal(signal.SIGINT, lambda *_: sys.exit(0))
-    print(f"print_tracks.py: listening on {a.channel}", file=sys.stderr, flush=True)
-    idle = 0.0
-    step = 0.1
-    while a.count == 0 or received[0] < a.count:
-        try:
-            handled = lc.handle_timeout(int(step * 1000))
-        except (IOError, OSError):
-            return 0  # the end of a file:// log
-        if handled > 0:
-            idle = 0.0
-            continue
-        idle += step
-        if a.timeout and idle >= a.timeout:
-            print(f"print_tracks.py: no message for {a.timeout} s ({received[0]} received)",
-                  file=sys.stderr)
-            return 1
-    return 0
+    return listen(lc, "print_tracks.py", a.channel, received, a.count, a.timeout)
 
 
 if __name__ == "__main__":

@@ -172,17 +172,18 @@ int RunDemo(int argc, char** argv) {
             "--recording with the recording the packages install (" MVTRACK_DEMO_DIR
             "): a post-install smoke test")
       .Flag("json", "print the accuracy report as JSON instead of a table");
-  if (!args.Parse(argc,
-                  argv,
-                  "mvtrack demo [options]",
-                  "Simulates a room with calibrated cameras and walking people, feeds the noisy\n"
-                  "detections to the tracker exactly as a live system would (camera-frame by\n"
-                  "camera-frame), prints the tracks, and scores them against the simulation's\n"
-                  "ground truth (CLEAR MOT, identity F1, MPJPE).\n\n"
-                  "With --recording DIR or --installed it tracks the bundled demo recording\n"
-                  "instead (examples/demo in the sources, " MVTRACK_DEMO_DIR " when\n"
-                  "installed) and checks the result against its ground truth: exit 0 when MOTA\n"
-                  "and IDF1 reach 95 %, 1 otherwise or when the recording is missing or damaged.")) {
+  if (!args.Parse(
+          argc,
+          argv,
+          "mvtrack demo [options]",
+          "Simulates a room with calibrated cameras and walking people, feeds the noisy\n"
+          "detections to the tracker exactly as a live system would (camera-frame by\n"
+          "camera-frame), prints the tracks, and scores them against the simulation's\n"
+          "ground truth (CLEAR MOT, identity F1, MPJPE).\n\n"
+          "With --recording DIR or --installed it tracks the bundled demo recording\n"
+          "instead (examples/demo in the sources, " MVTRACK_DEMO_DIR " when\n"
+          "installed) and checks the result against its ground truth: exit 0 when MOTA\n"
+          "and IDF1 reach 95 %, 1 otherwise or when the recording is missing or damaged.")) {
     return 0;
   }
   if (args.Has("installed") && args.Has("recording")) {

@@ -46,8 +46,8 @@ int RunWeb(int argc, char** argv) {
                   argv,
                   "mvtrack web [--listen ADDR:PORT] [--url LCM_URL] [--calibration FILE] "
                   "[--regions SITE.yaml]",
-                  "Serves a live view of the tracker (OPERATING.md: installed as\n"
-                  MVTRACK_DOC_DIR "/OPERATING.md, docs/ in the sources): subscribes to the\n"
+                  "Serves a live view of the tracker (OPERATING.md: installed as\n" MVTRACK_DOC_DIR
+                  "/OPERATING.md, docs/ in the sources): subscribes to the\n"
                   "daemon's tracks, status and site analytics channels and serves, over HTTP,\n"
                   "  /          a floor view in the browser: tracks with ids and fading trails,\n"
                   "             skeletons from above in pose mode, camera health in words, the\n"
