@@ -208,8 +208,11 @@ tools_java=$(join -v2 -t$'\t' "$work/after-man.txt" "$work/after-tools.txt" | cu
 check tools_deps "$tools_n new packages, $tools_mb MiB (--no-install-recommends: $tools_norec_n, $tools_norec_mb MiB), no Java${tools_java:+ (found: $(echo $tools_java))}" \
   test -z "$tools_java"
 mkdir -p "$root/tmp/demo"
-cp examples/demo/mvtrackd.yaml examples/demo/calibration.yaml examples/demo/detections.lcmlog \
-   examples/demo/gt.jsonl "$root/tmp/demo/"
+cp examples/demo/calibration.yaml examples/demo/detections.lcmlog examples/demo/gt.jsonl \
+   "$root/tmp/demo/"
+# The demo configuration names its site file relative to the source tree: beside it here.
+cp docs/examples/sites/demo.yaml "$root/tmp/demo/site.yaml"
+sed 's|^  site: .*|  site: site.yaml|' examples/demo/mvtrackd.yaml >"$root/tmp/demo/mvtrackd.yaml"
 echo "-- mvtrackd --config /tmp/demo/mvtrackd.yaml --input-log /tmp/demo/detections.lcmlog"
 demo_rc=0
 in_root mvtrackd --config /tmp/demo/mvtrackd.yaml --input-log /tmp/demo/detections.lcmlog \
@@ -278,7 +281,8 @@ d = mvtrack.tracks3d_t.decode(m.encode())
 print("mvtrack-lcmtypes", importlib.metadata.version("mvtrack-lcmtypes"), "frame", d.frame)' 2>&1) || true
 echo "$py_out"
 in_root apt-get purge -y python3-mvtrack-lcmtypes >"$work/purge-python.log" 2>&1 && py_rc=0 || py_rc=$?
-py_left=$( (find "$root/usr/lib/python3/dist-packages" "$root/usr/share/mvtrack" -name '*mvtrack*' 2>/dev/null || true) |
+py_left=$( (find "$root/usr/lib/python3/dist-packages" "$root/usr/share/mvtrack/python" \
+             "$root/usr/share/doc/python3-mvtrack-lcmtypes" -name '*mvtrack*' 2>/dev/null || true) |
           head -3 | sed "s|^$root||")
 python_ok() { [[ $py_out == *"frame 3"* ]] && [ "$py_rc" -eq 0 ] && [ -z "$py_left" ]; }
 check python "import mvtrack with Debian's python3 ($py_out); purge exit $py_rc, ${py_left:+left: $py_left}${py_left:-nothing left}" \
@@ -350,7 +354,8 @@ echo
 echo "== summary (Debian 12 bookworm, debootstrap --variant=minbase, $(chroot "$root" dpkg-query -W | wc -l) packages at the end)"
 printf '%-20s %s\n' "check" "result"
 for name in daemon_size daemon_heavy daemon_note daemon_state daemon_not_enabled daemon_version \
-            conffiles reload reload_stop man_l man tools_deps demo mvtrack_demo view man_tools \
+            conffiles reload reload_stop man_l man tools_deps demo mvtrack_demo installed_docs \
+            smoke_test view man_tools \
             python spy remove purge upgrade; do
   [ -n "${result[$name]:-}" ] && printf '%-20s %s\n' "$name" "${result[$name]}"
 done
