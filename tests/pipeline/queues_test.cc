@@ -136,6 +136,28 @@ TEST_CASE("SequenceReorderBuffer delivers in sequence order whatever the produce
   CHECK(buffer.size() == 1);
 }
 
+TEST_CASE("SequenceReorderBuffer wakes each waiting producer when its number is admitted",
+          "[unit][threads][pipeline]") {
+  // 32 producers (a camera thread each) against a look-ahead of 1: nearly every insert waits,
+  // and only the pop that admits a number wakes its producer. A missed wake-up would hang here.
+  constexpr int kProducers = 32;
+  constexpr std::uint64_t kItems = 32 * 200;
+  SequenceReorderBuffer<std::uint64_t> buffer(1);
+  std::vector<std::thread> producers;
+  for (int p = 0; p < kProducers; ++p) {
+    producers.emplace_back([&buffer, p] {
+      for (std::uint64_t s = static_cast<std::uint64_t>(p); s < kItems; s += kProducers) {
+        buffer.Insert(s, s + 1);
+      }
+    });
+  }
+  bool in_order = true;
+  for (std::uint64_t s = 0; s < kItems; ++s) in_order = in_order && buffer.PopNext() == s + 1;
+  for (std::thread& t : producers) t.join();
+  CHECK(in_order);
+  CHECK(buffer.size() == 0);
+}
+
 TEST_CASE("ManualClock moves only when told, SteadyClock never goes back", "[unit][pipeline]") {
   ManualClock manual(5);
   CHECK(manual.NowMicros() == 5);
