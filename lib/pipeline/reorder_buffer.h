@@ -87,7 +87,7 @@ class SequenceReorderBuffer {
  private:
   const std::size_t capacity_;
   mutable std::mutex mu_;
-  std::condition_variable ready_cv_;                         // the next expected item arrived
+  std::condition_variable ready_cv_;                           // the next expected item arrived
   std::map<std::uint64_t, std::condition_variable*> waiting_;  // producers waiting for room
   std::map<std::uint64_t, T> items_;
   std::uint64_t next_;

@@ -33,8 +33,7 @@ TEST_CASE("MedianInPlace: small and large samples give the sorted sample's middl
       for (double& x : v) x = 0.37 * level(rng);
       std::vector<double> sorted = v;
       std::sort(sorted.begin(), sorted.end());
-      const double want =
-          n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2] + sorted[n / 2 - 1]);
+      const double want = n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2] + sorted[n / 2 - 1]);
       INFO("n " << n);
       REQUIRE(MedianInPlace(&v) == want);
     }
