@@ -107,6 +107,21 @@ TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_fra
   return o;
 }
 
+association::AssociationOptions AssociationOptionsInEffect(const TrackerOptions& options) {
+  association::AssociationOptions ao = options.association;
+  if (options.mode == InputMode::kBoxes && !options.box_ends_in_association) ao.num_points = 1;
+  if (options.mode == InputMode::kBoxes && options.box_point == BoxPoint::kCenterEnds &&
+      options.box_ends_in_association) {
+    ao.floor_point = kBoxBottomPoint;  // the feet stand on the floor
+    ao.floor_height_m = options.ground_height_m;
+  }
+  if (options.appearance.enabled) {
+    ao.appearance_weight = options.appearance.association_weight;
+    ao.appearance_gate = options.appearance.association_gate;
+  }
+  return ao;
+}
+
 tracking2d::SortOptions SortOptionsAtFrameRate(const TrackerOptions& options,
                                                double seconds_per_frame) {
   const double f = RateFactor(options, seconds_per_frame);

@@ -127,6 +127,11 @@ struct TrackerOptions {
 /// valid when `options` is. docs/DECISIONS.md "Time".
 TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_frame);
 
+/// The cross-view association options a window job uses: `options.association` with the box
+/// points (one point, or the feet compared on the floor at ground_height_m) and the appearance
+/// weights of `options` applied.
+association::AssociationOptions AssociationOptionsInEffect(const TrackerOptions& options);
+
 /// AtFrameRate(options, seconds_per_frame).sort, without copying the rest.
 tracking2d::SortOptions SortOptionsAtFrameRate(const TrackerOptions& options,
                                                double seconds_per_frame);

@@ -604,18 +604,8 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
   const TrackerOptions options = AtFrameRate(base_options, job.seconds_per_frame);
   WindowResult r = EmptyWindowResult(job);
   // Cross-view association (Eq. 2-4, PDNC / Algorithm 1).
-  association::AssociationOptions ao = options.association;
-  if (options.mode == InputMode::kBoxes && !options.box_ends_in_association) ao.num_points = 1;
-  if (options.mode == InputMode::kBoxes && options.box_point == BoxPoint::kCenterEnds &&
-      options.box_ends_in_association) {
-    ao.floor_point = kBoxBottomPoint;  // the feet stand on the floor
-    ao.floor_height_m = options.ground_height_m;
-  }
-  if (options.appearance.enabled) {
-    ao.appearance_weight = options.appearance.association_weight;
-    ao.appearance_gate = options.appearance.association_gate;
-  }
-  r.clusters = association::AssociateTracklets(rig, job.tracklets, ao);
+  r.clusters =
+      association::AssociateTracklets(rig, job.tracklets, AssociationOptionsInEffect(options));
   // CMMT (Algorithm 2) per person seen by at least two cameras.
   const int num_points = NumPoints(options);
   std::vector<const std::vector<int>*> multi_view;

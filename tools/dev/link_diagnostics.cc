@@ -314,14 +314,7 @@ int main(int argc, char** argv) {
           std::fprintf(stderr, " %s", name(i).c_str());
         std::fprintf(stderr, "\n");
       }
-      mvtrack::association::AssociationOptions ao = topt.association;
-      if (topt.mode == tracker::InputMode::kBoxes && !topt.box_ends_in_association)
-        ao.num_points = 1;
-      if (topt.mode == tracker::InputMode::kBoxes &&
-          topt.box_point == tracker::BoxPoint::kCenterEnds && topt.box_ends_in_association) {
-        ao.floor_point = tracker::kBoxBottomPoint;
-        ao.floor_height_m = topt.ground_height_m;
-      }
+      const mvtrack::association::AssociationOptions ao = tracker::AssociationOptionsInEffect(topt);
       const auto d = mvtrack::association::ComputeDistanceMatrix(
           mvtrack::geometry::CameraRig(cameras), w.tracklets, ao);
       const int n = static_cast<int>(w.tracklets.size());

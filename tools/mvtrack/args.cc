@@ -166,6 +166,14 @@ std::optional<std::int64_t> ParseNonNegative(std::string_view text) {
   return v;
 }
 
+std::optional<double> ParseFinite(std::string_view text) {
+  const std::string s(text);
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
 std::vector<std::string_view> SplitCommas(std::string_view text) {
   std::vector<std::string_view> parts;
   std::size_t begin = 0;

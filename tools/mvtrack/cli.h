@@ -73,6 +73,9 @@ class Args {
 /// A non-negative decimal integer, the whole of `text`; nullopt otherwise.
 std::optional<std::int64_t> ParseNonNegative(std::string_view text);
 
+/// A finite decimal number (std::strtod's syntax), the whole of `text`; nullopt otherwise.
+std::optional<double> ParseFinite(std::string_view text);
+
 /// `text` split at every comma (empty parts kept).
 std::vector<std::string_view> SplitCommas(std::string_view text);
 

@@ -144,11 +144,9 @@ eval::PointComparisonOptions::Area ParseArea(const std::string& text) {
   const std::vector<std::string_view> parts = SplitCommas(text);
   std::vector<double> v;
   for (std::string_view part : parts) {
-    const std::string s(part);
-    char* end = nullptr;
-    const double x = std::strtod(s.c_str(), &end);
-    if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(x)) break;
-    v.push_back(x);
+    const std::optional<double> x = ParseFinite(part);
+    if (!x) break;
+    v.push_back(*x);
   }
   if (parts.size() != 4 || v.size() != 4 || !(v[0] < v[1]) || !(v[2] < v[3])) {
     throw UsageError("--area: '" + text +

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sim/scene_presets.h"
@@ -33,19 +35,16 @@ std::vector<Vec2> ParsePoints(const std::string& text, const std::string& option
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t end = std::min(text.find(';', start), text.size());
-    const std::string item = text.substr(start, end - start);
-    const std::size_t comma = item.find(',');
-    char* stop = nullptr;
-    const double x = comma == std::string::npos ? 0.0 : std::strtod(item.c_str(), &stop);
-    const bool x_ok = comma != std::string::npos && comma > 0 && stop == item.c_str() + comma;
-    const double y = x_ok ? std::strtod(item.c_str() + comma + 1, &stop) : 0.0;
-    if (!x_ok || comma + 1 == item.size() || stop != item.c_str() + item.size() ||
-        !std::isfinite(x) || !std::isfinite(y)) {
+    const std::vector<std::string_view> xy =
+        SplitCommas(std::string_view(text).substr(start, end - start));
+    const std::optional<double> x = xy.size() == 2 ? ParseFinite(xy[0]) : std::nullopt;
+    const std::optional<double> y = xy.size() == 2 ? ParseFinite(xy[1]) : std::nullopt;
+    if (!x || !y) {
       throw UsageError("--" + option +
                        ": expected X,Y[;X,Y...] in metres (e.g. 2.5,3.5;4.5,3), got '" + text +
                        "'");
     }
-    points.emplace_back(x, y);
+    points.emplace_back(*x, *y);
     start = end + 1;
   }
   return points;
