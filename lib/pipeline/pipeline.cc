@@ -29,7 +29,8 @@ std::unique_ptr<Pipeline> Pipeline::Create(geometry::CameraRig rig,
                                            std::unique_ptr<Executor> executor,
                                            const Clock& clock,
                                            FrameCallback on_frame,
-                                           std::string* why) {
+                                           std::string* why,
+                                           FrameCallback on_provisional) {
   auto fail = [&](std::string reason) -> std::unique_ptr<Pipeline> {
     if (why != nullptr) *why = std::move(reason);
     return nullptr;
@@ -48,7 +49,8 @@ std::unique_ptr<Pipeline> Pipeline::Create(geometry::CameraRig rig,
                                            pipeline_options,
                                            std::move(executor),
                                            clock,
-                                           std::move(on_frame)));
+                                           std::move(on_frame),
+                                           std::move(on_provisional)));
   p->Start();
   return p;
 }
@@ -58,16 +60,18 @@ Pipeline::Pipeline(geometry::CameraRig rig,
                    PipelineOptions pipeline_options,
                    std::unique_ptr<Executor> executor,
                    const Clock& clock,
-                   FrameCallback on_frame)
+                   FrameCallback on_frame,
+                   FrameCallback on_provisional)
     : rig_(std::move(rig)),
       options_(std::move(options)),
       pipeline_options_(pipeline_options),
       clock_(clock),
       on_frame_(std::move(on_frame)),
+      on_provisional_(std::move(on_provisional)),
       executor_(std::move(executor)),
       gate_(rig_, options_),
       reorder_(static_cast<std::size_t>(pipeline_options_.reorder_capacity)),
-      builder_(rig_, options_),
+      builder_(rig_, options_, /*keep_frame_views=*/static_cast<bool>(on_provisional_)),
       steps_(static_cast<std::size_t>(pipeline_options_.finalizer_queue_capacity)),
       finalizer_(rig_, options_) {
   for (int c = 0; c < rig_.size(); ++c) {
@@ -75,6 +79,7 @@ Pipeline::Pipeline(geometry::CameraRig rig,
                                                            pipeline_options_.camera_overflow));
     stages_.push_back(std::make_unique<tracker::CameraStage>(rig_.camera(c), c, options_));
   }
+  if (on_provisional_) provisional_.emplace(rig_, options_);
   camera_counters_.resize(static_cast<std::size_t>(rig_.size()));
   gallery_memory_ = tracker::GalleryMemory(static_cast<std::size_t>(rig_.size()));
   const int workers = executor_->num_workers();
@@ -236,9 +241,9 @@ void Pipeline::SchedulerLoop() {
 
 void Pipeline::DispatchOutput(tracker::BuilderOutput* output) {
   Step step;
-  if (const tracker::ClosedFrame* closed = std::get_if<tracker::ClosedFrame>(output)) {
+  if (tracker::ClosedFrame* closed = std::get_if<tracker::ClosedFrame>(output)) {
     step.kind = Step::Kind::kClosedFrame;
-    step.closed = *closed;
+    step.closed = std::move(*closed);
     steps_.Push(std::move(step));
     return;
   }
@@ -306,6 +311,10 @@ void Pipeline::FinalizerLoop() {
     switch (step->kind) {
       case Step::Kind::kClosedFrame:
         finalizer_.AddClosedFrame(step->closed);
+        if (provisional_) {
+          EmitProvisional(
+              provisional_->Estimate(step->closed.frame, step->closed.utime, step->closed.views));
+        }
         break;
       case Step::Kind::kWindow: {
         FinishedWindow finished;
@@ -316,6 +325,7 @@ void Pipeline::FinalizerLoop() {
           finished = std::move(node.mapped());
         }
         finalizer_.Finalize(finished.result, &frames);
+        if (provisional_) provisional_->OnLinked(finalizer_.linker());
         const std::int64_t latency_us = clock_.NowMicros() - step->close_time_us;
         {
           std::lock_guard<std::mutex> lock(status_mu_);
@@ -343,6 +353,7 @@ void Pipeline::FinalizerLoop() {
       }
       case Step::Kind::kStreamEnd:
         finalizer_.EndStream(&frames);
+        if (provisional_) provisional_->EndStream();
         Emit(&frames);
         break;
       case Step::Kind::kFlushDone: {
@@ -372,6 +383,15 @@ void Pipeline::Emit(std::vector<tracker::Frame3D>* frames) {
       std::lock_guard<std::mutex> lock(status_mu_);
       ++output_callback_errors_;
     }
+  }
+}
+
+void Pipeline::EmitProvisional(tracker::Frame3D frame) {
+  try {
+    on_provisional_(std::move(frame));
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(status_mu_);
+    ++output_callback_errors_;
   }
 }
 

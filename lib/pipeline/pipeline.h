@@ -59,6 +59,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -74,6 +75,7 @@
 #include "tracker/camera_stage.h"
 #include "tracker/frame_gate.h"
 #include "tracker/options.h"
+#include "tracker/provisional.h"
 #include "tracker/tracker.h"
 #include "tracker/types.h"
 #include "tracker/window_builder.h"
@@ -170,13 +172,17 @@ class Pipeline {
   /// thread). Returns nullptr and sets `why` when `options` or `pipeline_options` are invalid,
   /// the rig has fewer than two cameras, `executor` is null or `on_frame` is empty. `clock`
   /// must outlive the pipeline. The executor is owned and stopped by the pipeline.
+  /// `on_provisional` (optional) receives the provisional frame of every closed frame
+  /// (tracker::ProvisionalEstimator), on the finalizer thread, as soon as the windows before it
+  /// are linked: the same frames, bit for bit, as tracker::Tracker::TakeProvisional.
   static std::unique_ptr<Pipeline> Create(geometry::CameraRig rig,
                                           tracker::TrackerOptions options,
                                           PipelineOptions pipeline_options,
                                           std::unique_ptr<Executor> executor,
                                           const Clock& clock,
                                           FrameCallback on_frame,
-                                          std::string* why);
+                                          std::string* why,
+                                          FrameCallback on_provisional = {});
 
   /// Stop()s.
   ~Pipeline();
@@ -250,7 +256,8 @@ class Pipeline {
            PipelineOptions pipeline_options,
            std::unique_ptr<Executor> executor,
            const Clock& clock,
-           FrameCallback on_frame);
+           FrameCallback on_frame,
+           FrameCallback on_provisional);
   void Start();
   void CameraLoop(int camera_index);
   void SchedulerLoop();
@@ -260,6 +267,7 @@ class Pipeline {
                     const JobOutcome& outcome);
   void FinalizerLoop();
   void Emit(std::vector<tracker::Frame3D>* frames);
+  void EmitProvisional(tracker::Frame3D frame);
 
   // Immutable after construction (read by every thread).
   const geometry::CameraRig rig_;
@@ -267,6 +275,7 @@ class Pipeline {
   const PipelineOptions pipeline_options_;
   const Clock& clock_;
   const FrameCallback on_frame_;
+  const FrameCallback on_provisional_;  // may be empty
   const std::unique_ptr<Executor> executor_;
 
   // Input side (guarded by input_mu_).
@@ -296,6 +305,7 @@ class Pipeline {
 
   // Finalizer thread only.
   tracker::WindowFinalizer finalizer_;
+  std::optional<tracker::ProvisionalEstimator> provisional_;  // with on_provisional_
 
   // Flush completion (guarded by flush_mu_).
   std::mutex flush_mu_;

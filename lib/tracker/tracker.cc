@@ -7,7 +7,8 @@ namespace mvtrack::tracker {
 
 std::unique_ptr<Tracker> Tracker::Create(geometry::CameraRig rig,
                                          TrackerOptions options,
-                                         std::string* why) {
+                                         std::string* why,
+                                         bool provisional) {
   if (!options.Validate(why)) return nullptr;
   if (rig.size() < 2) {
     if (why != nullptr) {
@@ -16,17 +17,18 @@ std::unique_ptr<Tracker> Tracker::Create(geometry::CameraRig rig,
     }
     return nullptr;
   }
-  return std::unique_ptr<Tracker>(new Tracker(std::move(rig), std::move(options)));
+  return std::unique_ptr<Tracker>(new Tracker(std::move(rig), std::move(options), provisional));
 }
 
-Tracker::Tracker(geometry::CameraRig rig, TrackerOptions options)
+Tracker::Tracker(geometry::CameraRig rig, TrackerOptions options, bool provisional)
     : rig_(std::move(rig)),
       options_(std::move(options)),
       num_points_(NumPoints(options_)),
       gate_(rig_, options_),
-      builder_(rig_, options_),
+      builder_(rig_, options_, /*keep_frame_views=*/provisional),
       workspace_(options_.triangulation),
       finalizer_(rig_, options_) {
+  if (provisional) provisional_.emplace(rig_, options_);
   cameras_.reserve(static_cast<std::size_t>(rig_.size()));
   for (int i = 0; i < rig_.size(); ++i) cameras_.emplace_back(rig_.camera(i), i, options_);
   gallery_memory_ = GalleryMemory(cameras_.size());
@@ -82,13 +84,24 @@ std::vector<Frame3D> Tracker::Flush() {
   return out;
 }
 
+std::vector<Frame3D> Tracker::TakeProvisional() {
+  std::vector<Frame3D> out;
+  out.swap(provisional_frames_);
+  return out;
+}
+
 void Tracker::RunOutputs(std::vector<BuilderOutput>* outputs, std::vector<Frame3D>* finalized) {
   for (BuilderOutput& output : *outputs) {
     if (const ClosedFrame* closed = std::get_if<ClosedFrame>(&output)) {
       finalizer_.AddClosedFrame(*closed);
+      if (provisional_) {
+        provisional_frames_.push_back(
+            provisional_->Estimate(closed->frame, closed->utime, closed->views));
+      }
     } else if (WindowJob* job = std::get_if<WindowJob>(&output)) {
       WindowResult result = ProcessWindowJob(rig_, options_, *job, &workspace_);
       linking::LinkResult link = finalizer_.Finalize(result, finalized);
+      if (provisional_) provisional_->OnLinked(finalizer_.linker());
       stats_.windows_processed = finalizer_.counters().windows_processed;
       stats_.tracks_born = finalizer_.counters().tracks_born;
       stats_.tracks_revived = finalizer_.counters().tracks_revived;
@@ -105,6 +118,7 @@ void Tracker::RunOutputs(std::vector<BuilderOutput>* outputs, std::vector<Frame3
       last_window_ = std::move(w);
     } else {
       finalizer_.EndStream(finalized);
+      if (provisional_) provisional_->EndStream();
     }
   }
   stats_.frames_finalized = finalizer_.counters().frames_finalized;

@@ -31,6 +31,7 @@
 #include "tracker/camera_stage.h"
 #include "tracker/frame_gate.h"
 #include "tracker/options.h"
+#include "tracker/provisional.h"
 #include "tracker/types.h"
 #include "tracker/window_builder.h"
 #include "tracker/window_finalizer.h"
@@ -110,9 +111,12 @@ class Tracker {
  public:
   /// Returns nullptr and sets `why` when the options are invalid or the rig has fewer than two
   /// cameras (a single camera cannot triangulate anything).
+  /// With `provisional`, every closed frame also gets a provisional frame (ProvisionalEstimator,
+  /// taken with TakeProvisional), estimated after the windows linked before it.
   static std::unique_ptr<Tracker> Create(geometry::CameraRig rig,
                                          TrackerOptions options,
-                                         std::string* why);
+                                         std::string* why,
+                                         bool provisional = false);
 
   /// Adds one camera's detections for one frame. A frame is collected until a camera-frame of
   /// a later frame arrives; then it is closed, and windows that became complete are processed.
@@ -122,6 +126,10 @@ class Tracker {
   /// returns every frame not yet finalized. The tracker can be fed again afterwards (a new
   /// window grid starts; track ids keep increasing).
   std::vector<Frame3D> Flush();
+
+  /// The provisional frames of the frames closed since the previous call, in increasing frame
+  /// order (empty unless made with `provisional`).
+  std::vector<Frame3D> TakeProvisional();
 
   /// Cumulative counters.
   const TrackerStats& stats() const { return stats_; }
@@ -137,7 +145,7 @@ class Tracker {
   const std::optional<WindowOutput>& last_window() const { return last_window_; }
 
  private:
-  Tracker(geometry::CameraRig rig, TrackerOptions options);
+  Tracker(geometry::CameraRig rig, TrackerOptions options, bool provisional);
 
   // Applies the builder's outputs in order: closed frames and stream ends to the finalizer,
   // window jobs through ProcessWindowJob and then the finalizer.
@@ -151,6 +159,8 @@ class Tracker {
   WindowBuilder builder_;
   WindowWorkspace workspace_;
   WindowFinalizer finalizer_;
+  std::optional<ProvisionalEstimator> provisional_;  // when made with `provisional`
+  std::vector<Frame3D> provisional_frames_;          // not taken yet
   std::optional<WindowOutput> last_window_;
   TrackerStats stats_;
   GalleryMemory gallery_memory_;

@@ -8,11 +8,14 @@
 
 namespace mvtrack::tracker {
 
-WindowBuilder::WindowBuilder(const geometry::CameraRig& rig, const TrackerOptions& options)
+WindowBuilder::WindowBuilder(const geometry::CameraRig& rig,
+                             const TrackerOptions& options,
+                             bool keep_frame_views)
     : options_(options),
       window_size_(options.window_size),
       window_step_(options.window_step),
-      min_tracklet_length_(options.min_tracklet_length) {
+      min_tracklet_length_(options.min_tracklet_length),
+      keep_frame_views_(keep_frame_views) {
   for (int i = 0; i < rig.size(); ++i) camera_ids_.push_back(rig.camera(i).id);
   tracks_.resize(camera_ids_.size());
 }
@@ -64,6 +67,8 @@ void WindowBuilder::Add(const FrameEvents& events,
   open_utime_ = std::min(open_utime_, frame.utime);
   auto& camera_tracks = tracks_[static_cast<std::size_t>(frame.camera_index)];
   for (auto& [track_id, observation] : frame.observations) {
+    if (keep_frame_views_)
+      open_views_.push_back(FrameView{frame.camera_index, track_id, observation});
     camera_tracks[track_id].push_back(TimedObservation{frame.frame, std::move(observation)});
   }
 }
@@ -72,7 +77,8 @@ void WindowBuilder::Flush(std::vector<BuilderOutput>* out) {
   MVTRACK_CHECK(out != nullptr);
   if (open_frame_) {
     // Closed without the non-flushing pass: at a flush every window is emitted by EndStream.
-    out->push_back(ClosedFrame{*open_frame_, open_utime_});
+    out->push_back(ClosedFrame{*open_frame_, open_utime_, std::move(open_views_)});
+    open_views_.clear();
     RememberClosed(*open_frame_, open_utime_);
     last_closed_frame_ = *open_frame_;
     open_frame_.reset();
@@ -82,7 +88,8 @@ void WindowBuilder::Flush(std::vector<BuilderOutput>* out) {
 
 void WindowBuilder::CloseOpenFrame(std::vector<BuilderOutput>* out) {
   const FrameIndex f = *open_frame_;
-  out->push_back(ClosedFrame{f, open_utime_});
+  out->push_back(ClosedFrame{f, open_utime_, std::move(open_views_)});
+  open_views_.clear();
   RememberClosed(f, open_utime_);
   last_closed_frame_ = f;
   open_frame_.reset();

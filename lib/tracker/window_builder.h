@@ -21,6 +21,7 @@
 #include "tracker/frame_gate.h"
 #include "tracker/frame_period.h"
 #include "tracker/options.h"
+#include "tracker/provisional.h"
 #include "tracker/window_job.h"
 
 namespace mvtrack::tracker {
@@ -29,6 +30,9 @@ namespace mvtrack::tracker {
 struct ClosedFrame {
   FrameIndex frame = 0;  ///< the closed frame
   Utime utime = 0;       ///< the smallest utime among its camera-frames
+  /// Every camera's observations of its 2D tracks in this frame (for the provisional layer,
+  /// ProvisionalEstimator); empty unless the builder was made with keep_frame_views.
+  std::vector<FrameView> views;
 };
 
 /// The stream ended (re-anchor or flush): every closed frame not yet output is final now.
@@ -56,7 +60,10 @@ using BuilderOutput = std::variant<ClosedFrame, WindowJob, StreamEnd>;
 class WindowBuilder {
  public:
   /// `options` must be valid (checked by the caller: Tracker::Create / Pipeline::Create).
-  WindowBuilder(const geometry::CameraRig& rig, const TrackerOptions& options);
+  /// `keep_frame_views`: every ClosedFrame carries its frame's observations (ClosedFrame::views).
+  WindowBuilder(const geometry::CameraRig& rig,
+                const TrackerOptions& options,
+                bool keep_frame_views = false);
 
   /// Applies one admitted camera-frame: first the frame-sequence `events` the FrameGate decided
   /// for it (close the open frame, re-anchor, open its frame), emitting whatever they complete,
@@ -110,6 +117,8 @@ class WindowBuilder {
   // Frame being collected.
   std::optional<FrameIndex> open_frame_;
   Utime open_utime_ = 0;
+  bool keep_frame_views_ = false;
+  std::vector<FrameView> open_views_;  // keep_frame_views_: the open frame's observations
 
   // Window grid.
   std::optional<FrameIndex> grid_origin_;  // F0

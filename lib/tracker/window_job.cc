@@ -505,20 +505,13 @@ std::vector<core::Tracklet3D> MonocularTracklets(const geometry::CameraRig& rig,
                                                  const TrackerOptions& options,
                                                  const WindowJob& job,
                                                  const std::vector<core::Tracklet3D>& persons) {
+  if (options.box_point == BoxPoint::kCenter) return {};
   std::vector<char> used(job.tracklets.size(), 0);
   for (const core::Tracklet3D& person : persons) {
     for (const int i : person.source_tracklets) used[static_cast<std::size_t>(i)] = 1;
   }
-  // The box's bottom among an observation's points (BoxPoint::kCenter has none).
-  std::size_t bottom = 0;
-  if (options.box_point == BoxPoint::kCenterEnds) {
-    bottom = static_cast<std::size_t>(kBoxBottomPoint);
-  } else if (options.box_point != BoxPoint::kBottomCenter) {
-    return {};
-  }
   const int num_points = NumPoints(options);
   const double height = options.ground_height_m + kMonocularCenterHeightM;
-  const double min_sine = std::sin(options.monocular_min_elevation_deg * std::numbers::pi / 180.0);
   std::vector<core::Tracklet3D> out;
   for (std::size_t i = 0; i < job.tracklets.size(); ++i) {
     if (used[i] != 0) continue;
@@ -526,20 +519,10 @@ std::vector<core::Tracklet3D> MonocularTracklets(const geometry::CameraRig& rig,
     const std::optional<int> camera = rig.IndexOf(t.camera_id);
     if (!camera) continue;
     const geometry::CameraModel& model = rig.camera(*camera);
-    const Vec3 center = model.CenterInWorld();
     core::Tracklet3D mono;
     for (std::size_t f = 0; f < t.frames.size(); ++f) {
-      const core::Observation2D& obs = t.observations[f];
-      // The feet: the bottom of the box on the person's vertical axis (CameraStage), on the
-      // floor; unknown when the box is cut there.
-      if (obs.points_px.size() <= bottom || (obs.cut_edges & core::kCutBottom) != 0) continue;
-      std::optional<Vec3> p =
-          model.PointOnRayAtHeight(obs.points_px[bottom], options.ground_height_m);
-      if (!p || !p->allFinite()) continue;
-      // A flat ray puts a pixel's error far along the floor (the error grows as 1 / sin^2 of
-      // the angle below the horizontal).
-      const Vec3 ray = *p - center;
-      if (-ray.z() < min_sine * ray.norm()) continue;
+      std::optional<Vec3> p = FeetOnFloor(model, options, t.observations[f]);
+      if (!p) continue;
       p->z() = height;
       mono.frames.push_back(t.frames[f]);
       mono.points.emplace_back(static_cast<std::size_t>(num_points));
@@ -555,6 +538,33 @@ std::vector<core::Tracklet3D> MonocularTracklets(const geometry::CameraRig& rig,
 }
 
 }  // namespace
+
+std::optional<Vec3> FeetOnFloor(const geometry::CameraModel& camera,
+                                const TrackerOptions& options,
+                                const core::Observation2D& observation) {
+  // The box's bottom among an observation's points (BoxPoint::kCenter has none).
+  std::size_t bottom = 0;
+  if (options.mode != InputMode::kBoxes) return std::nullopt;
+  if (options.box_point == BoxPoint::kCenterEnds) {
+    bottom = static_cast<std::size_t>(kBoxBottomPoint);
+  } else if (options.box_point != BoxPoint::kBottomCenter) {
+    return std::nullopt;
+  }
+  // The feet: the bottom of the box on the person's vertical axis (CameraStage), on the floor;
+  // unknown when the box is cut there.
+  if (observation.points_px.size() <= bottom || (observation.cut_edges & core::kCutBottom) != 0) {
+    return std::nullopt;
+  }
+  std::optional<Vec3> p =
+      camera.PointOnRayAtHeight(observation.points_px[bottom], options.ground_height_m);
+  if (!p || !p->allFinite()) return std::nullopt;
+  // A flat ray puts a pixel's error far along the floor (the error grows as 1 / sin^2 of the
+  // angle below the horizontal).
+  const double min_sine = std::sin(options.monocular_min_elevation_deg * std::numbers::pi / 180.0);
+  const Vec3 ray = *p - camera.CenterInWorld();
+  if (-ray.z() < min_sine * ray.norm()) return std::nullopt;
+  return p;
+}
 
 // Sets person->appearance: the normalised mean of its observations' embeddings (those of the
 // first embedding's dimension, in the order of source_tracklets and frames).

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "core/observation.h"
@@ -118,6 +119,16 @@ WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
 WindowResult ProcessWindowJob(const geometry::CameraRig& rig,
                               const TrackerOptions& options,
                               const WindowJob& job);
+
+/// Box mode (box_point bottom_center or center_ends): where the ray through the bottom of the
+/// box (the feet, on the person's vertical axis) meets the floor z = ground_height_m, as seen by
+/// `camera` alone; nullopt in pose mode, for box_point center, for a box cut at the bottom, or
+/// when the ray descends less steeply than monocular_min_elevation_deg (a pixel's error then
+/// moves the point far along the floor). What places a monocular tracklet
+/// (WindowResult::monocular) and a provisional track seen by one camera.
+std::optional<Vec3> FeetOnFloor(const geometry::CameraModel& camera,
+                                const TrackerOptions& options,
+                                const core::Observation2D& observation);
 
 /// One step of ProcessWindowJob, exposed for tests. Box mode: a person seen by two cameras
 /// only is weak evidence (any two rays of one epipolar plane meet, so two cameras' tracklets

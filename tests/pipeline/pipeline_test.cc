@@ -88,15 +88,17 @@ tracker::TrackerOptions PoseOptions() {
 
 struct RunOutput {
   std::vector<tracker::Frame3D> frames;
+  std::vector<tracker::Frame3D> provisional;        // with `provisional` only
   std::vector<tracker::FrameRejection> rejections;  // one per camera-frame input
   tracker::TrackerStats stats;
 };
 
 RunOutput RunTracker(const sim::Scene& scene,
                      const tracker::TrackerOptions& options,
-                     const std::vector<Input>& input) {
+                     const std::vector<Input>& input,
+                     bool provisional = false) {
   std::string why;
-  auto t = tracker::Tracker::Create(geometry::CameraRig(scene.cameras), options, &why);
+  auto t = tracker::Tracker::Create(geometry::CameraRig(scene.cameras), options, &why, provisional);
   INFO(why);
   REQUIRE(t);
   RunOutput out;
@@ -110,6 +112,7 @@ RunOutput RunTracker(const sim::Scene& scene,
     for (auto& f : r.finalized) out.frames.push_back(std::move(f));
   }
   for (auto& f : t->Flush()) out.frames.push_back(std::move(f));
+  out.provisional = t->TakeProvisional();
   out.stats = t->stats();
   return out;
 }
@@ -118,10 +121,17 @@ RunOutput RunTracker(const sim::Scene& scene,
 struct Collector {
   std::mutex mu;
   std::vector<tracker::Frame3D> frames;
+  std::vector<tracker::Frame3D> provisional;
   Pipeline::FrameCallback Callback() {
     return [this](tracker::Frame3D f) {
       std::lock_guard<std::mutex> lock(mu);
       frames.push_back(std::move(f));
+    };
+  }
+  Pipeline::FrameCallback ProvisionalCallback() {
+    return [this](tracker::Frame3D f) {
+      std::lock_guard<std::mutex> lock(mu);
+      provisional.push_back(std::move(f));
     };
   }
 };
@@ -131,15 +141,18 @@ std::unique_ptr<Pipeline> MakePipeline(const sim::Scene& scene,
                                        const PipelineOptions& pipeline_options,
                                        std::unique_ptr<Executor> executor,
                                        const Clock& clock,
-                                       Collector* collector) {
+                                       Collector* collector,
+                                       bool provisional = false) {
   std::string why;
-  auto p = Pipeline::Create(geometry::CameraRig(scene.cameras),
-                            options,
-                            pipeline_options,
-                            std::move(executor),
-                            clock,
-                            collector->Callback(),
-                            &why);
+  auto p =
+      Pipeline::Create(geometry::CameraRig(scene.cameras),
+                       options,
+                       pipeline_options,
+                       std::move(executor),
+                       clock,
+                       collector->Callback(),
+                       &why,
+                       provisional ? collector->ProvisionalCallback() : Pipeline::FrameCallback());
   INFO(why);
   REQUIRE(p);
   return p;
@@ -154,10 +167,12 @@ PipelineRun RunPipeline(const sim::Scene& scene,
                         const tracker::TrackerOptions& options,
                         const PipelineOptions& pipeline_options,
                         std::unique_ptr<Executor> executor,
-                        const std::vector<Input>& input) {
+                        const std::vector<Input>& input,
+                        bool provisional = false) {
   ManualClock clock;
   Collector collector;
-  auto p = MakePipeline(scene, options, pipeline_options, std::move(executor), clock, &collector);
+  auto p = MakePipeline(
+      scene, options, pipeline_options, std::move(executor), clock, &collector, provisional);
   PipelineRun run;
   for (const Input& in : input) {
     if (in.flush) {
@@ -172,6 +187,7 @@ PipelineRun RunPipeline(const sim::Scene& scene,
   p->Stop();
   run.status = p->Status();
   run.output.frames = std::move(collector.frames);
+  run.output.provisional = std::move(collector.provisional);
   run.output.stats = run.status.tracker;
   return run;
 }
@@ -228,6 +244,38 @@ PipelineOptions LosslessTiny() {
   o.reorder_capacity = 3;
   o.finalizer_queue_capacity = 2;
   return o;
+}
+
+// The provisional layer (tracker::ProvisionalEstimator) is made in the order of the builder's
+// output on both, so it is identical too, and asking for it changes nothing in the final output.
+TEST_CASE("provisional layer: pipeline = Tracker at any worker count, final output unchanged",
+          "[threads][pipeline]") {
+  const RunOutput expected =
+      RunTracker(BigScene(), PoseOptions(), IrregularInput(BigScene()), /*provisional=*/true);
+  REQUIRE(testing::FirstDifference(Reference().frames, expected.frames).empty());
+  // One provisional frame per closed frame, in increasing order within each stream; tracks in
+  // most of them.
+  REQUIRE(expected.provisional.size() >= expected.frames.size());
+  std::size_t with_tracks = 0;
+  for (const tracker::Frame3D& f : expected.provisional) with_tracks += f.tracks.empty() ? 0 : 1;
+  INFO(with_tracks << " of " << expected.provisional.size() << " provisional frames with tracks");
+  CHECK(with_tracks * 10 >= expected.provisional.size() * 6);  // each stream starts empty
+  for (const int workers : {0, 2, 8}) {
+    INFO("workers " << workers);
+    const PipelineRun run = RunPipeline(BigScene(),
+                                        PoseOptions(),
+                                        workers == 8 ? LosslessTiny() : Lossless(),
+                                        MakeExecutor(workers),
+                                        IrregularInput(BigScene()),
+                                        /*provisional=*/true);
+    const std::string diff = testing::FirstDifference(expected.frames, run.output.frames);
+    INFO(diff);
+    CHECK(diff.empty());
+    const std::string provisional_diff =
+        testing::FirstDifference(expected.provisional, run.output.provisional);
+    INFO(provisional_diff);
+    CHECK(provisional_diff.empty());
+  }
 }
 
 TEST_CASE("pipeline with InlineExecutor = Tracker, bit for bit", "[threads][pipeline]") {

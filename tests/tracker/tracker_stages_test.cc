@@ -419,7 +419,7 @@ TEST_CASE("WindowFinalizer bridges a gap that the person's duplicate tracklet en
           "[unit][tracker]") {
   tracker::TrackerOptions options;  // box mode, bridge_max_gap_s 0.6 (18 frames at 30 fps)
   tracker::WindowFinalizer finalizer(geometry::CameraRig(), options);
-  for (FrameIndex f = 0; f < 50; ++f) finalizer.AddClosedFrame({f, 1000 * f});
+  for (FrameIndex f = 0; f < 50; ++f) finalizer.AddClosedFrame({f, 1000 * f, {}});
   std::vector<tracker::Frame3D> frames;
   tracker::WindowResult w0 = WindowOf(0, 0, 0, 25);
   w0.persons = {PersonAt(0.0, FrameRange(0, 29), {1, 2})};

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/layer_agreement.h"
 #include "formats/tracks_io.h"
 #include "mvtrack/cli.h"
 
@@ -135,6 +136,40 @@ std::string Source(const formats::TrackFile& f, const formats::TrackFileFrame& f
          std::to_string(frame.source);
 }
 
+// The footprints of a track file as an evaluation sequence.
+eval::EvalSequence Footprints(const formats::TrackFile& file) {
+  eval::EvalSequence seq;
+  for (const formats::TrackFileFrame& f : file.frames) {
+    eval::EvalFrame frame;
+    frame.frame = f.frame.frame;
+    for (const tracker::Track3D& t : f.frame.tracks) {
+      frame.objects.push_back(eval::EvalObject{t.id, t.position, {}});
+    }
+    seq.push_back(std::move(frame));
+  }
+  return seq;
+}
+
+// --layers: B is a provisional layer of the run whose final output is A.
+int CompareLayerFiles(const formats::TrackFile& a, const formats::TrackFile& b) {
+  const eval::LayerAgreement g = eval::CompareLayers(Footprints(a), Footprints(b));
+  std::cout << "A (final): " << a.Describe() << "\n";
+  std::cout << "B (provisional): " << b.Describe() << "\n";
+  std::cout << "track-frames: " << g.provisional_track_frames << " in B, " << g.final_track_frames
+            << " in A\n";
+  std::cout << "B's ids that A has at the same frame: " << g.same_id << " of "
+            << g.provisional_track_frames << " (" << Fixed(100.0 * g.same_id_fraction(), 2)
+            << " %)\n";
+  std::cout << "A's track-frames B has under the same id: " << g.final_covered << " of "
+            << g.final_track_frames << " (" << Fixed(100.0 * g.coverage(), 2) << " %)\n";
+  if (g.same_id > 0) {
+    std::cout << "footprint distance over those: median " << Fixed(g.median_distance_m, 3)
+              << " m, p90 " << Fixed(g.p90_distance_m, 3) << " m, max "
+              << Fixed(g.max_distance_m, 3) << " m\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int RunDiff(int argc, char** argv) {
@@ -145,19 +180,26 @@ int RunDiff(int argc, char** argv) {
               "metres: 0 compares the canonical JSON lines byte for byte; > 0 lets every "
               "position and joint differ by up to this distance (utime, layout, track ids and "
               "missing joints must still agree)",
-              "0");
-  if (!args.Parse(argc,
-                  argv,
-                  "mvtrack diff A B [--tolerance M]",
-                  "Compares two track outputs frame by frame (frames are matched by frame index;\n"
-                  "either file may be canonical tracks JSONL or an LCM log of tracks3d_t). Prints\n"
-                  "the first differing frame with both canonical lines, what differs in it, and a\n"
-                  "summary: frames only in A, only in B, differing frames, and the largest\n"
-                  "distance between corresponding points (to choose a tolerance). Note that an\n"
-                  "LCM log stores floats, so a log and a JSONL file of the same run can differ in\n"
-                  "the last (0.1 mm) digit: compare them with a tolerance such as 0.001.\n\n"
-                  "Exit status: 0 identical (within the tolerance), 1 different, 2 usage error or\n"
-                  "unreadable input.")) {
+              "0")
+      .Flag("layers",
+            "B is the provisional layer of the run whose final output is A (mvtrack replay "
+            "--jsonl A --provisional-jsonl B): report how many of B's track-frames carry an id "
+            "A has at that frame, how many of A's B covers, and how far apart the footprints are");
+  if (!args.Parse(
+          argc,
+          argv,
+          "mvtrack diff A B [--tolerance M | --layers]",
+          "Compares two track outputs frame by frame (frames are matched by frame index;\n"
+          "either file may be canonical tracks JSONL or an LCM log of tracks3d_t). Prints\n"
+          "the first differing frame with both canonical lines, what differs in it, and a\n"
+          "summary: frames only in A, only in B, differing frames, and the largest\n"
+          "distance between corresponding points (to choose a tolerance). Note that an\n"
+          "LCM log stores floats, so a log and a JSONL file of the same run can differ in\n"
+          "the last (0.1 mm) digit: compare them with a tolerance such as 0.001.\n\n"
+          "With --layers it measures instead how a provisional layer agrees with its final\n"
+          "output (exit 0 after the report).\n\n"
+          "Exit status: 0 identical (within the tolerance), 1 different, 2 usage error or\n"
+          "unreadable input.")) {
     return 0;
   }
   const double tolerance = args.GetDouble("tolerance");
@@ -171,6 +213,10 @@ int RunDiff(int argc, char** argv) {
   } catch (const formats::TrackFileError& e) {
     std::cerr << "mvtrack diff: " << e.what() << "\n";
     return 2;
+  }
+  if (args.Has("layers")) {
+    if (args.Has("tolerance")) throw UsageError("--layers and --tolerance exclude each other");
+    return CompareLayerFiles(a, b);
   }
 
   std::map<FrameIndex, const formats::TrackFileFrame*> in_a;

@@ -199,13 +199,16 @@ int RunReplay(int argc, char** argv) {
               "0")
       .Option("out", "write the tracks as tracks3d_t on MVTRACK_TRACKS to this LCM log")
       .Option("jsonl", "write the tracks as canonical JSON lines to this file ('-': stdout)")
+      .Option("provisional-jsonl",
+              "also write the provisional layer (each frame's tracks as soon as the frame is "
+              "closed, as the daemon publishes them live) as canonical JSON lines to this file")
       .Flag("quiet", "no progress line on stderr");
   if (!args.Parse(
           argc,
           argv,
           "mvtrack replay --calibration CAL.yaml [--config OPTIONS.yaml] "
           "[--mode boxes|poses] [--layout NAME] [--threads N] [--out TRACKS.lcmlog] "
-          "[--jsonl TRACKS.jsonl] [--quiet] INPUT.lcmlog",
+          "[--jsonl TRACKS.jsonl] [--provisional-jsonl NOW.jsonl] [--quiet] INPUT.lcmlog",
           "Tracks a recorded detections log offline, deterministically: the events are read\n"
           "in log order, decoded with the safe decoder and fed to the threaded pipeline with\n"
           "lossless queues, so the output depends only on the log and the options (never on\n"
@@ -214,7 +217,10 @@ int RunReplay(int argc, char** argv) {
           "truncated or damaged log is tracked up to the damage.\n\n"
           "Every finalized frame is written as tracks3d_t (event timestamp and publish_utime\n"
           "= the frame's capture utime, latency_us = 0) and/or as one canonical JSON line\n"
-          "(at least one of --out and --jsonl).\n"
+          "(at least one of --out and --jsonl). --provisional-jsonl writes the provisional\n"
+          "layer as well: every closed frame's confirmed tracks placed from that frame's 2D\n"
+          "tracks with the association of the windows linked before it (docs/DECISIONS.md\n"
+          "\"The provisional layer\"), identical at any --threads.\n"
           "The decoded detections are held in memory while tracking, so the reported speed\n"
           "measures tracking only (from the first camera-frame submitted to the end of the\n"
           "final flush; reading, decoding and writing excluded).\n\n"
@@ -238,6 +244,18 @@ int RunReplay(int argc, char** argv) {
   const std::string jsonl_path = args.Get("jsonl");
   if (args.Has("out") && out_path.empty()) throw UsageError("--out needs a file name");
   if (args.Has("jsonl") && jsonl_path.empty()) throw UsageError("--jsonl needs a file name");
+  const std::string provisional_path = args.Get("provisional-jsonl");
+  if (args.Has("provisional-jsonl") && (provisional_path.empty() || provisional_path == "-")) {
+    throw UsageError("--provisional-jsonl needs a file name");
+  }
+  for (const std::string* other : {&input_path, &out_path, &jsonl_path}) {
+    if (!provisional_path.empty() && !other->empty() && SamePath(provisional_path, *other)) {
+      throw UsageError("--provisional-jsonl names the same file as " +
+                       std::string(other == &input_path ? "the input"
+                                   : other == &out_path ? "--out"
+                                                        : "--jsonl"));
+    }
+  }
   if (!out_path.empty() && SamePath(out_path, input_path)) {
     throw UsageError("--out would overwrite the input " + input_path);
   }
@@ -300,6 +318,14 @@ int RunReplay(int argc, char** argv) {
     if (!jsonl_file) throw std::runtime_error(jsonl_path + ": cannot open for writing");
     jsonl = &jsonl_file;
   }
+  std::ofstream provisional_file;
+  if (!provisional_path.empty()) {
+    provisional_file.open(provisional_path, std::ios::binary | std::ios::trunc);
+    if (!provisional_file) {
+      throw std::runtime_error(provisional_path + ": cannot open for writing");
+    }
+  }
+  const bool want_provisional = !provisional_path.empty();
 
   Progress progress(!args.Has("quiet"));
   const auto read_start = Clock::now();
@@ -349,6 +375,7 @@ int RunReplay(int argc, char** argv) {
   // output is identical (tools/replay_threads, service tests). Frames are collected in memory.
   std::mutex frames_mu;
   std::vector<tracker::Frame3D> frames;  // guarded by frames_mu (the pipeline's finalizer writes)
+  std::vector<tracker::Frame3D> provisional;  // likewise
   std::atomic<std::int64_t> frames_out{0};
   std::int64_t printed_rejections = 0;
   auto rejected = [&](CameraId camera,
@@ -374,11 +401,15 @@ int RunReplay(int argc, char** argv) {
   pipeline::PipelineStatus status;
   const auto track_start = Clock::now();
   if (threads == 0) {
-    std::unique_ptr<tracker::Tracker> inline_tracker = tracker::Tracker::Create(rig, options, &why);
+    std::unique_ptr<tracker::Tracker> inline_tracker =
+        tracker::Tracker::Create(rig, options, &why, want_provisional);
     if (!inline_tracker) throw std::runtime_error("tracker: " + why);
     auto take = [&](std::vector<tracker::Frame3D>* finalized) {
       frames_out.fetch_add(static_cast<std::int64_t>(finalized->size()));
       for (tracker::Frame3D& f : *finalized) frames.push_back(std::move(f));
+      for (tracker::Frame3D& f : inline_tracker->TakeProvisional()) {
+        provisional.push_back(std::move(f));
+      }
     };
     for (std::size_t i = 0; i < num_camera_frames; ++i) {
       report_progress(i);
@@ -410,7 +441,12 @@ int RunReplay(int argc, char** argv) {
           frames.push_back(std::move(frame));
           frames_out.fetch_add(1, std::memory_order_relaxed);
         },
-        &why);
+        &why,
+        want_provisional ? pipeline::Pipeline::FrameCallback([&](tracker::Frame3D frame) {
+          std::lock_guard<std::mutex> lock(frames_mu);
+          provisional.push_back(std::move(frame));
+        })
+                         : pipeline::Pipeline::FrameCallback());
     if (!pipeline) throw std::runtime_error("pipeline: " + why);
     for (std::size_t i = 0; i < num_camera_frames; ++i) {
       report_progress(i);
@@ -457,6 +493,15 @@ int RunReplay(int argc, char** argv) {
   if (jsonl_file.is_open()) {
     jsonl_file.close();
     if (!jsonl_file) throw std::runtime_error(jsonl_path + ": write error");
+  }
+  std::int64_t provisional_track_frames = 0;
+  if (provisional_file.is_open()) {
+    for (const tracker::Frame3D& f : provisional) {
+      provisional_track_frames += static_cast<std::int64_t>(f.tracks.size());
+      provisional_file << transport::TracksJsonLine(f, output_layout);
+    }
+    provisional_file.close();
+    if (!provisional_file) throw std::runtime_error(provisional_path + ": write error");
   }
   const double write_seconds = SecondsSince(write_start);
 
@@ -513,6 +558,10 @@ int RunReplay(int argc, char** argv) {
     report << "  wrote " << out_path << " (LCM log, " << frames.size() << " event(s))\n";
   if (!jsonl_path.empty() && !jsonl_to_stdout) {
     report << "  wrote " << jsonl_path << " (JSONL, " << frames.size() << " line(s))\n";
+  }
+  if (!provisional_path.empty()) {
+    report << "  wrote " << provisional_path << " (provisional layer, JSONL, " << provisional.size()
+           << " line(s), " << provisional_track_frames << " track-frame(s))\n";
   }
   if (status.windows_failed > 0 || status.output_callback_errors > 0) return 1;
   // A run that could not do its job fails (exit 1), saying why.
