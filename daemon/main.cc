@@ -320,6 +320,14 @@ void LogSummary(const mvtrack::service::ServiceCounters& c, double seconds) {
       e2e_max,
       samples,
       c.frames_published_by_flush);
+  std::vector<std::int64_t> now_e2e = c.provisional_receive_to_publish_us;
+  const std::int64_t now_max =
+      now_e2e.empty() ? 0 : *std::max_element(now_e2e.begin(), now_e2e.end());
+  spdlog::info("summary: provisional published={} receive_to_publish_us p50={} p99={} max={}",
+               c.provisional_published,
+               mvtrack::service::NearestRankPercentile(&now_e2e, 0.5),
+               mvtrack::service::NearestRankPercentile(&now_e2e, 0.99),
+               now_max);
   spdlog::info(
       "summary: published_frames={} status_messages={} windows={} windows_failed={} "
       "tracks_born={} max_latency_us={} reloads={} idle_flushes={} suppressed_warnings={} "

@@ -152,10 +152,14 @@ void ParseInput(const MapRef& root, DaemonConfig* c) {
 void ParseOutput(const MapRef& root, DaemonConfig* c) {
   const std::optional<NodeRef> node = root.Find("output");
   if (!node) return;
-  const MapRef m(
-      *node,
-      {"lcm_url", "tracks_channel", "status_channel", "status_period_s", "latency_limit_us"},
-      true);
+  const MapRef m(*node,
+                 {"lcm_url",
+                  "tracks_channel",
+                  "status_channel",
+                  "provisional_channel",
+                  "status_period_s",
+                  "latency_limit_us"},
+                 true);
   if (auto v = m.Find("lcm_url")) {
     c->output_url = GetString(*v, /*allow_empty=*/true);
     if (!c->output_url.empty()) CheckUrl(*v, c->output_url);
@@ -169,6 +173,19 @@ void ParseOutput(const MapRef& root, DaemonConfig* c) {
     CheckChannelName(*v, c->status_channel);
     if (c->status_channel == c->tracks_channel)
       v->Fail("status and tracks need different channels");
+  }
+  if (auto v = m.Find("provisional_channel")) {
+    c->provisional_channel = GetString(*v, /*allow_empty=*/true);
+    if (!c->provisional_channel.empty()) CheckChannelName(*v, c->provisional_channel);
+  }
+  if (!c->provisional_channel.empty() && (c->provisional_channel == c->tracks_channel ||
+                                          c->provisional_channel == c->status_channel)) {
+    const std::optional<NodeRef> at = m.Find("provisional_channel");
+    (at ? *at : *node)
+        .Fail(
+            "the provisional layer needs its own channel, not the tracks or status "
+            "channel (\"" +
+            c->provisional_channel + "\")");
   }
   if (auto v = m.Find("status_period_s")) {
     c->status_period_s = GetDouble(*v, DoubleRange::Closed(0.05, 3600.0));
@@ -187,7 +204,8 @@ void ParseAnalytics(const MapRef& root, const std::string& base_dir, DaemonConfi
       c->site = config::LoadSiteFile(c->site_path);
     }
   }
-  const std::vector<std::string> taken = {c->tracks_channel, c->status_channel};
+  const std::vector<std::string> taken = {
+      c->tracks_channel, c->status_channel, c->provisional_channel};
   if (auto v = m.Find("events_channel")) {
     c->analytics_events_channel = GetString(*v);
     CheckChannelName(*v, c->analytics_events_channel);
@@ -426,6 +444,7 @@ std::string DaemonConfigToYaml(const DaemonConfig& c) {
   line("  lcm_url: " + QuoteString(c.output_url));
   line("  tracks_channel: " + QuoteString(c.tracks_channel));
   line("  status_channel: " + QuoteString(c.status_channel));
+  line("  provisional_channel: " + QuoteString(c.provisional_channel));
   line("  status_period_s: " + FormatDouble(c.status_period_s));
   line("  latency_limit_us: " + std::to_string(c.latency_limit_us));
   line("analytics:");

@@ -133,6 +133,9 @@ struct DaemonConfig {
   std::string tracks_channel = "MVTRACK_TRACKS";
   /// output.status_channel.
   std::string status_channel = "MVTRACK_STATUS";
+  /// output.provisional_channel: where the provisional layer goes (tracks3d_t with
+  /// LAYER_PROVISIONAL, tracker::ProvisionalEstimator); "" = not computed, not published.
+  std::string provisional_channel = "MVTRACK_TRACKS_NOW";
   /// output.status_period_s: status message period (wall clock), seconds, in [0.05, 3600].
   double status_period_s = 1.0;
   /// output.latency_limit_us: FLAG_LATENCY_HIGH above this p99 processing latency, µs, > 0.

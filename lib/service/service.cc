@@ -58,6 +58,7 @@ std::vector<std::string> RestartOnlyChanges(const DaemonConfig& a, const DaemonC
   check(a.output_url != b.output_url, "output.lcm_url");
   check(a.tracks_channel != b.tracks_channel, "output.tracks_channel");
   check(a.status_channel != b.status_channel, "output.status_channel");
+  check(a.provisional_channel != b.provisional_channel, "output.provisional_channel");
   const SyncOptions& s = a.sync;
   const SyncOptions& t = b.sync;
   check(s.mode != t.mode || s.tolerance_us != t.tolerance_us || s.deadline_us != t.deadline_us ||
@@ -170,7 +171,11 @@ std::unique_ptr<pipeline::Pipeline> Service::MakePipeline(const tracker::Tracker
       std::make_unique<pipeline::ThreadPoolExecutor>(pool),
       steady_clock_,
       [this](tracker::Frame3D frame) { OnFrame(std::move(frame)); },
-      why);
+      why,
+      config_.provisional_channel.empty()
+          ? pipeline::Pipeline::FrameCallback()
+          : pipeline::Pipeline::FrameCallback(
+                [this](tracker::Frame3D frame) { OnProvisional(std::move(frame)); }));
 }
 
 void Service::Warn(const std::string& kind, const std::string& message) {
@@ -398,15 +403,7 @@ void Service::OnFrame(tracker::Frame3D frame) {
     }
     first_receive_us_.erase(first_receive_us_.begin(), first_receive_us_.upper_bound(frame.frame));
   }
-  TrackId3D frame_max_id = 0;
-  for (const tracker::Track3D& t : frame.tracks) frame_max_id = std::max(frame_max_id, t.id);
-  if (frame_max_id >= reserved_end_.load(std::memory_order_acquire)) {
-    // Never publish an id the state does not cover (the control thread extends it earlier).
-    std::string why;
-    if (!ExtendReservation(frame_max_id + 1, &why)) {
-      spdlog::error("cannot extend the track id reservation: {}", why);
-    }
-  }
+  CoverIds(frame);
   const std::vector<std::uint8_t> bytes =
       transport::EncodeTracks(frame, output_layout_, now, latency);
   Publish(config_.tracks_channel, bytes, now);
@@ -424,6 +421,43 @@ void Service::OnFrame(tracker::Frame3D frame) {
     if (t.state != linking::TrackState::kTentative) ++confirmed_tracks_;
     max_published_id_ = std::max(max_published_id_, t.id);
   }
+}
+
+void Service::CoverIds(const tracker::Frame3D& frame) {
+  TrackId3D frame_max_id = 0;
+  for (const tracker::Track3D& t : frame.tracks) frame_max_id = std::max(frame_max_id, t.id);
+  if (frame_max_id >= reserved_end_.load(std::memory_order_acquire)) {
+    // Never publish an id the state does not cover (the control thread extends it earlier).
+    std::string why;
+    if (!ExtendReservation(frame_max_id + 1, &why)) {
+      spdlog::error("cannot extend the track id reservation: {}", why);
+    }
+  }
+}
+
+void Service::OnProvisional(tracker::Frame3D frame) {
+  const std::int64_t now = Now();
+  std::int64_t latency = 0;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    for (tracker::Track3D& t : frame.tracks) t.id += id_offset_;
+    // The frame's release and first receive times stay until its final frame is published.
+    const auto it = release_us_.find(frame.frame);
+    if (it != release_us_.end()) latency = std::max<std::int64_t>(0, now - it->second);
+    const auto first = first_receive_us_.find(frame.frame);
+    if (!flushing_.load(std::memory_order_acquire) && first != first_receive_us_.end() &&
+        counters_.provisional_receive_to_publish_us.size() < kMaxReceiveLatencySamples) {
+      counters_.provisional_receive_to_publish_us.push_back(
+          std::max<std::int64_t>(0, now - first->second));
+    }
+  }
+  CoverIds(frame);
+  const std::vector<std::uint8_t> bytes = transport::EncodeTracks(
+      frame, output_layout_, now, latency, transport::TracksLayer::kProvisional);
+  Publish(config_.provisional_channel, bytes, now);
+  if (hooks_.on_provisional) hooks_.on_provisional(frame, output_layout_);
+  std::lock_guard<std::mutex> lock(mu_);
+  ++counters_.provisional_published;
 }
 
 void Service::Analyse(const tracker::Frame3D& frame, std::int64_t now) {

@@ -63,6 +63,8 @@ struct ServiceHooks {
   /// Also receives every published frame with its track ids as published (for --tracks-jsonl);
   /// called on the finalizer thread. May be empty.
   std::function<void(const tracker::Frame3D& frame, core::KeypointLayoutId layout)> on_frame;
+  /// Likewise for every published provisional frame (output.provisional_channel). May be empty.
+  std::function<void(const tracker::Frame3D& frame, core::KeypointLayoutId layout)> on_provisional;
   /// Wall clock, µs since the Unix epoch (publish_utime, receive times, status period). Null:
   /// an internal pipeline::SystemClock. Must outlive the service.
   const pipeline::Clock* wall_clock = nullptr;
@@ -92,6 +94,7 @@ struct ServiceCounters {
   std::int64_t submitted = 0;                           ///< camera-frames submitted to the pipeline
   std::int64_t gate_rejected = 0;                       ///< rejected by the tracker's FrameGate
   std::int64_t frames_published = 0;                    ///< tracks messages published
+  std::int64_t provisional_published = 0;               ///< provisional tracks messages published
   std::int64_t analytics_events_published = 0;          ///< analytics_event_t published
   std::int64_t site_counts_published = 0;               ///< site_counts_t published
   std::int64_t status_published = 0;                    ///< status messages published
@@ -108,6 +111,8 @@ struct ServiceCounters {
   /// or a log played in real time). Frames output by a flush (end of input, idle flush,
   /// reload, stream restart, stop) are not sampled: their wait is the input's silence.
   std::vector<std::int64_t> receive_to_publish_us;
+  /// The same for the provisional layer (output.provisional_channel), µs.
+  std::vector<std::int64_t> provisional_receive_to_publish_us;
   std::int64_t frames_published_by_flush = 0;  ///< frames published during a flush
   /// Input datagrams the kernel dropped (ServiceHooks::kernel_drops); -1 when not measured.
   std::int64_t kernel_drops = -1;
@@ -191,6 +196,9 @@ class Service {
   // pipeline_->Flush() with flushing_ set (frames it outputs are not latency-sampled).
   void FlushPipeline();
   void OnFrame(tracker::Frame3D frame);
+  void OnProvisional(tracker::Frame3D frame);
+  // Extends the id reservation (if needed) to cover every id of `frame` before it is published.
+  void CoverIds(const tracker::Frame3D& frame);
   // The site analytics of a published frame: its events, and the counts when one changed.
   void Analyse(const tracker::Frame3D& frame, std::int64_t now);
   // Publishes site_counts_t (analytics_mu_ held).

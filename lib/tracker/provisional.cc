@@ -103,7 +103,8 @@ Frame3D ProvisionalEstimator::Estimate(FrameIndex frame,
     t.id = track.id;
     t.age_frames = std::max<FrameIndex>(0, frame - track.first_frame);
     std::optional<std::vector<std::optional<Vec3>>> points;
-    const bool two_cameras = !seen.empty() && seen.front()->camera_index != seen.back()->camera_index;
+    const bool two_cameras =
+        !seen.empty() && seen.front()->camera_index != seen.back()->camera_index;
     if (two_cameras) {
       tracklets_.resize(seen.size());
       for (std::size_t v = 0; v < seen.size(); ++v) {

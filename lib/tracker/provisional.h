@@ -27,7 +27,7 @@ namespace mvtrack::tracker {
 
 /// One camera's observation of one of its 2D tracks at a closed frame.
 struct FrameView {
-  int camera_index = 0;   ///< rig index of the camera
+  int camera_index = 0;    ///< rig index of the camera
   TrackId2D track_id = 0;  ///< the camera's 2D track
   core::Observation2D observation;
 };

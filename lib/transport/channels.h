@@ -27,6 +27,8 @@ inline constexpr char kDetectionsChannelRegex[] = "MVTRACK_DETECTIONS(_[0-9]+)?"
 inline constexpr char kTracksChannel[] = "MVTRACK_TRACKS";
 /// Periodic tracker health (tracker_status_t).
 inline constexpr char kStatusChannel[] = "MVTRACK_STATUS";
+/// Default channel of the provisional layer (tracks3d_t with LAYER_PROVISIONAL).
+inline constexpr char kProvisionalChannel[] = "MVTRACK_TRACKS_NOW";
 
 /// "MVTRACK_DETECTIONS_<camera_id>".
 /// @pre camera_id >= 0 (checked; aborts otherwise).

@@ -25,6 +25,10 @@ bool DecodeLimits::Validate(std::string* why) const {
   return true;
 }
 
+const char* ToString(TracksLayer layer) {
+  return layer == TracksLayer::kProvisional ? "provisional" : "final";
+}
+
 const char* ToString(DecodeStatus status) {
   switch (status) {
     case DecodeStatus::kOk:

@@ -134,6 +134,15 @@ struct WireTrackInfo {
 };
 
 /// A decoded tracks3d_t.
+/// tracks3d_t.layer: the final (windowed) output or the provisional ("now") layer.
+enum class TracksLayer {
+  kFinal,        ///< LAYER_FINAL
+  kProvisional,  ///< LAYER_PROVISIONAL (tracker::ProvisionalEstimator)
+};
+
+/// "final" or "provisional".
+const char* ToString(TracksLayer layer);
+
 struct TracksMessage {
   /// frame, utime and the tracks, in message order (producers sort by ascending id). Per track:
   /// id, position, confidence, cameras (camera_ids), age_frames, state (STATE_ENDED maps to
@@ -146,6 +155,8 @@ struct TracksMessage {
   Utime publish_utime = 0;
   /// tracks3d_t.latency_us, µs.
   std::int64_t latency_us = 0;
+  /// tracks3d_t.layer.
+  TracksLayer layer = TracksLayer::kFinal;
   /// info[i] describes frame.tracks[i].
   std::vector<WireTrackInfo> info;
 };
@@ -162,7 +173,8 @@ struct TracksDecodeResult {
 
 /// Decodes a tracks3d_t from untrusted bytes (same guarantees as DecodeCameraDetections()).
 /// Beyond the structure it checks what the message's own contract makes checkable without
-/// geometry: a known keypoint_layout name ("" = box mode), a state that is one of STATE_*, and
+/// geometry: a layer that is one of LAYER_*, a known keypoint_layout name ("" = box mode), a
+/// state that is one of STATE_*, and
 /// num_joints equal to 0 or to the layout's joint count and num_bones to 0 or its bone count
 /// (always 0 in box mode).
 TracksDecodeResult DecodeTracks(const void* data,
@@ -175,12 +187,14 @@ TracksDecodeResult DecodeTracks(const void* data,
 /// 0: Track3D carries no missed-frame count (the tracker only emits tracks supported in their
 /// window). Joints: a valid joint has confidence 1 (the tracker estimates no per-joint
 /// confidence), an invalid one is (0, 0, 0) with confidence 0 and valid = false. age_frames
-/// saturates to the int32 range; doubles beyond the float range become +-infinity.
+/// saturates to the int32 range; doubles beyond the float range become +-infinity. `layer`:
+/// tracks3d_t.layer.
 /// @pre every track has at most INT16_MAX cameras and joints (checked; aborts otherwise).
 std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
                                        core::KeypointLayoutId layout,
                                        Utime publish_utime,
-                                       std::int64_t latency_us);
+                                       std::int64_t latency_us,
+                                       TracksLayer layer = TracksLayer::kFinal);
 
 /// One camera of a decoded tracker_status_t (the fields of camera_status_t,
 /// lcmtypes/camera_status_t.lcm, with the same units and meaning).

@@ -100,6 +100,16 @@ bool WalkTracks(WireWalker* w, const DecodeLimits& limits) {
   w->Skip("frame", kInt64Bytes);
   w->Skip("publish_utime", kInt64Bytes);
   w->Skip("latency_us", kInt64Bytes);
+  const std::size_t layer_at = w->position();
+  std::int8_t layer = 0;
+  if (!w->ReadInt8("layer", &layer)) return false;
+  if (layer != mvtrack::tracks3d_t::LAYER_FINAL &&
+      layer != mvtrack::tracks3d_t::LAYER_PROVISIONAL) {
+    return w->Fail(DecodeStatus::kMalformed,
+                   "layer " + std::to_string(static_cast<int>(layer)) +
+                       " is not LAYER_FINAL (0) or LAYER_PROVISIONAL (1)",
+                   layer_at);
+  }
   const std::size_t layout_at = w->position();
   std::string_view layout_name;
   if (!w->ReadString("keypoint_layout", limits.max_string, &layout_name)) return false;
@@ -168,6 +178,8 @@ TracksDecodeResult DecodeTracks(const void* data, std::size_t size, const Decode
     out.frame.utime = msg.utime;
     out.publish_utime = msg.publish_utime;
     out.latency_us = msg.latency_us;
+    out.layer = msg.layer == mvtrack::tracks3d_t::LAYER_PROVISIONAL ? TracksLayer::kProvisional
+                                                                    : TracksLayer::kFinal;
     out.layout = LayoutOfName(msg.keypoint_layout).value_or(core::KeypointLayoutId::kNone);
     out.frame.tracks.reserve(msg.tracks.size());
     out.info.reserve(msg.tracks.size());
@@ -208,7 +220,8 @@ TracksDecodeResult DecodeTracks(const void* data, std::size_t size, const Decode
 std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
                                        core::KeypointLayoutId layout,
                                        Utime publish_utime,
-                                       std::int64_t latency_us) {
+                                       std::int64_t latency_us,
+                                       TracksLayer layer) {
   using internal::NarrowToFloat;
   MVTRACK_CHECK_MSG(frame.tracks.size() <= static_cast<std::size_t>(INT32_MAX),
                     "too many tracks for tracks3d_t");
@@ -217,6 +230,8 @@ std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
   msg.frame = frame.frame;
   msg.publish_utime = publish_utime;
   msg.latency_us = latency_us;
+  msg.layer = layer == TracksLayer::kProvisional ? mvtrack::tracks3d_t::LAYER_PROVISIONAL
+                                                 : mvtrack::tracks3d_t::LAYER_FINAL;
   msg.keypoint_layout = layout == core::KeypointLayoutId::kNone
                             ? std::string()
                             : core::GetKeypointLayout(layout).name;

@@ -6,8 +6,9 @@ dump of tests/lcmtypes/sample_messages.h, which DecodeLog.java reproduced) again
 written:
   - detections: the recorded camera_detections_t events are exactly the input log's events
     (INPUT_DUMP), as a multiset of (channel, every field);
-  - tracks: the recorded tracks3d_t events are, in order, the frames of the daemon's
-    --tracks-jsonl (frame, utime, track ids, positions within the JSONL's 4 decimals);
+  - tracks: the recorded final tracks3d_t events (layer 0) are, in order, the frames of the
+    daemon's --tracks-jsonl (frame, utime, track ids, positions within the JSONL's 4 decimals),
+    and as many provisional ones (layer 1) are on MVTRACK_TRACKS_NOW;
   - status: at least one tracker_status_t; version == VERSION; the cameras are the input's;
     per camera, received <= the input's events; last_frame within the input's frames.
 Exit status 1 with the first differences.
@@ -56,7 +57,14 @@ def main():
     per_camera = Counter(int(f["camera_id"]) for c, t, f, _ in inputs if t == "camera_detections_t")
 
     # Tracks.
-    tracks = [f for c, t, f, _ in recorded if t == "tracks3d_t"]
+    tracks = [f for c, t, f, _ in recorded if t == "tracks3d_t" and f["layer"] == "0"]
+    provisional = [f for c, t, f, _ in recorded if t == "tracks3d_t" and f["layer"] == "1"]
+    if len(provisional) != len(frames):
+        errors.append(f"{len(provisional)} provisional tracks3d_t events (layer 1), the JSONL has "
+                      f"{len(frames)} frames")
+    if {c for c, t, f, _ in recorded if t == "tracks3d_t" and f["layer"] == "1"} != {
+            "MVTRACK_TRACKS_NOW"}:
+        errors.append("the provisional layer is not (only) on MVTRACK_TRACKS_NOW")
     if len(tracks) != len(frames) or not frames:
         errors.append(f"{len(tracks)} tracks3d_t events, the JSONL has {len(frames)} frames")
     for f, w in zip(tracks, frames):

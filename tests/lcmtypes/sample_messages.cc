@@ -258,6 +258,7 @@ tracks3d_t MakeTracks3d(std::uint32_t seed, int num_tracks, bool with_joints) {
   msg.utime = kBaseUtime + msg.frame * 40'000;
   msg.publish_utime = msg.utime + 350'000 + gen.UniformInt64(0, 99'999);
   msg.latency_us = gen.UniformInt64(1'000, 60'000);
+  msg.layer = seed % 2 == 0 ? tracks3d_t::LAYER_FINAL : tracks3d_t::LAYER_PROVISIONAL;
   msg.keypoint_layout = with_joints ? "coco17" : "";
   msg.num_tracks = num_tracks;
   constexpr std::int8_t kStates[] = {
@@ -393,6 +394,7 @@ std::string Dump(const tracks3d_t& msg, const std::string& prefix) {
   f.Int("frame", msg.frame);
   f.Int("publish_utime", msg.publish_utime);
   f.Int("latency_us", msg.latency_us);
+  f.Int("layer", msg.layer);
   f.Str("keypoint_layout", msg.keypoint_layout);
   f.Int("num_tracks", msg.num_tracks);
   f.StructArray("tracks", msg.tracks);

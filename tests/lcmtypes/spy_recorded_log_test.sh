@@ -28,7 +28,8 @@ grep -q "status_period_s: 0.05" "$WORK/mvtrackd.yaml" || fail "status_period_s n
 "$DUMP_LOG" "$WORK/sim/detections.lcmlog" "$WORK/input.dump"
 cat "$WORK/channels.txt"
 for want in "MVTRACK_DETECTIONS camera_detections_t" "MVTRACK_DETECTIONS_1 camera_detections_t" \
-            "MVTRACK_TRACKS tracks3d_t" "MVTRACK_STATUS tracker_status_t"; do
+            "MVTRACK_TRACKS tracks3d_t" "MVTRACK_TRACKS_NOW tracks3d_t" \
+            "MVTRACK_STATUS tracker_status_t"; do
   expect_grep "^$want [0-9]+$" "$WORK/channels.txt"
 done
 

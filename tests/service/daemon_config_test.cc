@@ -131,6 +131,12 @@ TEST_CASE("daemon config: errors name the file, line, key and reason", "[unit]")
                Catch::Contains("detections channel"));
     CHECK_THAT(ErrorOf(Minimal("output:\n  status_channel: MVTRACK_TRACKS\n")).reason(),
                Catch::Contains("different channels"));
+    CHECK_THAT(ErrorOf(Minimal("output:\n  provisional_channel: MVTRACK_TRACKS\n")).reason(),
+               Catch::Contains("the provisional layer needs its own channel"));
+    CHECK_THAT(ErrorOf(Minimal("output:\n  tracks_channel: MVTRACK_TRACKS_NOW\n")).reason(),
+               Catch::Contains("the provisional layer needs its own channel"));
+    CHECK(Parse(Minimal()).provisional_channel == "MVTRACK_TRACKS_NOW");
+    CHECK(Parse(Minimal("output:\n  provisional_channel: \"\"\n")).provisional_channel.empty());
     CHECK_THAT(ErrorOf(Minimal("input:\n  lcm_url: \"http://x\"\n")).reason(),
                Catch::Contains("unsupported LCM URL"));
   }

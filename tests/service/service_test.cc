@@ -71,9 +71,11 @@ std::vector<std::uint8_t> Encode(const core::CameraFrame& f) {
 // What a Service published, collected from its hooks (thread-safe).
 struct Sink {
   std::mutex mu;
-  std::vector<std::string> lines;                   // on_frame, canonical JSONL
-  std::vector<transport::TracksMessage> tracks;     // decoded tracks3d_t
-  std::vector<mvtrack::tracker_status_t> statuses;  // decoded tracker_status_t
+  std::vector<std::string> lines;                     // on_frame, canonical JSONL
+  std::vector<transport::TracksMessage> tracks;       // decoded tracks3d_t
+  std::vector<transport::TracksMessage> provisional;  // decoded MVTRACK_TRACKS_NOW
+  std::vector<std::string> provisional_lines;         // on_provisional, canonical JSONL
+  std::vector<mvtrack::tracker_status_t> statuses;    // decoded tracker_status_t
   std::map<std::string, int> channels;
   std::map<std::string, std::vector<std::vector<std::uint8_t>>> other;  // other channels, raw
   int undecodable = 0;  // published messages that did not decode (checked on the test thread)
@@ -92,6 +94,13 @@ struct Sink {
           return;
         }
         tracks.push_back(std::move(r.message));
+      } else if (channel == transport::kProvisionalChannel) {
+        transport::TracksDecodeResult r = transport::DecodeTracks(data.data(), data.size());
+        if (!r.ok()) {
+          ++undecodable;
+          return;
+        }
+        provisional.push_back(std::move(r.message));
       } else if (channel != "MVTRACK_STATUS") {
         other[channel].push_back(data);
       } else {
@@ -108,15 +117,21 @@ struct Sink {
       std::lock_guard<std::mutex> lock(mu);
       lines.push_back(transport::TracksJsonLine(f, layout));
     };
+    h.on_provisional = [this](const tracker::Frame3D& f, core::KeypointLayoutId layout) {
+      std::lock_guard<std::mutex> lock(mu);
+      provisional_lines.push_back(transport::TracksJsonLine(f, layout));
+    };
     return h;
   }
 };
 
-std::vector<std::string> ReferenceLines() {
+// tracker::Tracker's output lines for the scene (`provisional`: its provisional layer's).
+std::vector<std::string> ReferenceLines(bool provisional = false) {
   std::string why;
   tracker::TrackerOptions options;
   options.mode = tracker::InputMode::kBoxes;
-  auto t = tracker::Tracker::Create(geometry::CameraRig(Scene().cameras), options, &why);
+  auto t = tracker::Tracker::Create(
+      geometry::CameraRig(Scene().cameras), options, &why, /*provisional=*/true);
   REQUIRE(t);
   std::vector<std::string> lines;
   for (const auto& cams : Scene().detections) {
@@ -131,6 +146,11 @@ std::vector<std::string> ReferenceLines() {
     }
   }
   for (const tracker::Frame3D& out : t->Flush()) {
+    lines.push_back(transport::TracksJsonLine(out, core::KeypointLayoutId::kNone));
+  }
+  if (!provisional) return lines;
+  lines.clear();
+  for (const tracker::Frame3D& out : t->TakeProvisional()) {
     lines.push_back(transport::TracksJsonLine(out, core::KeypointLayoutId::kNone));
   }
   return lines;
@@ -171,10 +191,42 @@ TEST_CASE("service publishes exactly tracker::Tracker's frames with 1, 2 and 8 w
       CHECK(sink.tracks[i].publish_utime >= Scene().detections[0][0].utime);
     }
     CHECK(c.frames_published == static_cast<std::int64_t>(reference.size()));
+    // The provisional layer on its own channel, flagged, the Tracker's bit for bit.
+    CHECK(sink.provisional_lines == ReferenceLines(/*provisional=*/true));
+    REQUIRE(sink.provisional.size() == reference.size());
+    std::size_t provisional_tracks = 0;
+    for (const transport::TracksMessage& m : sink.provisional) {
+      CHECK(m.layer == transport::TracksLayer::kProvisional);
+      provisional_tracks += m.frame.tracks.size();
+    }
+    CHECK(provisional_tracks > 0);
+    for (const transport::TracksMessage& m : sink.tracks) {
+      CHECK(m.layer == transport::TracksLayer::kFinal);
+    }
+    CHECK(c.provisional_published == static_cast<std::int64_t>(reference.size()));
     CHECK(c.submitted == static_cast<std::int64_t>(3 * reference.size()));
     CHECK(c.pipeline.executor.num_workers == workers);
     CHECK(c.decode_errors == 0);
   }
+}
+
+TEST_CASE("service: output.provisional_channel \"\" computes and publishes no provisional layer",
+          "[unit]") {
+  pipeline::ManualClock clock(Scene().detections[0][0].utime);
+  Sink sink;
+  std::string why;
+  DaemonConfig config = Config(1);
+  config.provisional_channel.clear();
+  std::unique_ptr<Service> s = Service::Create(config, sink.Hooks(&clock), &why);
+  REQUIRE(s);
+  Feed(s.get(), &clock, 0, Scene().detections.size());
+  s->EndOfInput();
+  const ServiceCounters c = s->Counters();
+  s->Stop();
+  CHECK(c.frames_published == static_cast<std::int64_t>(Scene().detections.size()));
+  CHECK(c.provisional_published == 0);
+  CHECK(sink.provisional.empty());
+  CHECK(sink.channels.count(transport::kProvisionalChannel) == 0);
 }
 
 TEST_CASE("service counts bad input and reports it in the status message", "[unit]") {

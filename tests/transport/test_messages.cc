@@ -161,13 +161,13 @@ CameraDetectionsOffsets OffsetsOf(const mvtrack::camera_detections_t& msg) {
 }
 
 Tracks3dOffsets OffsetsOf(const mvtrack::tracks3d_t& msg) {
-  // tracks3d_t: fingerprint(8) utime(8) frame(8) publish_utime(8) latency_us(8) string
-  // keypoint_layout, int32 num_tracks, tracks[]. track3d_t: id(8) state(1) position(24)
+  // tracks3d_t: fingerprint(8) utime(8) frame(8) publish_utime(8) latency_us(8) layer(1)
+  // string keypoint_layout, int32 num_tracks, tracks[]. track3d_t: id(8) state(1) position(24)
   // confidence(4) age_frames(4) missed_frames(4) int16 num_cameras, 4 bytes per camera, int16
   // num_joints, 29 bytes per joint (3 doubles, float, boolean), int16 num_bones, 4 bytes per
   // bone length.
   Tracks3dOffsets out;
-  out.keypoint_layout = 8 + 4 * 8;
+  out.keypoint_layout = 8 + 4 * 8 + 1;
   out.num_tracks = out.keypoint_layout + 4 + msg.keypoint_layout.size() + 1;
   std::size_t pos = out.num_tracks + 4;
   for (const mvtrack::track3d_t& t : msg.tracks) {

@@ -45,6 +45,7 @@ mvtrack::tracks3d_t ReferenceMessage(const tracker::Frame3D& canonical,
   msg.frame = canonical.frame;
   msg.publish_utime = publish_utime;
   msg.latency_us = latency_us;
+  msg.layer = mvtrack::tracks3d_t::LAYER_FINAL;
   msg.keypoint_layout = layout;
   msg.num_tracks = static_cast<std::int32_t>(canonical.tracks.size());
   for (const tracker::Track3D& track : canonical.tracks) {
@@ -180,6 +181,19 @@ TEST_CASE("track structure errors name the track and field", "[unit]") {
   unlimited.max_joints = INT_MAX;
 
   std::vector<std::uint8_t> bytes = good;
+  bytes[offsets.keypoint_layout - 1] = 2;  // layer
+  RequireRejected(bytes, DecodeStatus::kMalformed, "layer 2 is not LAYER_FINAL (0) or");
+  bytes[offsets.keypoint_layout - 1] =
+      static_cast<std::uint8_t>(mvtrack::tracks3d_t::LAYER_PROVISIONAL);
+  const TracksDecodeResult provisional = DecodeTracks(bytes.data(), bytes.size());
+  REQUIRE(provisional.ok());
+  CHECK(provisional.message.layer == TracksLayer::kProvisional);
+  CHECK(DecodeTracks(good.data(), good.size()).message.layer == TracksLayer::kFinal);
+  const std::vector<std::uint8_t> encoded =
+      EncodeTracks(frame, core::KeypointLayoutId::kCoco17, 0, 0, TracksLayer::kProvisional);
+  CHECK(encoded == bytes);
+
+  bytes = good;
   PutBigEndian(&bytes, offsets.num_tracks, static_cast<std::uint32_t>(-1), 4);
   RequireRejected(bytes, DecodeStatus::kMalformed, "num_tracks -1 is negative");
   PutBigEndian(&bytes, offsets.num_tracks, INT32_MAX, 4);

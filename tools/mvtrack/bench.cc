@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "config/tracker_options.h"
+#include "eval/layer_agreement.h"
 #include "eval/tracking_metrics.h"
 #include "json/document.h"
 #include "mvtrack/cli.h"
@@ -472,10 +473,16 @@ struct LatencyResult {
   int threads = 0;
   int frames = 0;
   std::int64_t windows = 0;
-  double p50_ms = 0.0, p99_ms = 0.0, max_ms = 0.0;
+  double p50_ms = 0.0, p99_ms = 0.0, max_ms = 0.0;  // window close -> final publish
   double pipeline_mean_ms = 0.0, pipeline_max_ms = 0.0;
+  // Per frame, capture (its camera-frames submitted) -> publish of the final and of the
+  // provisional frame.
+  double final_p50_ms = 0.0, final_p99_ms = 0.0, final_max_ms = 0.0;
+  double now_p50_ms = 0.0, now_p99_ms = 0.0, now_max_ms = 0.0;
   std::int64_t late_frames = 0;  // frames submitted later than their schedule by > 1 period
   Accuracy accuracy;
+  Accuracy now_accuracy;     // the provisional layer against the truth
+  eval::LayerAgreement now;  // the provisional layer against the final output
 };
 
 double Percentile(std::vector<double> v, double q) {
@@ -504,7 +511,9 @@ LatencyResult MeasureLatency(
   pipeline::SteadyClock clock;
   std::mutex mu;
   std::vector<tracker::Frame3D> out;
+  std::vector<tracker::Frame3D> now_out;
   std::map<FrameIndex, std::int64_t> published_us;
+  std::map<FrameIndex, std::int64_t> now_published_us;
   std::string why;
   auto p = pipeline::Pipeline::Create(
       geometry::CameraRig(scene.cameras),
@@ -518,7 +527,13 @@ LatencyResult MeasureLatency(
         published_us[f.frame] = now;
         out.push_back(std::move(f));
       },
-      &why);
+      &why,
+      [&](tracker::Frame3D f) {
+        const std::int64_t now = clock.NowMicros();
+        std::lock_guard<std::mutex> lock(mu);
+        now_published_us[f.frame] = now;
+        now_out.push_back(std::move(f));
+      });
   if (!p) throw std::runtime_error("pipeline: " + why);
   std::map<FrameIndex, std::int64_t> first_submit_us;
   LatencyResult r;
@@ -564,10 +579,43 @@ LatencyResult MeasureLatency(
                                   : *std::max_element(latencies_ms.begin(), latencies_ms.end());
   r.pipeline_mean_ms = status.window_latency.mean_us() / 1000.0;
   r.pipeline_max_ms = static_cast<double>(status.window_latency.max_us) / 1000.0;
+  // Capture -> publish per frame (the frames the flush output excluded: their wait is the end
+  // of the input).
+  std::vector<double> final_ms, now_ms;
+  const FrameIndex last_closed_live = f0 + frames - 2;  // frame f closes when f + 1 arrives
+  for (const auto& [frame, submitted] : first_submit_us) {
+    if (frame > last_closed_live) continue;
+    if (const auto q = published_us.find(frame);
+        q != published_us.end() && frame < f0 + frames - size) {
+      final_ms.push_back(static_cast<double>(q->second - submitted) / 1000.0);
+    }
+    if (const auto q = now_published_us.find(frame); q != now_published_us.end()) {
+      now_ms.push_back(static_cast<double>(q->second - submitted) / 1000.0);
+    }
+  }
+  const auto max_of = [](const std::vector<double>& v) {
+    return v.empty() ? std::nan("") : *std::max_element(v.begin(), v.end());
+  };
+  r.final_p50_ms = Percentile(final_ms, 0.50);
+  r.final_p99_ms = Percentile(final_ms, 0.99);
+  r.final_max_ms = max_of(final_ms);
+  r.now_p50_ms = Percentile(now_ms, 0.50);
+  r.now_p99_ms = Percentile(now_ms, 0.99);
+  r.now_max_ms = max_of(now_ms);
   r.accuracy = Score(scene.truth, out);
+  r.now_accuracy = Score(scene.truth, now_out);
+  {
+    eval::EvalSequence final_seq, now_seq;
+    for (const tracker::Frame3D& f : out) final_seq.push_back(TrackEvalFrame(f));
+    for (const tracker::Frame3D& f : now_out) now_seq.push_back(TrackEvalFrame(f));
+    r.now = eval::CompareLayers(final_seq, now_seq);
+  }
   std::fprintf(stderr,
-               "  latency %d cams %d people %s, %d worker(s): p50 %.2f ms, p99 %.2f ms, max %.2f "
-               "ms over %lld windows; MOTA %.3f IDF1 %.3f\n",
+               "  latency %d cams %d people %s, %d worker(s): window close -> publish p50 %.2f "
+               "ms, p99 %.2f ms, max %.2f ms over %lld windows; MOTA %.3f IDF1 %.3f\n"
+               "    capture -> publish: provisional p50 %.1f p99 %.1f max %.1f ms, final p50 %.1f "
+               "p99 %.1f max %.1f ms; provisional ids the final's %.2f %%, median %.3f m, MOTA "
+               "%.3f\n",
                cameras,
                people,
                poses ? "poses" : "boxes",
@@ -577,7 +625,16 @@ LatencyResult MeasureLatency(
                r.max_ms,
                static_cast<long long>(r.windows),
                r.accuracy.mota,
-               r.accuracy.idf1);
+               r.accuracy.idf1,
+               r.now_p50_ms,
+               r.now_p99_ms,
+               r.now_max_ms,
+               r.final_p50_ms,
+               r.final_p99_ms,
+               r.final_max_ms,
+               100.0 * r.now.same_id_fraction(),
+               r.now.median_distance_m,
+               r.now_accuracy.mota);
   return r;
 }
 
@@ -1017,8 +1074,9 @@ int RunBench(int argc, char** argv) {
           "           boxes and poses, one thread (tracker::Tracker inline)\n"
           "  scale    store floor: cameras {16,32} x people {32,64,100}, boxes, inline\n"
           "           and the threaded pipeline with 1 and 2 workers\n"
-          "  latency  8 cameras x 16 people fed in real time to the pipeline (2 workers):\n"
-          "           window close -> publish p50/p99/max\n"
+          "  latency  8 x 16 (boxes, poses) and 32 x 100 (boxes) fed in real time to the\n"
+          "           pipeline (2 workers): window close -> publish, and per frame capture ->\n"
+          "           publish of the provisional and the final layer, p50/p99/max\n"
           "  soak     --soak-frames of 8 cameras x 16 people entering and leaving, as fast\n"
           "           as possible, RSS sampled (memory must stay flat)\n"
           "  smoke    a tiny version of all of them (seconds; what CI runs)\n"
@@ -1119,6 +1177,7 @@ int RunBench(int argc, char** argv) {
       const int n = static_cast<int>(std::lround(latency_seconds * 30.0));
       for (const bool poses : {false, true})
         latencies.push_back(MeasureLatency(8, 16, poses, 2, n, seed));
+      latencies.push_back(MeasureLatency(32, 100, false, 2, n, seed));
     } else if (suite == "custom") {
       const std::string mode = args.Get("mode");
       if (mode != "boxes" && mode != "poses" && mode != "both") {
@@ -1167,6 +1226,17 @@ int RunBench(int argc, char** argv) {
                               {"max_ms", l.max_ms},
                               {"pipeline_job_to_link_mean_ms", l.pipeline_mean_ms},
                               {"pipeline_job_to_link_max_ms", l.pipeline_max_ms},
+                              {"capture_to_final_p50_ms", l.final_p50_ms},
+                              {"capture_to_final_p99_ms", l.final_p99_ms},
+                              {"capture_to_final_max_ms", l.final_max_ms},
+                              {"capture_to_provisional_p50_ms", l.now_p50_ms},
+                              {"capture_to_provisional_p99_ms", l.now_p99_ms},
+                              {"capture_to_provisional_max_ms", l.now_max_ms},
+                              {"provisional_same_id", l.now.same_id_fraction()},
+                              {"provisional_coverage", l.now.coverage()},
+                              {"provisional_median_distance_m", l.now.median_distance_m},
+                              {"provisional_mota", l.now_accuracy.mota},
+                              {"provisional_idf1", l.now_accuracy.idf1},
                               {"late_frames", l.late_frames},
                               {"mota", l.accuracy.mota},
                               {"idf1", l.accuracy.idf1},
@@ -1291,6 +1361,23 @@ int RunBench(int argc, char** argv) {
             Fmt("%.2f", l.p99_ms) + " | " + Fmt("%.2f", l.max_ms) + " | " +
             Fmt("%.3f", l.accuracy.mota) + " | " + Fmt("%.3f", l.accuracy.idf1) + " | " +
             Fmt("%.3f", l.accuracy.hota) + " | " + std::to_string(l.accuracy.id_transfers) + " |\n";
+    }
+    md +=
+        "\n### latency (capture → publish, per frame), provisional and final\n\n| cameras | people "
+        "| mode | workers | late frames | provisional p50 / p99 / max ms | final p50 / p99 / max "
+        "ms "
+        "| provisional ids = final's | median to final m | provisional MOTA / IDF1 | final MOTA / "
+        "IDF1 |\n|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const LatencyResult& l : latencies) {
+      md += "| " + std::to_string(l.cameras) + " | " + std::to_string(l.people) + " | " +
+            (l.poses ? "poses" : "boxes") + " | " + std::to_string(l.threads) + " | " +
+            std::to_string(l.late_frames) + " | " + Fmt("%.1f", l.now_p50_ms) + " / " +
+            Fmt("%.1f", l.now_p99_ms) + " / " + Fmt("%.1f", l.now_max_ms) + " | " +
+            Fmt("%.1f", l.final_p50_ms) + " / " + Fmt("%.1f", l.final_p99_ms) + " / " +
+            Fmt("%.1f", l.final_max_ms) + " | " + Fmt("%.2f %%", 100.0 * l.now.same_id_fraction()) +
+            " | " + Fmt("%.3f", l.now.median_distance_m) + " | " +
+            Fmt("%.3f", l.now_accuracy.mota) + " / " + Fmt("%.3f", l.now_accuracy.idf1) + " | " +
+            Fmt("%.3f", l.accuracy.mota) + " / " + Fmt("%.3f", l.accuracy.idf1) + " |\n";
     }
     md += "\n";
   }
