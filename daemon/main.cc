@@ -56,7 +56,8 @@ constexpr int kPollMs = 50;
 const char kUsage[] =
     "usage: mvtrackd --config FILE [--calibration FILE] [--input-log LOG [--input-speed X]]\n"
     "                [--output-url URL]\n"
-    "                [--record LOG] [--tracks-jsonl FILE] [--workers N] [--log-level LEVEL]\n"
+    "                [--record LOG] [--tracks-jsonl FILE] [--provisional-jsonl FILE]\n"
+    "                [--workers N] [--log-level LEVEL]\n"
     "       mvtrackd --version | --help\n";
 
 const char kHelp[] =
@@ -78,6 +79,9 @@ const char kHelp[] =
     "  --record LOG        write every received and published message to this LCM log\n"
     "                      (replayable with `mvtrack replay`)\n"
     "  --tracks-jsonl FILE also write every published frame as canonical tracks JSONL\n"
+    "  --provisional-jsonl FILE\n"
+    "                      also write every published provisional frame (the layer on\n"
+    "                      output.provisional_channel) as canonical tracks JSONL\n"
     "  --workers N         override threads.workers (0 = one per core)\n"
     "  --log-level LEVEL   override logging.level (trace, debug, info, warn, error, critical, "
     "off)\n"
@@ -99,12 +103,51 @@ struct Options {
   std::optional<std::string> output_url;
   std::string record_path;
   std::string tracks_jsonl;
+  std::string provisional_jsonl;
   std::optional<int> workers;
   std::optional<std::string> log_level;
 };
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// --tracks-jsonl / --provisional-jsonl: canonical tracks JSON lines, written from the pipeline's
+// finalizer thread. Flushed per frame: a reader tailing the file sees each frame when it is
+// published, and a kill -9 loses no line that was published over LCM.
+class JsonlWriter {
+ public:
+  // Opens `path` (nothing when empty); throws when it cannot be written.
+  explicit JsonlWriter(std::string path) : path_(std::move(path)) {
+    if (path_.empty()) return;
+    file_.open(path_, std::ios::binary | std::ios::trunc);
+    if (!file_) throw std::runtime_error(path_ + ": cannot open for writing");
+  }
+  bool enabled() const { return !path_.empty(); }
+  void Write(const mvtrack::tracker::Frame3D& frame, mvtrack::core::KeypointLayoutId layout) {
+    std::lock_guard<std::mutex> lock(mu_);
+    file_ << mvtrack::transport::TracksJsonLine(frame, layout) << std::flush;
+    if (!file_ && !failed_) {
+      failed_ = true;
+      spdlog::error("{}: write error", path_);
+    }
+  }
+  // Closes the file; false (logged) when a write failed.
+  bool Close() {
+    if (!file_.is_open()) return true;
+    file_.close();
+    if (!file_ || failed_) {
+      spdlog::error("{}: write error", path_);
+      return false;
+    }
+    return true;
+  }
+
+ private:
+  std::string path_;
+  std::ofstream file_;
+  std::mutex mu_;
+  bool failed_ = false;
 };
 
 // Parses argv; returns nullopt after printing --help or --version.
@@ -139,7 +182,8 @@ std::optional<Options> ParseArgs(int argc, char** argv) {
   std::map<std::string, std::string*> values = {{"--config", &o.config_path},
                                                 {"--calibration", &o.calibration},
                                                 {"--record", &o.record_path},
-                                                {"--tracks-jsonl", &o.tracks_jsonl}};
+                                                {"--tracks-jsonl", &o.tracks_jsonl},
+                                                {"--provisional-jsonl", &o.provisional_jsonl}};
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     std::string value;
@@ -381,13 +425,8 @@ int Run(const Options& options) {
       mvtrack::service::LcmRunner::Create(config, &why);
   if (!runner) throw std::runtime_error(why);
 
-  std::ofstream jsonl;
-  std::mutex jsonl_mu;
-  bool jsonl_failed = false;
-  if (!options.tracks_jsonl.empty()) {
-    jsonl.open(options.tracks_jsonl, std::ios::binary | std::ios::trunc);
-    if (!jsonl) throw std::runtime_error(options.tracks_jsonl + ": cannot open for writing");
-  }
+  JsonlWriter jsonl(options.tracks_jsonl);
+  JsonlWriter provisional_jsonl(options.provisional_jsonl);
   mvtrack::service::ServiceHooks hooks;
   hooks.version = MVTRACK_VERSION;
   hooks.record_path = options.record_path;
@@ -409,17 +448,16 @@ int Run(const Options& options) {
       }
     }
   };
-  if (jsonl.is_open()) {
-    hooks.on_frame = [&](const mvtrack::tracker::Frame3D& frame,
-                         mvtrack::core::KeypointLayoutId layout) {
-      std::lock_guard<std::mutex> lock(jsonl_mu);
-      // Flushed per frame: a reader tailing the file sees each frame when it is published, and a
-      // kill -9 loses no line that was published over LCM.
-      jsonl << mvtrack::transport::TracksJsonLine(frame, layout) << std::flush;
-      if (!jsonl && !jsonl_failed) {
-        jsonl_failed = true;
-        spdlog::error("{}: write error", options.tracks_jsonl);
-      }
+  if (jsonl.enabled()) {
+    hooks.on_frame = [&jsonl](const mvtrack::tracker::Frame3D& frame,
+                              mvtrack::core::KeypointLayoutId layout) {
+      jsonl.Write(frame, layout);
+    };
+  }
+  if (provisional_jsonl.enabled()) {
+    hooks.on_provisional = [&provisional_jsonl](const mvtrack::tracker::Frame3D& frame,
+                                                mvtrack::core::KeypointLayoutId layout) {
+      provisional_jsonl.Write(frame, layout);
     };
   }
   if (config.input_url.rfind("udpm://", 0) == 0) {
@@ -509,13 +547,7 @@ int Run(const Options& options) {
   const mvtrack::service::ServiceCounters counters = service->Counters();
   service.reset();
   runner.reset();
-  if (jsonl.is_open()) {
-    jsonl.close();
-    if (!jsonl || jsonl_failed) {
-      spdlog::error("{}: write error", options.tracks_jsonl);
-      exit_code = 1;
-    }
-  }
+  if (!jsonl.Close() || !provisional_jsonl.Close()) exit_code = 1;
   if (counters.record_errors > 0) exit_code = 1;
   // A log that gave the tracker nothing: the run could not do its job (a live daemon waits).
   if (options.input_log && counters.submitted == 0) {

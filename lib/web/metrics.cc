@@ -71,6 +71,10 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
   e.Sample(fresh ? 1.0 : 0.0);
   e.Family("mvtrack_web_tracks_messages_total", "counter", "tracks messages received");
   e.Sample(D(web.tracks_messages));
+  e.Family("mvtrack_web_provisional_messages_total",
+           "counter",
+           "tracks messages received on the provisional channel (included in tracks messages)");
+  e.Sample(D(web.provisional_messages));
   e.Family("mvtrack_web_status_messages_total", "counter", "status messages received");
   e.Sample(D(web.status_messages));
   e.Family("mvtrack_web_decode_errors_total", "counter", "messages that failed to decode");

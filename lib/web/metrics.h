@@ -17,6 +17,7 @@ namespace mvtrack::web {
 /// The web server's own counters.
 struct WebCounters {
   std::int64_t tracks_messages = 0;       ///< tracks3d_t received and decoded
+  std::int64_t provisional_messages = 0;  ///< of them, on the provisional channel
   std::int64_t status_messages = 0;       ///< tracker_status_t received and decoded
   std::int64_t decode_errors = 0;         ///< messages on either channel that failed to decode
   std::int64_t clients = 0;               ///< /events clients connected now

@@ -49,6 +49,10 @@ const std::string& IndexPage() {
   <span>page latency p50 <b id="web-latency-p50-ms">-</b> / max <b id="web-latency-max-ms">-</b> ms
     over <b id="web-latency-count">0</b></span>
   <span>messages <b id="tracks-messages">0</b></span>
+  <label>layer <select id="layer-choice">
+    <option value="auto">auto</option><option value="provisional">now (provisional)</option>
+    <option value="final">final</option></select></label>
+  <span id="layer" data-layer="final">showing the final layer</span>
   <span id="connection">connecting</span>
   <span id="reasons"></span>
 </header>
@@ -96,6 +100,25 @@ let staleAfterMs = 5000;      // /floor.json's stale_after_s (the server's --sta
 let lastStatusMs = null;      // performance.now() of the latest status / tracks event
 let lastTracksMs = null;
 let statusStale = false, tracksStale = false;
+// Which tracks layer is drawn: the provisional one ("now": every frame as soon as it is closed)
+// or the final one (windowed, about a window behind). auto: the provisional layer while it
+// arrives (a message within PROVISIONAL_FRESH_MS), else the final one.
+const PROVISIONAL_FRESH_MS = 2000;
+let layerChoice = "auto";
+let lastProvisionalMs = null;
+function shownLayer() {
+  if (layerChoice !== "auto") return layerChoice;
+  const fresh = lastProvisionalMs !== null && performance.now() - lastProvisionalMs <= PROVISIONAL_FRESH_MS;
+  return fresh ? "provisional" : "final";
+}
+function showLayer() {
+  const layer = shownLayer();
+  const el = document.getElementById("layer");
+  if (el.dataset.layer === layer) return;
+  el.dataset.layer = layer;
+  el.textContent = layer === "provisional" ? "showing the provisional layer (now)"
+                                           : "showing the final layer (windowed, about a window behind)";
+}
 
 function text(id, v) { document.getElementById(id).textContent = v; }
 
@@ -352,7 +375,12 @@ function connect() {
   es.onerror = () => text("connection", "reconnecting");
   es.onmessage = (m) => {
     const e = JSON.parse(m.data);
-    if (e.type === "tracks") onTracks(e); else if (e.type === "status") onStatus(e);
+    if (e.type === "tracks") {
+      const layer = e.layer === "provisional" ? "provisional" : "final";
+      if (layer === "provisional") lastProvisionalMs = performance.now();
+      showLayer();
+      if (layer === shownLayer()) onTracks(e);
+    } else if (e.type === "status") onStatus(e);
     else if (e.type === "site_counts") onSiteCounts(e); else if (e.type === "analytics") onAnalytics(e);
   };
 }
@@ -367,7 +395,11 @@ Promise.all([fetch("/floor.json").then((r) => r.json()), fetch("/layouts.json").
   })
   .catch(() => {})
   .finally(connect);
-setInterval(() => { checkStale(); scheduleDraw(); }, 250);  // trails fade, state ages, without messages
+document.getElementById("layer-choice").addEventListener("change", (ev) => {
+  layerChoice = ev.target.value;
+  showLayer();
+});
+setInterval(() => { showLayer(); checkStale(); scheduleDraw(); }, 250);  // trails fade, state ages, without messages
 </script>
 </body>
 </html>

@@ -56,6 +56,7 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
          {"bone_lengths", std::move(bones)}});
   }
   const Json o = {{"type", "tracks"},
+                  {"layer", transport::ToString(message.layer)},
                   {"frame", message.frame.frame},
                   {"utime", message.frame.utime},
                   {"publish_utime", message.publish_utime},

@@ -274,7 +274,10 @@ class WebServer::Impl {
       *why = "cannot open LCM " + options_.lcm_url;
       return false;
     }
-    if (lcm_->subscribeFunction(options_.tracks_channel, &Impl::OnTracks, this) == nullptr ||
+    if ((!options_.provisional_channel.empty() &&
+         lcm_->subscribeFunction(options_.provisional_channel, &Impl::OnProvisional, this) ==
+             nullptr) ||
+        lcm_->subscribeFunction(options_.tracks_channel, &Impl::OnTracks, this) == nullptr ||
         lcm_->subscribeFunction(options_.status_channel, &Impl::OnStatus, this) == nullptr ||
         lcm_->subscribeFunction(options_.analytics_events_channel, &Impl::OnAnalyticsEvent, this) ==
             nullptr ||
@@ -399,6 +402,17 @@ class WebServer::Impl {
       ++(d.ok() ? self->counters_.tracks_messages : self->counters_.decode_errors);
     }
     if (d.ok()) self->hub_.Publish(TracksEventJson(d.message), EventHub::Retain::kTracks);
+  }
+
+  // The provisional layer: passed on as it comes, not retained (the next frame replaces it).
+  static void OnProvisional(const lcm::ReceiveBuffer* rbuf, const std::string&, Impl* self) {
+    const transport::TracksDecodeResult d = transport::DecodeTracks(rbuf->data, rbuf->data_size);
+    {
+      std::lock_guard<std::mutex> lock(self->mu_);
+      ++(d.ok() ? self->counters_.tracks_messages : self->counters_.decode_errors);
+      if (d.ok()) ++self->counters_.provisional_messages;
+    }
+    if (d.ok()) self->hub_.Publish(TracksEventJson(d.message), EventHub::Retain::kNone);
   }
 
   static void OnAnalyticsEvent(const lcm::ReceiveBuffer* rbuf, const std::string&, Impl* self) {

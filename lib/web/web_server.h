@@ -3,8 +3,8 @@
 /// `mvtrack web` (issue 15): a small HTTP server (civetweb) that subscribes to the daemon's
 /// tracks, status and site analytics channels over LCM and serves
 ///   /             the live floor view (page.cc; everything it needs is in the page itself),
-///   /events       Server-Sent Events: one JSON object per tracks, status, analytics event and
-///                 site counts message
+///   /events       Server-Sent Events: one JSON object per tracks (final and provisional layer),
+///                 status, analytics event and site counts message
 ///                 (web_json.h; docs/FORMATS.md "Live events"),
 ///   /metrics      Prometheus text (metrics.h),
 ///   /healthz      200 when tracking (OK or WARNING, with the reasons), 503 with the reason
@@ -35,6 +35,8 @@ struct WebOptions {
   int port = 8080;                 ///< TCP port; 0 = any free port (see WebServer::port)
   std::string lcm_url = "udpm://239.255.76.67:7667?ttl=0";  ///< where the daemon publishes
   std::string tracks_channel = "MVTRACK_TRACKS";
+  /// The provisional layer's channel (tracks3d_t with LAYER_PROVISIONAL); "" = not subscribed.
+  std::string provisional_channel = "MVTRACK_TRACKS_NOW";
   std::string status_channel = "MVTRACK_STATUS";
   std::string analytics_events_channel = "MVTRACK_ANALYTICS_EVENTS";  ///< analytics_event_t
   std::string site_counts_channel = "MVTRACK_SITE_COUNTS";            ///< site_counts_t

@@ -63,6 +63,7 @@ const drawnAt = (x, y) => {
 return JSON.stringify({
   frame: Number(document.body.dataset.frame === undefined ? -1 : document.body.dataset.frame),
   messages: Number(document.getElementById('tracks-messages').textContent),
+  layer: document.getElementById('layer').dataset.layer,
   tracks: [...document.querySelectorAll('#tracks tbody tr')].map(r => ({
     id: Number(r.dataset.id), x: Number(r.dataset.x), y: Number(r.dataset.y),
     state: r.cells[1].textContent, color: r.dataset.color, rgb: rgbOf(r.dataset.color), drawn: drawnAt(Number(r.dataset.x), Number(r.dataset.y)),

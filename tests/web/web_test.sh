@@ -48,7 +48,8 @@ unshare -n bash -euc '
   ip route add 224.0.0.0/4 dev lo
   daemon() {  # daemon NAME: the demo recording in real time, tracks over udpm
     "$MVTRACKD" --config "$OUT/daemon.yaml" --input-log "$DEMO/detections.lcmlog" \
-      --input-speed 1 --output-url "$URL" --tracks-jsonl "$OUT/$1.jsonl" > "$OUT/$1.log" 2>&1
+      --input-speed 1 --output-url "$URL" --tracks-jsonl "$OUT/$1.jsonl" \
+      --provisional-jsonl "$OUT/$1.now.jsonl" > "$OUT/$1.log" 2>&1
   }
   "$MVTRACK" web --listen 127.0.0.1:18080 --url "$URL" --calibration "$DEMO/calibration.yaml" \
     --regions "$SITE" --stale-after 1.5 --client-queue 64 > "$OUT/web.log" 2>&1 &
@@ -171,7 +172,10 @@ events = [json.loads(l[6:]) for l in open(sys.argv[1]) if l.startswith("data: ")
 kinds = {e["type"] for e in events}
 assert {"tracks", "status"} <= kinds, kinds
 t = next(e for e in events if e["type"] == "tracks")
-assert set(t) >= {"frame", "utime", "publish_utime", "latency_us", "layout", "tracks"}, t.keys()
+assert set(t) >= {"frame", "utime", "publish_utime", "latency_us", "layer", "layout", "tracks"}, t.keys()
+# Both layers (issue 44): the final tracks and the provisional ones, each frame of each.
+layers = {e["layer"] for e in events if e["type"] == "tracks"}
+assert layers == {"final", "provisional"}, layers
 assert t["layout"] == "coco17" and t["tracks"], t
 tr = t["tracks"][0]
 assert set(tr) >= {"id", "state", "position", "confidence", "age_frames", "cameras", "joints"}
@@ -184,14 +188,16 @@ EOF
 
 # The page's DOM shows the daemon's tracks of the frame it shows: same ids, same positions
 # (the table rounds to millimetres), and it kept going after the daemon was replaced.
-"$PY" - "$OUT/probe.jsonl" "$OUT/first.jsonl" "$OUT/events.txt" << 'EOF' || fail "the page does not show the daemon's tracks"
+# The page shows the provisional layer while it arrives, and says so (issue 44).
+"$PY" - "$OUT/probe.jsonl" "$OUT/first.jsonl" "$OUT/events.txt" "$OUT/first.now.jsonl" << 'EOF' || fail "the page does not show the daemon's tracks"
 import json, math, sys
 phases = [json.loads(l) for l in open(sys.argv[1])]
+first = phases[0]
+assert first["layer"] == "provisional", first["layer"]
 published = {}
-for line in open(sys.argv[2]):
+for line in open(sys.argv[4]):
     f = json.loads(line)
     published[f["frame"]] = {t["id"]: t["position"] for t in f["tracks"]}
-first = phases[0]
 want = published[first["frame"]]
 got = {t["id"]: (t["x"], t["y"]) for t in first["tracks"]}
 assert set(got) == set(want), (first["frame"], sorted(got), sorted(want))

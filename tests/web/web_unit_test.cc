@@ -189,6 +189,9 @@ TEST_CASE("tracks event: the documented fields, states, joints as null or [x,y,z
   CHECK(e["frame"] == 42);
   CHECK(e["publish_utime"] == 2000);
   CHECK(e["layout"] == "coco17");
+  CHECK(e["layer"] == "final");
+  m.layer = transport::TracksLayer::kProvisional;
+  CHECK(json::parse(TracksEventJson(m))["layer"] == "provisional");
   REQUIRE(e["tracks"].size() == 2);
   const json& a = e["tracks"][0];
   CHECK(a["id"] == 9);
@@ -280,8 +283,10 @@ TEST_CASE("floor: a camera looking down covers the floor around it", "[unit]") {
 TEST_CASE("metrics: Prometheus text of the status, per camera, and the web counters", "[unit]") {
   WebCounters w;
   w.tracks_messages = 7;
+  w.provisional_messages = 4;
   w.clients_dropped = 1;
   const std::string none = PrometheusText(std::nullopt, 0.0, 5.0, w);
+  CHECK_THAT(none, Catch::Contains("mvtrack_web_provisional_messages_total 4\n"));
   CHECK_THAT(none, Catch::Contains("\nmvtrack_up 0\n") || Catch::StartsWith("# HELP mvtrack_up"));
   CHECK_THAT(none, Catch::Contains("mvtrack_web_tracks_messages_total 7\n"));
   CHECK_THAT(none, !Catch::Contains("mvtrack_camera_"));

@@ -35,6 +35,10 @@ int RunWeb(int argc, char** argv) {
               "the daemon's site file (mvtrack.site/1, its analytics.site): draws the regions "
               "and lines with their live counts")
       .Option("tracks-channel", "channel of the tracks3d_t messages", "MVTRACK_TRACKS")
+      .Option("provisional-channel",
+              "channel of the provisional layer (tracks3d_t, LAYER_PROVISIONAL); the page shows "
+              "it while it arrives, else the final tracks; '' = not subscribed",
+              "MVTRACK_TRACKS_NOW")
       .Option("status-channel", "channel of the tracker_status_t messages", "MVTRACK_STATUS")
       .Option(
           "events-channel", "channel of the analytics_event_t messages", "MVTRACK_ANALYTICS_EVENTS")
@@ -74,6 +78,11 @@ int RunWeb(int argc, char** argv) {
   o.port = static_cast<int>(*port);
   o.lcm_url = args.Get("url");
   o.tracks_channel = args.Get("tracks-channel");
+  o.provisional_channel = args.Get("provisional-channel");
+  if (!o.provisional_channel.empty() && (o.provisional_channel == o.tracks_channel ||
+                                         o.provisional_channel == args.Get("status-channel"))) {
+    throw UsageError("--provisional-channel must differ from the tracks and status channels");
+  }
   o.status_channel = args.Get("status-channel");
   o.analytics_events_channel = args.Get("events-channel");
   o.site_counts_channel = args.Get("counts-channel");
