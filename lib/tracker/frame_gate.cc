@@ -45,6 +45,12 @@ FrameAdmission FrameGate::Admit(const core::CameraFrame& frame) {
                       std::to_string(frame.frame) + " is older than the open frame " +
                       std::to_string(*open_frame_));
   }
+  if (!open_frame_ && last_closed_frame_ && closed_complete_ &&
+      frame.frame == *last_closed_frame_) {
+    return reject(FrameRejection::kDuplicateCamera,
+                  "camera " + std::to_string(frame.camera_id) + " already delivered frame " +
+                      std::to_string(frame.frame));
+  }
   if (!open_frame_ && last_closed_frame_ && frame.frame <= *last_closed_frame_) {
     return reject(FrameRejection::kStaleFrame,
                   "camera " + std::to_string(frame.camera_id) + " frame " +
@@ -61,6 +67,7 @@ FrameAdmission FrameGate::Admit(const core::CameraFrame& frame) {
   if (open_frame_ && frame.frame > *open_frame_) {
     a.events.close_open_frame = true;
     last_closed_frame_ = *open_frame_;
+    closed_complete_ = false;
     open_frame_.reset();
   }
   if (last_closed_frame_ && frame.frame - *last_closed_frame_ > max_frame_jump_) {
@@ -74,6 +81,12 @@ FrameAdmission FrameGate::Admit(const core::CameraFrame& frame) {
     std::fill(open_cameras_.begin(), open_cameras_.end(), false);
   }
   open_cameras_[cam] = true;
+  if (std::all_of(open_cameras_.begin(), open_cameras_.end(), [](bool d) { return d; })) {
+    a.events.close_after = true;
+    last_closed_frame_ = *open_frame_;
+    closed_complete_ = true;
+    open_frame_.reset();
+  }
   a.stream_epoch = stream_epoch_;
   return a;
 }
@@ -83,6 +96,7 @@ bool FrameGate::Flush() {
     last_closed_frame_ = *open_frame_;
     open_frame_.reset();
   }
+  closed_complete_ = false;
   if (!last_closed_frame_) return false;
   last_closed_frame_.reset();
   ++stream_epoch_;

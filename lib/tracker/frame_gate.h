@@ -32,6 +32,10 @@ struct FrameEvents {
   bool reanchor = false;
   /// This camera-frame opens a new frame (no frame was being collected).
   bool open_frame = false;
+  /// After this camera-frame is stored, its frame is closed: every camera of the rig has
+  /// delivered it, so no later camera-frame can join it (what makes the frame's provisional
+  /// output as early as its last camera, not a frame period later).
+  bool close_after = false;
 };
 
 /// The gate's verdict on one camera-frame.
@@ -56,7 +60,9 @@ struct FrameAdmission {
 ///    closed frame), a camera delivering the frame being collected twice. A rejection changes
 ///    nothing.
 ///  - a frame later than the one being collected closes it (cameras may arrive in any order
-///    within a frame); a frame more than max_frame_jump past the last closed frame re-anchors.
+///    within a frame), and so does its last camera: a frame every camera of the rig delivered is
+///    closed at once (FrameEvents::close_after; a camera delivering it again is a duplicate);
+///    a frame more than max_frame_jump past the last closed frame re-anchors.
 /// The decisions depend only on the sequence of headers, never on detection contents.
 ///
 /// Single-owner, single-threaded; deterministic.
@@ -87,6 +93,7 @@ class FrameGate {
   std::optional<FrameIndex> open_frame_;
   std::vector<bool> open_cameras_;  // by rig index: delivered the open frame
   std::optional<FrameIndex> last_closed_frame_;
+  bool closed_complete_ = false;  // last_closed_frame_ was closed by its last camera
   std::int64_t stream_epoch_ = 0;
 };
 

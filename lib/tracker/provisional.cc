@@ -33,6 +33,8 @@ void ProvisionalEstimator::OnLinked(const linking::WindowLinker& linker) {
   owner_.clear();
   // The latest frame each 2D track was seen in by its owner so far.
   std::map<std::pair<CameraId, TrackId2D>, FrameIndex> seen;
+  seconds_per_frame_ = linker.seconds_per_frame();
+  std::size_t old = 0;
   for (const linking::LinkedTrack& linked : linker.tracks()) {
     // Every track claims its 2D tracks (a tentative one too: a 2D track it took from a lost
     // track is not that track's any more), confirmed ones are output.
@@ -48,7 +50,14 @@ void ProvisionalEstimator::OnLinked(const linking::WindowLinker& linker) {
       }
     }
     if (!linked.confirmed) continue;
-    next.push_back(Track{linked.id, linked.first_seen_frame});
+    while (old < tracks_.size() && tracks_[old].id < linked.id) ++old;
+    Track t{linked.id, linked.first_seen_frame, linked.last_seen_frame, linked.motion.position()};
+    if (old < tracks_.size() && tracks_[old].id == linked.id &&
+        tracks_[old].last_frame > linked.last_seen_frame) {
+      t.last_frame = tracks_[old].last_frame;
+      t.last_xy = tracks_[old].last_xy;
+    }
+    next.push_back(t);
   }
   tracks_ = std::move(next);
 }
@@ -94,7 +103,7 @@ Frame3D ProvisionalEstimator::Estimate(FrameIndex frame,
     }
   }
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
-    const Track& track = tracks_[i];
+    Track& track = tracks_[i];
     std::vector<const FrameView*>& seen = views_of_track_[i];
     std::sort(seen.begin(), seen.end(), [](const FrameView* a, const FrameView* b) {
       return std::pair(a->camera_index, a->track_id) < std::pair(b->camera_index, b->track_id);
@@ -144,6 +153,16 @@ Frame3D ProvisionalEstimator::Estimate(FrameIndex frame,
     // Not placed (unseen; views of two or more cameras that do not meet: its 2D tracks may
     // show different people now; one camera in pose mode): not output.
     if (!position) continue;
+    // Not farther from its latest footprint than a person can go (the linker's re-identification
+    // bound): views that place it farther show somebody else now (a 2D track that changed person).
+    const double dt =
+        static_cast<double>(std::max<FrameIndex>(0, frame - track.last_frame)) * seconds_per_frame_;
+    if ((position->head<2>() - track.last_xy).norm() >
+        linking::kSamePersonApartM + linking::kMaxReidSpeedMps * dt) {
+      continue;
+    }
+    track.last_frame = frame;
+    track.last_xy = position->head<2>();
     std::sort(t.cameras.begin(), t.cameras.end());
     t.cameras.erase(std::unique(t.cameras.begin(), t.cameras.end()), t.cameras.end());
     t.position = *position;

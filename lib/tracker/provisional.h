@@ -57,6 +57,9 @@ class ProvisionalEstimator {
   struct Track {
     TrackId3D id = 0;
     FrameIndex first_frame = 0;  // its first footprint (LinkedTrack::first_seen_frame)
+    // Its latest footprint, placed by this layer or by a window, whichever is later.
+    FrameIndex last_frame = 0;
+    Vec2 last_xy = Vec2::Zero();
   };
 
   // Triangulates the gathered views_ of one track; nullopt when no point is triangulated.
@@ -73,7 +76,8 @@ class ProvisionalEstimator {
   TrackerOptions options_;
   triangulation::PersonTriangulator triangulator_;
 
-  std::vector<Track> tracks_;  // the confirmed tracks, by id
+  double seconds_per_frame_ = 1.0 / 30.0;  // of the latest linked window
+  std::vector<Track> tracks_;              // the confirmed tracks, by id
   // 2D track -> tracks_ index of its owner (kNotOutput in the .cc: a tentative owner).
   std::map<std::pair<CameraId, TrackId2D>, std::size_t> owner_;
   // Estimate's scratch.

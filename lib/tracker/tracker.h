@@ -119,7 +119,8 @@ class Tracker {
                                          bool provisional = false);
 
   /// Adds one camera's detections for one frame. A frame is collected until a camera-frame of
-  /// a later frame arrives; then it is closed, and windows that became complete are processed.
+  /// a later frame arrives or every camera delivered it; then it is closed, and windows that
+  /// became complete are processed.
   AddResult Add(const core::CameraFrame& frame);
 
   /// End of stream: closes the open frame, processes the remaining (partial) windows and

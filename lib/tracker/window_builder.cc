@@ -71,6 +71,7 @@ void WindowBuilder::Add(const FrameEvents& events,
       open_views_.push_back(FrameView{frame.camera_index, track_id, observation});
     camera_tracks[track_id].push_back(TimedObservation{frame.frame, std::move(observation)});
   }
+  if (events.close_after) CloseOpenFrame(out);
 }
 
 void WindowBuilder::Flush(std::vector<BuilderOutput>* out) {

@@ -67,7 +67,8 @@ class WindowBuilder {
 
   /// Applies one admitted camera-frame: first the frame-sequence `events` the FrameGate decided
   /// for it (close the open frame, re-anchor, open its frame), emitting whatever they complete,
-  /// then stores `frame`'s observations. Calls must follow the gate's admission order, and
+  /// then stores `frame`'s observations, then closes the frame when the gate said so
+  /// (FrameEvents::close_after). Calls must follow the gate's admission order, and
   /// `frame` must be the admitted camera-frame's output (checked for consistency with the
   /// events). Appends to `out`.
   void Add(const FrameEvents& events, TrackedCameraFrame frame, std::vector<BuilderOutput>* out);

@@ -109,6 +109,49 @@ TEST_CASE("FrameGate decides admission and frame sequencing from headers", "[uni
   CHECK(a.stream_epoch == 2);
 }
 
+// Issue 44: a frame every camera delivered is closed by its last camera (close_after), not a
+// frame period later by the next frame's first camera; the builder emits it then.
+TEST_CASE("FrameGate closes a frame once every camera delivered it", "[unit][tracker]") {
+  const sim::Scene scene = SmallScene(10, false);  // 3 cameras
+  const geometry::CameraRig rig(scene.cameras);
+  tracker::TrackerOptions options;
+  tracker::FrameGate gate(rig, options);
+  tracker::WindowBuilder builder(rig, options);
+  std::vector<tracker::BuilderOutput> out;
+  const auto add = [&](CameraId camera, FrameIndex frame) {
+    const tracker::FrameAdmission a = gate.Admit(Header(camera, frame));
+    REQUIRE(a.rejection == tracker::FrameRejection::kNone);
+    tracker::TrackedCameraFrame tracked;
+    tracked.camera_index = a.camera_index;
+    tracked.frame = frame;
+    out.clear();
+    builder.Add(a.events, tracked, &out);
+    return a.events;
+  };
+  CHECK_FALSE(add(2, 7).close_after);
+  CHECK_FALSE(add(0, 7).close_after);
+  CHECK(out.empty());
+  tracker::FrameEvents e = add(1, 7);
+  CHECK(e.close_after);
+  CHECK_FALSE(e.close_open_frame);
+  REQUIRE(out.size() == 1);
+  CHECK(std::get<tracker::ClosedFrame>(out[0]).frame == 7);
+  CHECK(gate.last_closed_frame() == 7);
+  CHECK_FALSE(gate.open_frame().has_value());
+  // The same frame again: a duplicate; an older one: stale.
+  const tracker::FrameAdmission dup = gate.Admit(Header(1, 7));
+  CHECK(dup.rejection == tracker::FrameRejection::kDuplicateCamera);
+  CHECK_THAT(dup.reason, Catch::Contains("already delivered frame 7"));
+  CHECK(gate.Admit(Header(0, 6)).rejection == tracker::FrameRejection::kStaleFrame);
+  // The next frame opens without closing anything; a frame left incomplete is closed by the
+  // next one as before.
+  e = add(0, 8);
+  CHECK((e.open_frame && !e.close_open_frame && !e.close_after));
+  e = add(1, 9);
+  CHECK((e.open_frame && e.close_open_frame && !e.close_after));
+  CHECK(gate.last_closed_frame() == 8);
+}
+
 TEST_CASE("FrameGate never looks at detection contents", "[unit][tracker]") {
   const sim::Scene scene = SmallScene(40, true);
   const geometry::CameraRig rig(scene.cameras);
@@ -123,6 +166,7 @@ TEST_CASE("FrameGate never looks at detection contents", "[unit][tracker]") {
       CHECK(a.events.close_open_frame == b.events.close_open_frame);
       CHECK(a.events.open_frame == b.events.open_frame);
       CHECK(a.events.reanchor == b.events.reanchor);
+      CHECK(a.events.close_after == b.events.close_after);
     }
   }
 }

@@ -495,9 +495,10 @@ double Percentile(std::vector<double> v, double q) {
 }
 
 // Feeds the scene to a Pipeline in real time (all cameras of frame f at start + f / fps) and
-// measures, per window, the time from its closing camera-frame (the first one of the frame
-// after the window's last frame) being submitted to the last frame it finalizes being handed to
-// the output callback.
+// measures, per window, the time from its closing camera-frame (the last camera-frame of the
+// window's last frame: a frame closes when every camera delivered it) being submitted to the last
+// frame it finalizes being handed to the output callback; and per frame, capture (its first
+// camera-frame submitted) -> publish of its final and provisional frames.
 LatencyResult MeasureLatency(
     int cameras, int people, bool poses, int threads, int frames, std::uint64_t seed) {
   sim::SceneOptions so = sim::SizedScene(cameras, people, poses, seed);
@@ -536,6 +537,7 @@ LatencyResult MeasureLatency(
       });
   if (!p) throw std::runtime_error("pipeline: " + why);
   std::map<FrameIndex, std::int64_t> first_submit_us;
+  std::map<FrameIndex, std::int64_t> last_submit_us;
   LatencyResult r;
   const auto period = std::chrono::duration<double>(1.0 / so.fps);
   const auto start = Clock::now();
@@ -547,6 +549,7 @@ LatencyResult MeasureLatency(
     for (int c = 0; c < cameras && i < scene.camera_frames.size(); ++c, ++i) {
       const core::CameraFrame& cf = scene.camera_frames[i];
       if (c == 0) first_submit_us[cf.frame] = clock.NowMicros();
+      if (c == cameras - 1) last_submit_us[cf.frame] = clock.NowMicros();
       p->Submit(cf);
     }
   }
@@ -559,12 +562,12 @@ LatencyResult MeasureLatency(
   const int size = to.window_size, step = to.window_step;
   std::vector<double> latencies_ms;
   for (std::int64_t k = 0;; ++k) {
-    const FrameIndex closer = f0 + k * step + size;  // its first camera-frame closes window k
-    if (closer >= f0 + frames) break;                // later windows end with the flush
+    const FrameIndex last = f0 + k * step + size - 1;  // its last camera closes window k
+    if (last >= f0 + frames - 1) break;                // later windows end with the flush
     const FrameIndex last_finalized = f0 + k * step + (size - step) / 2 + step - 1;
-    const auto s = first_submit_us.find(closer);
+    const auto s = last_submit_us.find(last);
     const auto q = published_us.find(last_finalized);
-    if (s == first_submit_us.end() || q == published_us.end()) continue;
+    if (s == last_submit_us.end() || q == published_us.end()) continue;
     latencies_ms.push_back(static_cast<double>(q->second - s->second) / 1000.0);
   }
   r.cameras = cameras;
@@ -582,9 +585,7 @@ LatencyResult MeasureLatency(
   // Capture -> publish per frame (the frames the flush output excluded: their wait is the end
   // of the input).
   std::vector<double> final_ms, now_ms;
-  const FrameIndex last_closed_live = f0 + frames - 2;  // frame f closes when f + 1 arrives
   for (const auto& [frame, submitted] : first_submit_us) {
-    if (frame > last_closed_live) continue;
     if (const auto q = published_us.find(frame);
         q != published_us.end() && frame < f0 + frames - size) {
       final_ms.push_back(static_cast<double>(q->second - submitted) / 1000.0);
