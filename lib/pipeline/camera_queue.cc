@@ -17,8 +17,26 @@ const char* ToString(OverflowPolicy policy) {
   return "?";
 }
 
-CameraQueue::CameraQueue(int capacity, OverflowPolicy policy)
-    : capacity_(capacity), policy_(policy) {
+void WorkSignal::Notify() {
+  bool wake = false;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    pending_ = true;
+    wake = waiting_;
+  }
+  if (wake) cv_.notify_one();
+}
+
+void WorkSignal::Wait() {
+  std::unique_lock<std::mutex> lock(mu_);
+  waiting_ = true;
+  cv_.wait(lock, [&] { return pending_; });
+  waiting_ = false;
+  pending_ = false;
+}
+
+CameraQueue::CameraQueue(int capacity, OverflowPolicy policy, WorkSignal* signal)
+    : capacity_(capacity), policy_(policy), signal_(signal) {
   MVTRACK_CHECK_MSG(capacity >= 1, "CameraQueue capacity must be >= 1");
 }
 
@@ -44,7 +62,40 @@ bool CameraQueue::Push(CameraWork work) {
     items_.push_back(std::move(work));
   }
   item_cv_.notify_one();
+  if (signal_ != nullptr) signal_->Notify();
   return true;
+}
+
+bool CameraQueue::TakeFront(std::optional<CameraWork>* out) {
+  *out = std::move(items_.front());
+  items_.pop_front();
+  if (dropped_prefix_ > 0) {
+    MVTRACK_DCHECK((*out)->dropped);
+    --dropped_prefix_;
+    return false;  // a dropped header frees no room for detections
+  }
+  return true;
+}
+
+std::optional<std::uint64_t> CameraQueue::FrontSeq() const {
+  std::lock_guard<std::mutex> lock(mu_);
+  if (items_.empty()) return std::nullopt;
+  return items_.front().seq;
+}
+
+std::optional<CameraWork> CameraQueue::TryPop() {
+  std::optional<CameraWork> out;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (items_.empty() || !TakeFront(&out)) return out;
+  }
+  space_cv_.notify_one();
+  return out;
+}
+
+bool CameraQueue::Finished() const {
+  std::lock_guard<std::mutex> lock(mu_);
+  return closed_ && items_.empty();
 }
 
 std::optional<CameraWork> CameraQueue::Pop() {
@@ -53,13 +104,7 @@ std::optional<CameraWork> CameraQueue::Pop() {
     std::unique_lock<std::mutex> lock(mu_);
     item_cv_.wait(lock, [&] { return closed_ || !items_.empty(); });
     if (items_.empty()) return std::nullopt;
-    out = std::move(items_.front());
-    items_.pop_front();
-    if (dropped_prefix_ > 0) {
-      MVTRACK_DCHECK(out->dropped);
-      --dropped_prefix_;
-      return out;  // a dropped header frees no room for detections
-    }
+    if (!TakeFront(&out)) return out;
   }
   space_cv_.notify_one();
   return out;
@@ -72,6 +117,7 @@ void CameraQueue::Close() {
   }
   item_cv_.notify_all();
   space_cv_.notify_all();
+  if (signal_ != nullptr) signal_->Notify();
 }
 
 std::size_t CameraQueue::depth() const {

@@ -39,6 +39,24 @@ struct CameraWork {
   bool dropped = false;           ///< overflow: detections discarded, header kept
 };
 
+/// Wakes one waiting camera worker when any of its cameras' queues receives work or closes
+/// (pipeline::Pipeline's camera workers each serve several cameras). No wake-up is lost: a
+/// Notify() between a worker's last look at its queues and its Wait() makes that Wait() return
+/// at once. Thread-safe.
+class WorkSignal {
+ public:
+  /// Marks work as pending and wakes the worker if it waits.
+  void Notify();
+  /// Returns once work is pending (at once if it already is) and clears the mark.
+  void Wait();
+
+ private:
+  std::mutex mu_;
+  std::condition_variable cv_;
+  bool pending_ = false;
+  bool waiting_ = false;
+};
+
 /// A FIFO of CameraWork holding at most `capacity` items with detections (dropped headers do
 /// not count: they are a few bytes and are consumed without work). Items leave in push order.
 ///
@@ -47,14 +65,21 @@ struct CameraWork {
 /// and then returns nullopt.
 class CameraQueue {
  public:
-  /// `capacity` >= 1 (checked).
-  CameraQueue(int capacity, OverflowPolicy policy);
+  /// `capacity` >= 1 (checked). `signal` (optional, must outlive the queue) is notified after
+  /// every push and on Close.
+  CameraQueue(int capacity, OverflowPolicy policy, WorkSignal* signal = nullptr);
 
   /// Appends `work` (whose `dropped` must be false) with the queue's overflow policy. Returns
   /// false, and queues nothing, once closed.
   bool Push(CameraWork work);
   /// Waits for the oldest item and removes it; nullopt once closed and empty.
   std::optional<CameraWork> Pop();
+  /// The oldest item's sequence number without waiting; nullopt when empty.
+  std::optional<std::uint64_t> FrontSeq() const;
+  /// Removes the oldest item without waiting; nullopt when empty.
+  std::optional<CameraWork> TryPop();
+  /// Closed and empty: nothing will come any more.
+  bool Finished() const;
   /// Closes the queue (idempotent).
   void Close();
 
@@ -71,6 +96,7 @@ class CameraQueue {
  private:
   const int capacity_;
   const OverflowPolicy policy_;
+  WorkSignal* const signal_;
   mutable std::mutex mu_;
   std::condition_variable item_cv_;   // an item was pushed, or closed
   std::condition_variable space_cv_;  // an item with detections left, or closed
@@ -79,6 +105,9 @@ class CameraQueue {
   std::size_t dropped_prefix_ = 0;
   std::int64_t dropped_total_ = 0;
   bool closed_ = false;
+
+  // Removes the front item (the lock held, the queue not empty); true when it freed room.
+  bool TakeFront(std::optional<CameraWork>* out);
 };
 
 }  // namespace mvtrack::pipeline

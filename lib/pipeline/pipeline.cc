@@ -20,6 +20,7 @@ bool PipelineOptions::Validate(std::string* why) const {
   }
   if (reorder_capacity < 1) return fail("reorder_capacity must be >= 1");
   if (finalizer_queue_capacity < 1) return fail("finalizer_queue_capacity must be >= 1");
+  if (camera_threads < 0) return fail("camera_threads must be >= 0");
   return true;
 }
 
@@ -74,9 +75,15 @@ Pipeline::Pipeline(geometry::CameraRig rig,
       builder_(rig_, options_, /*keep_frame_views=*/static_cast<bool>(on_provisional_)),
       steps_(static_cast<std::size_t>(pipeline_options_.finalizer_queue_capacity)),
       finalizer_(rig_, options_) {
+  int threads = pipeline_options_.camera_threads;
+  if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  threads = std::clamp(threads, 1, std::max(1, rig_.size()));
+  for (int k = 0; k < threads; ++k) camera_signals_.push_back(std::make_unique<WorkSignal>());
   for (int c = 0; c < rig_.size(); ++c) {
-    camera_queues_.push_back(std::make_unique<CameraQueue>(pipeline_options_.camera_queue_capacity,
-                                                           pipeline_options_.camera_overflow));
+    camera_queues_.push_back(std::make_unique<CameraQueue>(
+        pipeline_options_.camera_queue_capacity,
+        pipeline_options_.camera_overflow,
+        camera_signals_[static_cast<std::size_t>(c % threads)].get()));
     stages_.push_back(std::make_unique<tracker::CameraStage>(rig_.camera(c), c, options_));
   }
   if (on_provisional_) provisional_.emplace(rig_, options_);
@@ -92,8 +99,8 @@ void Pipeline::Start() {
   finalizer_thread_ = std::thread([this] { FinalizerLoop(); });
   finalizer_thread_id_ = finalizer_thread_.get_id();
   scheduler_thread_ = std::thread([this] { SchedulerLoop(); });
-  for (int c = 0; c < rig_.size(); ++c) {
-    camera_threads_.emplace_back([this, c] { CameraLoop(c); });
+  for (int k = 0; k < static_cast<int>(camera_signals_.size()); ++k) {
+    camera_threads_.emplace_back([this, k] { CameraWorkerLoop(k); });
   }
 }
 
@@ -180,38 +187,71 @@ void Pipeline::Stop() {
   stopped_ = true;
 }
 
-void Pipeline::CameraLoop(int camera_index) {
-  const auto c = static_cast<std::size_t>(camera_index);
-  CameraQueue& queue = *camera_queues_[c];
-  tracker::CameraStage& stage = *stages_[c];
-  while (std::optional<CameraWork> work = queue.Pop()) {
-    SequencedItem item;
-    item.kind = SequencedItem::Kind::kCameraFrame;
-    item.events = work->events;
-    if (work->dropped) {
-      // Overflow: the frame still takes part in frame sequencing, without detections; SORT
-      // does not see it (a skipped frame for this camera).
-      item.frame.camera_index = camera_index;
-      item.frame.frame = work->frame.frame;
-      item.frame.utime = work->frame.utime;
-    } else {
-      tracker::CameraStageCounters counters;
-      item.frame = stage.Process(work->frame, work->stream_epoch, &counters);
-      std::lock_guard<std::mutex> lock(status_mu_);
-      ++camera_counters_[c].frames_processed;
-      camera_counters_[c].detections_rejected += counters.detections_rejected;
-      camera_counters_[c].embeddings_dropped += counters.embeddings_dropped;
-      gallery_memory_.SetCamera(c, counters.sort_gallery_bytes);
-      stats_.gallery_bytes = gallery_memory_.total();
-      stats_.detections_used += counters.detections_used;
-      stats_.detections_rejected += counters.detections_rejected;
-      stats_.detections_repaired += counters.detections_repaired;
-      stats_.detections_filtered += counters.detections_filtered;
-      stats_.embeddings_used += counters.embeddings_used;
-      stats_.embeddings_dropped += counters.embeddings_dropped;
+void Pipeline::CameraWorkerLoop(int worker) {
+  const auto n = static_cast<int>(camera_signals_.size());
+  std::vector<int> mine;
+  for (int c = worker; c < rig_.size(); c += n) mine.push_back(c);
+  WorkSignal& signal = *camera_signals_[static_cast<std::size_t>(worker)];
+  while (true) {
+    // The oldest waiting item of this thread's cameras: its reorder-buffer insert may wait for
+    // room, which only items with lower sequence numbers make, and every one of those is ahead
+    // of it on its own thread (sequence numbers are handed out in push order), so no thread
+    // waits for one behind it.
+    int best = -1;
+    std::uint64_t best_seq = 0;
+    bool finished = true;
+    for (const int c : mine) {
+      const CameraQueue& queue = *camera_queues_[static_cast<std::size_t>(c)];
+      if (const std::optional<std::uint64_t> seq = queue.FrontSeq()) {
+        finished = false;
+        if (best < 0 || *seq < best_seq) {
+          best = c;
+          best_seq = *seq;
+        }
+      } else if (!queue.Finished()) {
+        finished = false;
+      }
     }
-    reorder_.Insert(work->seq, std::move(item));
+    if (best < 0) {
+      if (finished) return;
+      signal.Wait();  // a push or a close since the look above returns at once
+      continue;
+    }
+    std::optional<CameraWork> work = camera_queues_[static_cast<std::size_t>(best)]->TryPop();
+    MVTRACK_CHECK(work.has_value());  // only this thread takes from its cameras' queues
+    ProcessCameraWork(best, std::move(*work));
   }
+}
+
+void Pipeline::ProcessCameraWork(int camera_index, CameraWork work) {
+  const auto c = static_cast<std::size_t>(camera_index);
+  tracker::CameraStage& stage = *stages_[c];
+  SequencedItem item;
+  item.kind = SequencedItem::Kind::kCameraFrame;
+  item.events = work.events;
+  if (work.dropped) {
+    // Overflow: the frame still takes part in frame sequencing, without detections; SORT
+    // does not see it (a skipped frame for this camera).
+    item.frame.camera_index = camera_index;
+    item.frame.frame = work.frame.frame;
+    item.frame.utime = work.frame.utime;
+  } else {
+    tracker::CameraStageCounters counters;
+    item.frame = stage.Process(work.frame, work.stream_epoch, &counters);
+    std::lock_guard<std::mutex> lock(status_mu_);
+    ++camera_counters_[c].frames_processed;
+    camera_counters_[c].detections_rejected += counters.detections_rejected;
+    camera_counters_[c].embeddings_dropped += counters.embeddings_dropped;
+    gallery_memory_.SetCamera(c, counters.sort_gallery_bytes);
+    stats_.gallery_bytes = gallery_memory_.total();
+    stats_.detections_used += counters.detections_used;
+    stats_.detections_rejected += counters.detections_rejected;
+    stats_.detections_repaired += counters.detections_repaired;
+    stats_.detections_filtered += counters.detections_filtered;
+    stats_.embeddings_used += counters.embeddings_used;
+    stats_.embeddings_dropped += counters.embeddings_dropped;
+  }
+  reorder_.Insert(work.seq, std::move(item));
 }
 
 void Pipeline::SchedulerLoop() {

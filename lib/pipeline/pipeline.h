@@ -10,7 +10,8 @@
 ///  Submit (caller thread, e.g. the LCM receive thread)
 ///    FrameGate: admit or reject (headers only), frame events, stream epoch, sequence number
 ///    ──► CameraQueue[c] (bounded; overflow policy)            one per camera
-///  camera thread c: CameraStage c (validation, observations, SORT)
+///  camera threads (camera c on thread c mod n): CameraStage c (validation, observations, SORT),
+///    each thread taking the oldest (lowest sequence number) of its cameras' waiting items
 ///    ──► SequenceReorderBuffer (by sequence number)            look-ahead bounded
 ///  scheduler thread: WindowBuilder, consuming camera outputs in INPUT SEQUENCE ORDER
 ///    ├─ WindowJob ──► Executor (InlineExecutor / ThreadPoolExecutor workers):
@@ -96,6 +97,11 @@ struct PipelineOptions {
   int reorder_capacity = 256;
   /// Steps (closed frames, windows, stream ends) pending for the finalizer thread, >= 1.
   int finalizer_queue_capacity = 1024;
+  /// Threads running the camera stages, each serving a fixed share of the cameras (camera c on
+  /// thread c mod n, its camera-frames in input order); 0 = one per hardware thread, at most one
+  /// per camera. One thread per camera woke every camera's thread for every frame: at 32 cameras
+  /// 38 context switches per frame (docs/BENCHMARKS.md "More threads, not slower"). >= 0.
+  int camera_threads = 0;
 
   /// Checks the ranges above; on failure writes a reason naming the field to `why` (if not
   /// null).
@@ -259,7 +265,8 @@ class Pipeline {
            FrameCallback on_frame,
            FrameCallback on_provisional);
   void Start();
-  void CameraLoop(int camera_index);
+  void CameraWorkerLoop(int worker);
+  void ProcessCameraWork(int camera_index, CameraWork work);
   void SchedulerLoop();
   void DispatchOutput(tracker::BuilderOutput* output);
   void FinishWindow(const tracker::WindowJob& job,
@@ -288,6 +295,7 @@ class Pipeline {
   // Camera threads: stage c and queue c are used by camera thread c only (queues are shared
   // with Submit).
   std::vector<std::unique_ptr<CameraQueue>> camera_queues_;
+  std::vector<std::unique_ptr<WorkSignal>> camera_signals_;  // one per camera thread
   std::vector<std::unique_ptr<tracker::CameraStage>> stages_;
   SequenceReorderBuffer<SequencedItem> reorder_;
 

@@ -290,6 +290,21 @@ TEST_CASE("pipeline with 2 workers = Tracker, bit for bit", "[threads][pipeline]
   CheckIdenticalToTracker(2, Lossless());
 }
 
+// Camera threads serve several cameras each, taking the oldest item first: one thread for all
+// four cameras with a reorder look-ahead of 3 must neither deadlock nor change the output; nor
+// must a thread per camera.
+TEST_CASE("pipeline with one camera thread for all cameras, tiny queues = Tracker, bit for bit",
+          "[threads][pipeline]") {
+  PipelineOptions o = LosslessTiny();
+  o.camera_threads = 1;
+  CheckIdenticalToTracker(2, o);
+  o.camera_threads = 3;  // uneven: cameras 0 and 3 share a thread
+  CheckIdenticalToTracker(2, o);
+  o = Lossless();
+  o.camera_threads = 64;  // more than cameras: one per camera
+  CheckIdenticalToTracker(2, o);
+}
+
 TEST_CASE("pipeline with 8 workers and tiny queues = Tracker, bit for bit", "[threads][pipeline]") {
   CheckIdenticalToTracker(8, LosslessTiny());
 }
@@ -519,6 +534,16 @@ TEST_CASE("Pipeline::Create refuses bad configurations with a reason", "[unit][p
                          sink,
                          &why) == nullptr);
   CHECK_THAT(why, Catch::Contains("reorder_capacity"));
+  bad = PipelineOptions();
+  bad.camera_threads = -1;
+  CHECK(Pipeline::Create(geometry::CameraRig(scene.cameras),
+                         {},
+                         bad,
+                         std::make_unique<InlineExecutor>(),
+                         clock,
+                         sink,
+                         &why) == nullptr);
+  CHECK_THAT(why, Catch::Contains("camera_threads"));
   tracker::TrackerOptions bad_tracker;
   bad_tracker.window_step = 0;
   CHECK(Pipeline::Create(geometry::CameraRig(scene.cameras),
