@@ -385,24 +385,36 @@ void Service::FlushPipeline() {
   flushing_.store(false, std::memory_order_release);
 }
 
+// Under mu_: shifts `frame`'s ids into the published id space and returns its processing
+// latency (now minus its release); samples its receive -> publish time into `samples` unless a
+// flush publishes it. The final layer (`final`) is the frame's last output: its timing entries
+// go, and a frame a flush published is counted.
+std::int64_t Service::StampOutput(tracker::Frame3D* frame,
+                                  std::int64_t now,
+                                  bool final,
+                                  std::vector<std::int64_t>* samples) {
+  std::lock_guard<std::mutex> lock(mu_);
+  for (tracker::Track3D& t : frame->tracks) t.id += id_offset_;
+  std::int64_t latency = 0;
+  const auto it = release_us_.find(frame->frame);
+  if (it != release_us_.end()) latency = std::max<std::int64_t>(0, now - it->second);
+  const auto first = first_receive_us_.find(frame->frame);
+  if (flushing_.load(std::memory_order_acquire)) {
+    if (final) ++counters_.frames_published_by_flush;
+  } else if (first != first_receive_us_.end() && samples->size() < kMaxReceiveLatencySamples) {
+    samples->push_back(std::max<std::int64_t>(0, now - first->second));
+  }
+  if (final) {
+    release_us_.erase(release_us_.begin(), release_us_.upper_bound(frame->frame));
+    first_receive_us_.erase(first_receive_us_.begin(), first_receive_us_.upper_bound(frame->frame));
+  }
+  return latency;
+}
+
 void Service::OnFrame(tracker::Frame3D frame) {
   const std::int64_t now = Now();
-  std::int64_t latency = 0;
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    for (tracker::Track3D& t : frame.tracks) t.id += id_offset_;
-    const auto it = release_us_.find(frame.frame);
-    if (it != release_us_.end()) latency = std::max<std::int64_t>(0, now - it->second);
-    release_us_.erase(release_us_.begin(), release_us_.upper_bound(frame.frame));
-    const auto first = first_receive_us_.find(frame.frame);
-    if (flushing_.load(std::memory_order_acquire)) {
-      ++counters_.frames_published_by_flush;
-    } else if (first != first_receive_us_.end() &&
-               counters_.receive_to_publish_us.size() < kMaxReceiveLatencySamples) {
-      counters_.receive_to_publish_us.push_back(std::max<std::int64_t>(0, now - first->second));
-    }
-    first_receive_us_.erase(first_receive_us_.begin(), first_receive_us_.upper_bound(frame.frame));
-  }
+  const std::int64_t latency =
+      StampOutput(&frame, now, /*final=*/true, &counters_.receive_to_publish_us);
   CoverIds(frame);
   const std::vector<std::uint8_t> bytes =
       transport::EncodeTracks(frame, output_layout_, now, latency);
@@ -437,20 +449,8 @@ void Service::CoverIds(const tracker::Frame3D& frame) {
 
 void Service::OnProvisional(tracker::Frame3D frame) {
   const std::int64_t now = Now();
-  std::int64_t latency = 0;
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    for (tracker::Track3D& t : frame.tracks) t.id += id_offset_;
-    // The frame's release and first receive times stay until its final frame is published.
-    const auto it = release_us_.find(frame.frame);
-    if (it != release_us_.end()) latency = std::max<std::int64_t>(0, now - it->second);
-    const auto first = first_receive_us_.find(frame.frame);
-    if (!flushing_.load(std::memory_order_acquire) && first != first_receive_us_.end() &&
-        counters_.provisional_receive_to_publish_us.size() < kMaxReceiveLatencySamples) {
-      counters_.provisional_receive_to_publish_us.push_back(
-          std::max<std::int64_t>(0, now - first->second));
-    }
-  }
+  const std::int64_t latency =
+      StampOutput(&frame, now, /*final=*/false, &counters_.provisional_receive_to_publish_us);
   CoverIds(frame);
   const std::vector<std::uint8_t> bytes = transport::EncodeTracks(
       frame, output_layout_, now, latency, transport::TracksLayer::kProvisional);
@@ -458,6 +458,9 @@ void Service::OnProvisional(tracker::Frame3D frame) {
   if (hooks_.on_provisional) hooks_.on_provisional(frame, output_layout_);
   std::lock_guard<std::mutex> lock(mu_);
   ++counters_.provisional_published;
+  // A reload continues above every id published on either layer.
+  for (const tracker::Track3D& t : frame.tracks)
+    max_published_id_ = std::max(max_published_id_, t.id);
 }
 
 void Service::Analyse(const tracker::Frame3D& frame, std::int64_t now) {

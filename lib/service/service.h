@@ -197,6 +197,10 @@ class Service {
   void FlushPipeline();
   void OnFrame(tracker::Frame3D frame);
   void OnProvisional(tracker::Frame3D frame);
+  std::int64_t StampOutput(tracker::Frame3D* frame,
+                           std::int64_t now,
+                           bool final,
+                           std::vector<std::int64_t>* samples);
   // Extends the id reservation (if needed) to cover every id of `frame` before it is published.
   void CoverIds(const tracker::Frame3D& frame);
   // The site analytics of a published frame: its events, and the counts when one changed.
