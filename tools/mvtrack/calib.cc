@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -18,6 +20,7 @@
 #include "config/calibration_check.h"
 #include "config/calibration_import.h"
 #include "config/site.h"
+#include "config/zones.h"
 #include "mvtrack/cli.h"
 #include "viz/coverage_map.h"
 #include "viz/image_io.h"
@@ -364,14 +367,131 @@ int RunCheck(int argc, char** argv) {
   return args.Has("strict") && report.WarningCount() > 0 ? 3 : 0;
 }
 
+std::string IdList(const std::vector<CameraId>& ids) {
+  std::string s;
+  for (const CameraId id : ids) s += (s.empty() ? "" : ", ") + std::to_string(id);
+  return s;
+}
+
+int RunZones(int argc, char** argv) {
+  Args args;
+  args.Positional("CAL.yaml", "site calibration file (mvtrack.calibration/1)")
+      .Option("max-cameras", "largest number of a zone's own cameras", "16")
+      .Option("cell", "floor grid cell size, m", "0.5")
+      .Option("height", "height of the sampled points above the floor, m", "1")
+      .Option("min-shared",
+              "floor area another zone's camera must see of a zone to be its border camera, m^2",
+              "2")
+      .Option("out", "write one daemon configuration per zone (ZONE.yaml) and zones.yaml here");
+  if (!args.Parse(
+          argc,
+          argv,
+          "mvtrack calib zones CAL.yaml [--max-cameras N] [--out DIR] [options]",
+          "Splits a site's cameras into zones for one mvtrackd per zone (issue 43): zones\n"
+          "of at most --max-cameras cameras covering compact floor areas, each tracking\n"
+          "with its own cameras plus the border cameras (other zones' cameras that see its\n"
+          "floor), so the floor along a border is triangulated by both zones. Coverage is\n"
+          "sampled on a --cell grid at --height as in `mvtrack calib check`. Prints the\n"
+          "zones; with --out writes DIR/<zone>.yaml, a daemon configuration per zone (its\n"
+          "cameras and border cameras, per-camera detection channels, the tracks, status and\n"
+          "provisional channels namespaced by the zone, e.g. MVTRACK_TRACKS_ZONE1), and\n"
+          "DIR/zones.yaml, the zones with their cameras, borders and neighbours.\n\n"
+          "Exit status: 0 ok, 1 invalid calibration or unwritable output, 2 usage error.")) {
+    return 0;
+  }
+  config::ZoneOptions options;
+  const std::int64_t max_cameras = args.GetInt("max-cameras");
+  if (max_cameras < 2 || max_cameras > 100000)
+    throw UsageError("--max-cameras must be in [2, 100000]");
+  options.max_cameras = static_cast<int>(max_cameras);
+  options.cell_m = args.GetDouble("cell");
+  options.sample_height_m = args.GetDouble("height");
+  options.min_shared_area_m2 = args.GetDouble("min-shared");
+  std::string why;
+  if (!options.Validate(&why)) throw UsageError(why);
+  const std::string path = args.Get("CAL.yaml");
+  const std::vector<geometry::CameraModel> cameras = config::LoadCalibration(path);
+  if (cameras.size() < 2) throw std::runtime_error(path + ": a site needs at least 2 cameras");
+  const std::vector<config::Zone> zones = config::PartitionZones(cameras, options);
+  std::cout << "zones of " << path << ": " << cameras.size() << " camera(s), " << zones.size()
+            << " zone(s) of at most " << options.max_cameras << " own camera(s)\n";
+  for (const config::Zone& z : zones) {
+    char area[160];
+    std::snprintf(area,
+                  sizeof(area),
+                  "floor %.1f m^2 (x %.1f..%.1f, y %.1f..%.1f), shared with neighbours %.1f m^2",
+                  z.area_m2,
+                  z.bounds.x_min_m,
+                  z.bounds.x_max_m,
+                  z.bounds.y_min_m,
+                  z.bounds.y_max_m,
+                  z.border_area_m2);
+    std::cout << "  " << z.name << ": cameras " << IdList(z.cameras) << "; border cameras "
+              << (z.border.empty() ? std::string("none") : IdList(z.border)) << "; neighbours "
+              << (z.neighbours.empty() ? std::string("none") : [&] {
+                   std::string n;
+                   for (const std::string& x : z.neighbours) n += (n.empty() ? "" : ", ") + x;
+                   return n;
+                 }())
+              << "\n    " << area << "\n";
+    if (z.cameras.size() + z.border.size() < 2) {
+      std::cout << "    warning: " << z.name
+                << " tracks with one camera: it cannot triangulate (give it more cameras, "
+                   "or a larger --max-cameras)\n";
+    }
+  }
+  if (!args.Has("out")) return 0;
+  namespace fs = std::filesystem;
+  const fs::path dir = args.Get("out");
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(dir.string() + ": cannot create: " + ec.message());
+  const std::string calibration =
+      fs::relative(fs::absolute(path), fs::absolute(dir), ec).generic_string();
+  const auto write = [&](const fs::path& file, const std::string& text) {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.close();
+    if (!out) throw std::runtime_error(file.string() + ": cannot write");
+    std::cout << "wrote " << file.string() << "\n";
+  };
+  std::string summary = "# Zones of " + path + " (mvtrack calib zones --max-cameras " +
+                        std::to_string(options.max_cameras) + ")\nzones:\n";
+  for (const config::Zone& z : zones) {
+    std::vector<CameraId> ids = z.cameras;
+    ids.insert(ids.end(), z.border.begin(), z.border.end());
+    std::sort(ids.begin(), ids.end());
+    std::string neighbours;
+    for (const std::string& x : z.neighbours) neighbours += (neighbours.empty() ? "" : ", ") + x;
+    write(dir / (z.name + ".yaml"),
+          "# Zone " + z.name + " of " + path + " (mvtrack calib zones): its own cameras " +
+              IdList(z.cameras) + "; border cameras " +
+              (z.border.empty() ? std::string("none") : IdList(z.border)) +
+              ".\nformat: mvtrack.daemon/1\ncameras:\n  calibration: " +
+              (ec ? fs::absolute(path).generic_string() : calibration) + "\n  ids: [" +
+              IdList(ids) + "]\ninput:\n  channels: per_camera\noutput:\n  tracks_channel: " +
+              config::ZoneChannel("MVTRACK_TRACKS", z.name) +
+              "\n  status_channel: " + config::ZoneChannel("MVTRACK_STATUS", z.name) +
+              "\n  provisional_channel: " + config::ZoneChannel("MVTRACK_TRACKS_NOW", z.name) +
+              "\n");
+    summary += "  - name: " + z.name + "\n    cameras: [" + IdList(z.cameras) +
+               "]\n    border_cameras: [" + IdList(z.border) + "]\n    neighbours: [" + neighbours +
+               "]\n    daemon: " + z.name + ".yaml\n";
+  }
+  write(dir / "zones.yaml", summary);
+  return 0;
+}
+
 }  // namespace
 
 int RunCalib(int argc, char** argv) {
   const char* usage =
-      "usage: mvtrack calib <import|check> ... (mvtrack calib <command> --help for details)\n\n"
+      "usage: mvtrack calib <import|check|zones> ... (mvtrack calib <command> --help for "
+      "details)\n\n"
       "  import   convert a calibration (EasyMocap, 4D Association, VoxelPose, Panoptic,\n"
       "           WILDTRACK, Campus, floor homographies) into mvtrack.calibration/1\n"
-      "  check    sanity checks, camera overlap graph and short-baseline warnings\n";
+      "  check    sanity checks, camera overlap graph and short-baseline warnings\n"
+      "  zones    split a site's cameras into zones, one mvtrackd each (issue 43)\n";
   if (argc < 2) {
     std::cerr << usage;
     return 2;
@@ -383,7 +503,8 @@ int RunCalib(int argc, char** argv) {
   }
   if (command == "import") return RunImport(argc - 1, argv + 1);
   if (command == "check") return RunCheck(argc - 1, argv + 1);
-  throw UsageError("unknown calib command '" + command + "' (import or check)");
+  if (command == "zones") return RunZones(argc - 1, argv + 1);
+  throw UsageError("unknown calib command '" + command + "' (import, check or zones)");
 }
 
 }  // namespace mvtrack::cli

@@ -1,0 +1,171 @@
+#include "config/zones.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <numeric>
+#include <set>
+
+#include "core/check.h"
+
+namespace mvtrack::config {
+namespace {
+
+// Splits `ids` (indices into `pos`) into `parts` parts of nearly equal size along the longer
+// extent of their positions, recursively; appends the parts to `out` in order.
+void Split(std::vector<int> ids, int parts, const std::vector<Vec2>& pos,
+           const std::vector<CameraId>& camera_ids, std::vector<std::vector<int>>* out) {
+  if (parts <= 1 || ids.size() <= 1) {
+    out->push_back(std::move(ids));
+    return;
+  }
+  Vec2 lo = pos[static_cast<std::size_t>(ids.front())];
+  Vec2 hi = lo;
+  for (const int i : ids) {
+    lo = lo.cwiseMin(pos[static_cast<std::size_t>(i)]);
+    hi = hi.cwiseMax(pos[static_cast<std::size_t>(i)]);
+  }
+  const int axis = (hi.x() - lo.x()) >= (hi.y() - lo.y()) ? 0 : 1;
+  std::sort(ids.begin(), ids.end(), [&](int a, int b) {
+    const double pa = pos[static_cast<std::size_t>(a)][axis];
+    const double pb = pos[static_cast<std::size_t>(b)][axis];
+    if (pa != pb) return pa < pb;
+    return camera_ids[static_cast<std::size_t>(a)] < camera_ids[static_cast<std::size_t>(b)];
+  });
+  const int left_parts = parts / 2;
+  const auto left_n = static_cast<std::size_t>(std::lround(
+      static_cast<double>(ids.size()) * left_parts / static_cast<double>(parts)));
+  std::vector<int> left(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(left_n));
+  std::vector<int> right(ids.begin() + static_cast<std::ptrdiff_t>(left_n), ids.end());
+  Split(std::move(left), left_parts, pos, camera_ids, out);
+  Split(std::move(right), parts - left_parts, pos, camera_ids, out);
+}
+
+}  // namespace
+
+bool ZoneOptions::Validate(std::string* why) const {
+  auto fail = [&](const char* reason) {
+    if (why != nullptr) *why = reason;
+    return false;
+  };
+  if (max_cameras < 2) return fail("max_cameras must be >= 2");
+  if (!(cell_m > 0.0) || !std::isfinite(cell_m)) return fail("cell_m must be finite and > 0");
+  if (!std::isfinite(sample_height_m)) return fail("sample_height_m must be finite");
+  if (!(min_shared_area_m2 >= 0.0) || !std::isfinite(min_shared_area_m2)) {
+    return fail("min_shared_area_m2 must be finite and >= 0");
+  }
+  return true;
+}
+
+std::string ZoneChannel(const std::string& channel, const std::string& zone) {
+  std::string upper = zone;
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return channel + "_" + upper;
+}
+
+std::vector<Zone> PartitionZones(const std::vector<geometry::CameraModel>& cameras,
+                                 const ZoneOptions& options) {
+  std::string why;
+  MVTRACK_CHECK_MSG(options.Validate(&why), "invalid ZoneOptions");
+  MVTRACK_CHECK_MSG(cameras.size() >= 2, "PartitionZones needs at least 2 cameras");
+  const std::size_t n = cameras.size();
+  // Each camera's cells of the floor grid, and its position for the split.
+  const FloorRegion region = DefaultFloorRegion(cameras, options.sample_height_m, 1.0);
+  const int cols = std::max(1, static_cast<int>(std::ceil(region.width_m() / options.cell_m)));
+  const int rows = std::max(1, static_cast<int>(std::ceil(region.depth_m() / options.cell_m)));
+  std::vector<std::vector<int>> cells(n);
+  std::vector<Vec2> pos(n);
+  std::vector<CameraId> ids(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    ids[c] = cameras[c].id;
+    Vec2 sum = Vec2::Zero();
+    for (int r = 0; r < rows; ++r) {
+      for (int k = 0; k < cols; ++k) {
+        const Vec3 p(region.x_min_m + (k + 0.5) * options.cell_m,
+                     region.y_min_m + (r + 0.5) * options.cell_m,
+                     options.sample_height_m);
+        if (!geometry::SeesPoint(cameras[c], p)) continue;
+        cells[c].push_back(r * cols + k);
+        sum += p.head<2>();
+      }
+    }
+    pos[c] = cells[c].empty() ? Vec2(cameras[c].CenterInWorld().head<2>())
+                              : Vec2(sum / static_cast<double>(cells[c].size()));
+  }
+  const auto per_zone = static_cast<std::size_t>(options.max_cameras);
+  const int parts = static_cast<int>((n + per_zone - 1) / per_zone);
+  std::vector<int> all(n);
+  std::iota(all.begin(), all.end(), 0);
+  std::vector<std::vector<int>> groups;
+  Split(std::move(all), parts, pos, ids, &groups);
+
+  const double cell_area = options.cell_m * options.cell_m;
+  std::vector<Zone> zones(groups.size());
+  std::vector<int> zone_of(n, -1);
+  std::vector<std::vector<char>> covered(groups.size());  // per zone: cells its cameras see
+  for (std::size_t z = 0; z < groups.size(); ++z) {
+    Zone& zone = zones[z];
+    zone.name = "zone" + std::to_string(z + 1);
+    covered[z].assign(static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols), 0);
+    bool any = false;
+    for (const int c : groups[z]) {
+      zone_of[static_cast<std::size_t>(c)] = static_cast<int>(z);
+      zone.cameras.push_back(ids[static_cast<std::size_t>(c)]);
+      for (const int cell : cells[static_cast<std::size_t>(c)]) {
+        covered[z][static_cast<std::size_t>(cell)] = 1;
+      }
+    }
+    std::sort(zone.cameras.begin(), zone.cameras.end());
+    for (std::size_t cell = 0; cell < covered[z].size(); ++cell) {
+      if (covered[z][cell] == 0) continue;
+      const double x = region.x_min_m + (static_cast<double>(cell % static_cast<std::size_t>(cols)) + 0.5) * options.cell_m;
+      const double y = region.y_min_m + (static_cast<double>(cell / static_cast<std::size_t>(cols)) + 0.5) * options.cell_m;
+      if (!any) zone.bounds = FloorRegion{x, y, x, y};
+      any = true;
+      zone.bounds.x_min_m = std::min(zone.bounds.x_min_m, x - 0.5 * options.cell_m);
+      zone.bounds.y_min_m = std::min(zone.bounds.y_min_m, y - 0.5 * options.cell_m);
+      zone.bounds.x_max_m = std::max(zone.bounds.x_max_m, x + 0.5 * options.cell_m);
+      zone.bounds.y_max_m = std::max(zone.bounds.y_max_m, y + 0.5 * options.cell_m);
+      zone.area_m2 += cell_area;
+    }
+    if (!any) {
+      for (const int c : groups[z]) {
+        const Vec3 center = cameras[static_cast<std::size_t>(c)].CenterInWorld();
+        if (!any) zone.bounds = FloorRegion{center.x(), center.y(), center.x(), center.y()};
+        any = true;
+        zone.bounds.x_min_m = std::min(zone.bounds.x_min_m, center.x());
+        zone.bounds.y_min_m = std::min(zone.bounds.y_min_m, center.y());
+        zone.bounds.x_max_m = std::max(zone.bounds.x_max_m, center.x());
+        zone.bounds.y_max_m = std::max(zone.bounds.y_max_m, center.y());
+      }
+    }
+  }
+  // Border cameras: another zone's camera that sees enough of this zone's floor.
+  std::vector<std::set<int>> neighbours(zones.size());
+  for (std::size_t z = 0; z < zones.size(); ++z) {
+    std::vector<char> shared(covered[z].size(), 0);
+    for (std::size_t c = 0; c < n; ++c) {
+      if (zone_of[c] == static_cast<int>(z)) continue;
+      std::size_t common = 0;
+      for (const int cell : cells[c]) common += covered[z][static_cast<std::size_t>(cell)] != 0 ? 1 : 0;
+      if (static_cast<double>(common) * cell_area < options.min_shared_area_m2 || common == 0) {
+        continue;
+      }
+      zones[z].border.push_back(ids[c]);
+      for (const int cell : cells[c]) {
+        if (covered[z][static_cast<std::size_t>(cell)] != 0) shared[static_cast<std::size_t>(cell)] = 1;
+      }
+      neighbours[z].insert(zone_of[c]);
+      neighbours[static_cast<std::size_t>(zone_of[c])].insert(static_cast<int>(z));
+    }
+    std::sort(zones[z].border.begin(), zones[z].border.end());
+    zones[z].border_area_m2 =
+        static_cast<double>(std::count(shared.begin(), shared.end(), 1)) * cell_area;
+  }
+  for (std::size_t z = 0; z < zones.size(); ++z) {
+    for (const int other : neighbours[z]) zones[z].neighbours.push_back(zones[static_cast<std::size_t>(other)].name);
+  }
+  return zones;
+}
+
+}  // namespace mvtrack::config

@@ -1,0 +1,67 @@
+#pragma once
+/// @file
+/// Zones of a site (issue 43, first part): the cameras of a large rig split into zones of
+/// cameras whose views share the floor, one tracker (mvtrackd) per zone. Each zone tracks with
+/// its own cameras ("core") plus the cameras of other zones that see its floor ("border"), so
+/// the floor along a border is triangulated by both neighbouring zones from the same cameras'
+/// detections (multicast delivers a border camera to both), which is what a stitcher needs to
+/// join the zones' tracks into one id space. Pure computation (no I/O), deterministic.
+///
+/// The split (PartitionZones): every camera's coverage is the set of cells of a floor grid whose
+/// centre at sample_height_m it sees (geometry::SeesPoint, as `mvtrack calib check` samples);
+/// its position for the split is the mean of those cells (its centre, when it sees none). The
+/// cameras are split recursively along the longer extent of their positions, ties by camera id,
+/// into ⌈n / max_cameras⌉ parts of nearly equal size, so zones are compact floor areas of at
+/// most max_cameras cameras. Then a camera of another zone is a border camera of zone Z when it
+/// sees at least min_shared_area_m2 of the floor Z's own cameras see.
+
+#include <string>
+#include <vector>
+
+#include "config/calibration_check.h"
+#include "core/types.h"
+#include "geometry/camera_model.h"
+
+namespace mvtrack::config {
+
+/// Options of PartitionZones.
+struct ZoneOptions {
+  /// Largest number of a zone's own cameras, >= 2 (border cameras come on top).
+  int max_cameras = 16;
+  /// Side of the floor grid cells, metres, > 0.
+  double cell_m = 0.5;
+  /// Height of the sampled points above the floor, metres (a standing person's torso).
+  double sample_height_m = 1.0;
+  /// Floor a camera of another zone must share with a zone's cameras to be its border camera,
+  /// m², >= 0.
+  double min_shared_area_m2 = 2.0;
+  /// Checks the ranges above; on failure writes the reason to `why` (if not null).
+  bool Validate(std::string* why) const;
+};
+
+/// One zone.
+struct Zone {
+  std::string name;               ///< "zone1", "zone2", ... in the order of the split
+  std::vector<CameraId> cameras;  ///< its own cameras, ascending
+  /// Cameras of other zones that see its floor (tracked by it too), ascending.
+  std::vector<CameraId> border;
+  /// The zones its border cameras belong to, and the zones whose border it is part of, by name.
+  std::vector<std::string> neighbours;
+  /// Floor its own cameras see, m² (cells seen at sample height).
+  double area_m2 = 0.0;
+  /// Of it, seen by a border camera too: the floor it shares with its neighbours, m².
+  double border_area_m2 = 0.0;
+  /// Bounding box of the floor its own cameras see (its cameras' centres when they see none).
+  FloorRegion bounds;
+};
+
+/// Splits `cameras` (valid, at least 2; checked) into zones; see the file comment. One zone
+/// when there are at most max_cameras cameras. `options` must be valid (checked).
+std::vector<Zone> PartitionZones(const std::vector<geometry::CameraModel>& cameras,
+                                 const ZoneOptions& options = {});
+
+/// The channel of zone `zone` for a site channel: "<channel>_<ZONE>" (the zone name in upper
+/// case), e.g. MVTRACK_TRACKS_ZONE1.
+std::string ZoneChannel(const std::string& channel, const std::string& zone);
+
+}  // namespace mvtrack::config
