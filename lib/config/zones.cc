@@ -13,8 +13,11 @@ namespace {
 
 // Splits `ids` (indices into `pos`) into `parts` parts of nearly equal size along the longer
 // extent of their positions, recursively; appends the parts to `out` in order.
-void Split(std::vector<int> ids, int parts, const std::vector<Vec2>& pos,
-           const std::vector<CameraId>& camera_ids, std::vector<std::vector<int>>* out) {
+void Split(std::vector<int> ids,
+           int parts,
+           const std::vector<Vec2>& pos,
+           const std::vector<CameraId>& camera_ids,
+           std::vector<std::vector<int>>* out) {
   if (parts <= 1 || ids.size() <= 1) {
     out->push_back(std::move(ids));
     return;
@@ -33,8 +36,8 @@ void Split(std::vector<int> ids, int parts, const std::vector<Vec2>& pos,
     return camera_ids[static_cast<std::size_t>(a)] < camera_ids[static_cast<std::size_t>(b)];
   });
   const int left_parts = parts / 2;
-  const auto left_n = static_cast<std::size_t>(std::lround(
-      static_cast<double>(ids.size()) * left_parts / static_cast<double>(parts)));
+  const auto left_n = static_cast<std::size_t>(
+      std::lround(static_cast<double>(ids.size()) * left_parts / static_cast<double>(parts)));
   std::vector<int> left(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(left_n));
   std::vector<int> right(ids.begin() + static_cast<std::ptrdiff_t>(left_n), ids.end());
   Split(std::move(left), left_parts, pos, camera_ids, out);
@@ -118,8 +121,12 @@ std::vector<Zone> PartitionZones(const std::vector<geometry::CameraModel>& camer
     std::sort(zone.cameras.begin(), zone.cameras.end());
     for (std::size_t cell = 0; cell < covered[z].size(); ++cell) {
       if (covered[z][cell] == 0) continue;
-      const double x = region.x_min_m + (static_cast<double>(cell % static_cast<std::size_t>(cols)) + 0.5) * options.cell_m;
-      const double y = region.y_min_m + (static_cast<double>(cell / static_cast<std::size_t>(cols)) + 0.5) * options.cell_m;
+      const double x =
+          region.x_min_m +
+          (static_cast<double>(cell % static_cast<std::size_t>(cols)) + 0.5) * options.cell_m;
+      const double y =
+          region.y_min_m +
+          (static_cast<double>(cell / static_cast<std::size_t>(cols)) + 0.5) * options.cell_m;
       if (!any) zone.bounds = FloorRegion{x, y, x, y};
       any = true;
       zone.bounds.x_min_m = std::min(zone.bounds.x_min_m, x - 0.5 * options.cell_m);
@@ -147,13 +154,15 @@ std::vector<Zone> PartitionZones(const std::vector<geometry::CameraModel>& camer
     for (std::size_t c = 0; c < n; ++c) {
       if (zone_of[c] == static_cast<int>(z)) continue;
       std::size_t common = 0;
-      for (const int cell : cells[c]) common += covered[z][static_cast<std::size_t>(cell)] != 0 ? 1 : 0;
+      for (const int cell : cells[c])
+        common += covered[z][static_cast<std::size_t>(cell)] != 0 ? 1 : 0;
       if (static_cast<double>(common) * cell_area < options.min_shared_area_m2 || common == 0) {
         continue;
       }
       zones[z].border.push_back(ids[c]);
       for (const int cell : cells[c]) {
-        if (covered[z][static_cast<std::size_t>(cell)] != 0) shared[static_cast<std::size_t>(cell)] = 1;
+        if (covered[z][static_cast<std::size_t>(cell)] != 0)
+          shared[static_cast<std::size_t>(cell)] = 1;
       }
       neighbours[z].insert(zone_of[c]);
       neighbours[static_cast<std::size_t>(zone_of[c])].insert(static_cast<int>(z));
@@ -163,7 +172,8 @@ std::vector<Zone> PartitionZones(const std::vector<geometry::CameraModel>& camer
         static_cast<double>(std::count(shared.begin(), shared.end(), 1)) * cell_area;
   }
   for (std::size_t z = 0; z < zones.size(); ++z) {
-    for (const int other : neighbours[z]) zones[z].neighbours.push_back(zones[static_cast<std::size_t>(other)].name);
+    for (const int other : neighbours[z])
+      zones[z].neighbours.push_back(zones[static_cast<std::size_t>(other)].name);
   }
   return zones;
 }

@@ -14,6 +14,7 @@
 #include "config/internal/tracker_options_node.h"
 #include "config/internal/yaml_node.h"
 #include "config/site.h"
+#include "config/zones.h"
 #include "geometry/camera_rig.h"
 #include "transport/channels.h"
 
@@ -369,6 +370,7 @@ DaemonConfig ParseDaemonConfig(std::string_view text,
   try {
     const MapRef root(root_node,
                       {"format",
+                       "zone",
                        "cameras",
                        "input",
                        "output",
@@ -383,6 +385,22 @@ DaemonConfig ParseDaemonConfig(std::string_view text,
     if (GetString(format) != kDaemonConfigFormat) {
       format.Fail("expected '" + std::string(kDaemonConfigFormat) + "', not '" + GetString(format) +
                   "'");
+    }
+    if (const std::optional<NodeRef> zone = root.Find("zone");
+        zone && !GetString(*zone, true).empty()) {
+      c.zone = GetString(*zone);
+      if (c.zone.size() > 32 || !std::all_of(c.zone.begin(), c.zone.end(), [](char ch) {
+            return (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_';
+          })) {
+        zone->Fail("a zone name has 1 to 32 characters a-z, 0-9 and _ (it names channels)");
+      }
+      for (std::string* channel : {&c.tracks_channel,
+                                   &c.status_channel,
+                                   &c.provisional_channel,
+                                   &c.analytics_events_channel,
+                                   &c.site_counts_channel}) {
+        *channel = config::ZoneChannel(*channel, c.zone);
+      }
     }
     ParseCameras(root, base_dir, calibration_override, &c);
     ParseInput(root, &c);
@@ -428,6 +446,7 @@ std::string DaemonConfigToYaml(const DaemonConfig& c) {
   std::string out;
   auto line = [&](const std::string& s) { out += s + "\n"; };
   line("format: " + std::string(kDaemonConfigFormat));
+  line("zone: " + QuoteString(c.zone));
   line("cameras:");
   line("  calibration: " + QuoteString(c.calibration_path));
   std::string ids;

@@ -108,6 +108,12 @@ struct DaemonConfig {
   /// The file this was loaded from ("" when parsed from text without a file).
   std::string source;
 
+  /// zone: the zone of a site this daemon tracks (issue 43, `mvtrack calib zones`), "" = none.
+  /// A zone's output channels default to the site channels suffixed with the zone in upper case
+  /// (MVTRACK_TRACKS_ZONE1, MVTRACK_STATUS_ZONE1, ...; config::ZoneChannel); output.* and
+  /// analytics.* channels given explicitly are kept.
+  std::string zone;
+
   /// cameras.calibration, resolved against the configuration file's directory.
   std::string calibration_path;
   /// The calibrated cameras in use: cameras.ids of the calibration (all when `ids` is absent),

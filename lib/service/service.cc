@@ -49,6 +49,7 @@ std::vector<std::string> RestartOnlyChanges(const DaemonConfig& a, const DaemonC
   std::string ids_a, ids_b;
   for (const auto& c : a.cameras) ids_a += std::to_string(c.id) + ",";
   for (const auto& c : b.cameras) ids_b += std::to_string(c.id) + ",";
+  check(a.zone != b.zone, "zone");
   check(a.calibration_path != b.calibration_path || ids_a != ids_b, "cameras");
   check(a.input_url != b.input_url, "input.lcm_url");
   check(a.channel_mode != b.channel_mode, "input.channels");

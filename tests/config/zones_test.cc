@@ -76,7 +76,7 @@ TEST_CASE("PartitionZones splits a corridor along its length, borders near the b
   CHECK(three[1].neighbours == std::vector<std::string>{"zone1", "zone3"});
 }
 
-TEST_CASE("ZoneOptions are checked; zone channels are namespaced", "[unit][config]") {
+TEST_CASE("ZoneOptions are checked, zone channels are namespaced", "[unit][config]") {
   std::string why;
   ZoneOptions o;
   CHECK(o.Validate(&why));

@@ -136,6 +136,16 @@ TEST_CASE("daemon config: errors name the file, line, key and reason", "[unit]")
     CHECK_THAT(ErrorOf(Minimal("output:\n  tracks_channel: MVTRACK_TRACKS_NOW\n")).reason(),
                Catch::Contains("the provisional layer needs its own channel"));
     CHECK(Parse(Minimal()).provisional_channel == "MVTRACK_TRACKS_NOW");
+    // A zone of a site (issue 43): its channels are namespaced, explicit ones kept.
+    const DaemonConfig zoned = Parse("zone: east_2\n" + Minimal("output:\n  status_channel: S\n"));
+    CHECK(zoned.zone == "east_2");
+    CHECK(zoned.tracks_channel == "MVTRACK_TRACKS_EAST_2");
+    CHECK(zoned.provisional_channel == "MVTRACK_TRACKS_NOW_EAST_2");
+    CHECK(zoned.analytics_events_channel == "MVTRACK_ANALYTICS_EVENTS_EAST_2");
+    CHECK(zoned.status_channel == "S");
+    CHECK(ParseDaemonConfig(DaemonConfigToYaml(zoned), "again.yaml", "/").tracks_channel ==
+          "MVTRACK_TRACKS_EAST_2");
+    CHECK_THAT(ErrorOf("zone: East\n" + Minimal()).reason(), Catch::Contains("a zone name has"));
     CHECK(Parse(Minimal("output:\n  provisional_channel: \"\"\n")).provisional_channel.empty());
     CHECK_THAT(ErrorOf(Minimal("input:\n  lcm_url: \"http://x\"\n")).reason(),
                Catch::Contains("unsupported LCM URL"));

@@ -467,13 +467,11 @@ int RunZones(int argc, char** argv) {
           "# Zone " + z.name + " of " + path + " (mvtrack calib zones): its own cameras " +
               IdList(z.cameras) + "; border cameras " +
               (z.border.empty() ? std::string("none") : IdList(z.border)) +
-              ".\nformat: mvtrack.daemon/1\ncameras:\n  calibration: " +
-              (ec ? fs::absolute(path).generic_string() : calibration) + "\n  ids: [" +
-              IdList(ids) + "]\ninput:\n  channels: per_camera\noutput:\n  tracks_channel: " +
+              ".\n# Its output channels are the site's suffixed with the zone (" +
               config::ZoneChannel("MVTRACK_TRACKS", z.name) +
-              "\n  status_channel: " + config::ZoneChannel("MVTRACK_STATUS", z.name) +
-              "\n  provisional_channel: " + config::ZoneChannel("MVTRACK_TRACKS_NOW", z.name) +
-              "\n");
+              ", ...).\nformat: mvtrack.daemon/1\nzone: " + z.name + "\ncameras:\n  calibration: " +
+              (ec ? fs::absolute(path).generic_string() : calibration) + "\n  ids: [" +
+              IdList(ids) + "]\ninput:\n  channels: per_camera\n");
     summary += "  - name: " + z.name + "\n    cameras: [" + IdList(z.cameras) +
                "]\n    border_cameras: [" + IdList(z.border) + "]\n    neighbours: [" + neighbours +
                "]\n    daemon: " + z.name + ".yaml\n";
