@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <set>
 
+#include "config/internal/yaml_node.h"
 #include "core/check.h"
 
 namespace mvtrack::config {
@@ -58,6 +60,116 @@ bool ZoneOptions::Validate(std::string* why) const {
     return fail("min_shared_area_m2 must be finite and >= 0");
   }
   return true;
+}
+
+std::optional<std::string> ValidateZoneName(std::string_view name) {
+  if (name.empty() || name.size() > 32 || !std::all_of(name.begin(), name.end(), [](char ch) {
+        return (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_';
+      })) {
+    return std::string("a zone name has 1 to 32 characters a-z, 0-9 and _ (it names channels)");
+  }
+  return std::nullopt;
+}
+
+std::vector<Zone> ParseZones(std::string_view text, const std::string& source_name) {
+  using internal::GetSequence;
+  using internal::GetString;
+  using internal::MapRef;
+  using internal::NodeRef;
+  const NodeRef root_node = internal::ParseDocument(text, source_name);
+  if (root_node.IsNull()) {
+    root_node.Fail("empty document (expected a map with 'format: " + std::string(kZonesFormat) +
+                   "')");
+  }
+  const MapRef root(root_node, {"format", "zones"});
+  const NodeRef format = root.Get("format");
+  if (GetString(format) != kZonesFormat) {
+    format.Fail("expected '" + std::string(kZonesFormat) + "', not '" + GetString(format) + "'");
+  }
+  const NodeRef list = root.Get("zones");
+  const std::vector<NodeRef> items = GetSequence(list);
+  if (items.empty()) list.Fail("a site needs at least one zone");
+  std::vector<Zone> zones;
+  std::map<CameraId, std::string> owner;  // camera -> the zone that owns it
+  std::vector<std::pair<NodeRef, std::string>> neighbour_refs;
+  const auto camera_list = [](const NodeRef& node) {
+    std::vector<CameraId> ids;
+    for (const NodeRef& item : GetSequence(node)) {
+      const auto id = static_cast<CameraId>(internal::GetInt64(item, 0, 2147483647));
+      if (std::find(ids.begin(), ids.end(), id) != ids.end()) {
+        item.Fail("camera " + std::to_string(id) + " is listed twice");
+      }
+      ids.push_back(id);
+    }
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  };
+  for (const NodeRef& item : items) {
+    const MapRef m(item, {"name", "cameras", "border_cameras", "neighbours", "daemon"});
+    Zone z;
+    const NodeRef name = m.Get("name");
+    z.name = GetString(name);
+    if (const std::optional<std::string> why = ValidateZoneName(z.name)) name.Fail(*why);
+    for (const Zone& other : zones) {
+      if (other.name == z.name) name.Fail("another zone is named '" + z.name + "'");
+    }
+    const NodeRef cameras = m.Get("cameras");
+    z.cameras = camera_list(cameras);
+    if (z.cameras.empty()) cameras.Fail("a zone needs at least one camera of its own");
+    for (const CameraId id : z.cameras) {
+      if (const auto it = owner.find(id); it != owner.end()) {
+        cameras.Fail("camera " + std::to_string(id) + " is zone '" + it->second +
+                     "''s already (a camera belongs to one zone; list it under border_cameras)");
+      }
+      owner[id] = z.name;
+    }
+    if (const std::optional<NodeRef> border = m.Find("border_cameras")) {
+      z.border = camera_list(*border);
+      for (const CameraId id : z.border) {
+        if (std::binary_search(z.cameras.begin(), z.cameras.end(), id)) {
+          border->Fail("camera " + std::to_string(id) + " is one of the zone's own cameras");
+        }
+      }
+    }
+    if (const std::optional<NodeRef> neighbours = m.Find("neighbours")) {
+      for (const NodeRef& n : GetSequence(*neighbours)) {
+        z.neighbours.push_back(GetString(n));
+        neighbour_refs.emplace_back(n, z.neighbours.back());
+      }
+    }
+    if (const std::optional<NodeRef> daemon = m.Find("daemon")) z.daemon = GetString(*daemon);
+    zones.push_back(std::move(z));
+  }
+  for (const auto& [ref, neighbour] : neighbour_refs) {
+    if (std::none_of(
+            zones.begin(), zones.end(), [&](const Zone& z) { return z.name == neighbour; })) {
+      ref.Fail("no zone is named '" + neighbour + "'");
+    }
+  }
+  return zones;
+}
+
+std::vector<Zone> LoadZonesFile(const std::string& path) {
+  return ParseZones(internal::ReadTextFile(path), path);
+}
+
+std::string ZonesToYaml(const std::vector<Zone>& zones, const std::string& comment) {
+  const auto ids = [](const std::vector<CameraId>& v) {
+    std::string s;
+    for (const CameraId id : v) s += (s.empty() ? "" : ", ") + std::to_string(id);
+    return "[" + s + "]";
+  };
+  std::string out;
+  if (!comment.empty()) out += "# " + comment + "\n";
+  out += "format: " + std::string(kZonesFormat) + "\nzones:\n";
+  for (const Zone& z : zones) {
+    std::string neighbours;
+    for (const std::string& n : z.neighbours) neighbours += (neighbours.empty() ? "" : ", ") + n;
+    out += "  - name: " + z.name + "\n    cameras: " + ids(z.cameras) +
+           "\n    border_cameras: " + ids(z.border) + "\n    neighbours: [" + neighbours + "]\n";
+    if (!z.daemon.empty()) out += "    daemon: " + internal::QuoteString(z.daemon) + "\n";
+  }
+  return out;
 }
 
 std::string ZoneChannel(const std::string& channel, const std::string& zone) {

@@ -15,7 +15,9 @@
 /// most max_cameras cameras. Then a camera of another zone is a border camera of zone Z when it
 /// sees at least min_shared_area_m2 of the floor Z's own cameras see.
 
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "config/calibration_check.h"
@@ -53,7 +55,37 @@ struct Zone {
   double border_area_m2 = 0.0;
   /// Bounding box of the floor its own cameras see (its cameras' centres when they see none).
   FloorRegion bounds;
+  /// The zone daemon's configuration file (relative to the zones file), when known.
+  std::string daemon;
 };
+
+/// The `format` of a zones file.
+inline constexpr std::string_view kZonesFormat = "mvtrack.zones/1";
+
+/// Why `name` cannot name a zone (1 to 32 characters a-z, 0-9 and _: it names channels), or
+/// nullopt when it can.
+std::optional<std::string> ValidateZoneName(std::string_view name);
+
+/// Parses a zones file (what `mvtrack calib zones --out` writes as zones.yaml, or written by
+/// hand; docs/FORMATS.md "Zones"):
+///
+///     format: mvtrack.zones/1
+///     zones:
+///       - name: zone1               # ValidateZoneName, unique
+///         cameras: [0, 1, 2]        # its own cameras: at least one, no camera in two zones
+///         border_cameras: [3]       # optional: other zones' cameras it tracks with too
+///         neighbours: [zone2]       # optional: names of zones of the file
+///         daemon: zone1.yaml        # optional: its daemon configuration
+///
+/// Strict like every configuration file: a ConfigError with file, line and column on unknown
+/// keys, wrong types, duplicate names or cameras. Only name, cameras, border, neighbours and
+/// daemon of the zones are set.
+std::vector<Zone> ParseZones(std::string_view text, const std::string& source_name);
+/// ParseZones of a file's text.
+std::vector<Zone> LoadZonesFile(const std::string& path);
+/// The zones file of `zones` (valid), with `comment` (lines without '#', may be empty) on top.
+/// ParseZones reads it back.
+std::string ZonesToYaml(const std::vector<Zone>& zones, const std::string& comment);
 
 /// Splits `cameras` (valid, at least 2; checked) into zones; see the file comment. One zone
 /// when there are at most max_cameras cameras. `options` must be valid (checked).

@@ -389,10 +389,8 @@ DaemonConfig ParseDaemonConfig(std::string_view text,
     if (const std::optional<NodeRef> zone = root.Find("zone");
         zone && !GetString(*zone, true).empty()) {
       c.zone = GetString(*zone);
-      if (c.zone.size() > 32 || !std::all_of(c.zone.begin(), c.zone.end(), [](char ch) {
-            return (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_';
-          })) {
-        zone->Fail("a zone name has 1 to 32 characters a-z, 0-9 and _ (it names channels)");
+      if (const std::optional<std::string> why = config::ValidateZoneName(c.zone)) {
+        zone->Fail(*why);
       }
       for (std::string* channel : {&c.tracks_channel,
                                    &c.status_channel,

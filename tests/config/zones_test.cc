@@ -7,10 +7,15 @@
 #include <catch2/catch.hpp>
 #include <map>
 
+#include "config_test_util.h"
 #include "sim/cameras.h"
 
 namespace mvtrack::config {
 namespace {
+
+using testing::CheckLocated;
+using testing::LineOf;
+using testing::RequireConfigError;
 
 // A 48 m corridor: 16 cameras 3 m apart along x at 3 m height, alternately on the two walls
 // (y = 0 and y = 6), each looking down 45 degrees across the corridor and along +x.
@@ -90,6 +95,75 @@ TEST_CASE("ZoneOptions are checked, zone channels are namespaced", "[unit][confi
   o.min_shared_area_m2 = -1.0;
   CHECK_FALSE(o.Validate(&why));
   CHECK(ZoneChannel("MVTRACK_TRACKS", "zone2") == "MVTRACK_TRACKS_ZONE2");
+}
+
+TEST_CASE("zones file: written zones read back", "[unit][config]") {
+  const std::vector<Zone> zones = PartitionZones(Corridor(), ZoneOptions{8, 0.5, 1.0, 2.0});
+  std::vector<Zone> named = zones;
+  named[0].daemon = "zone1.yaml";
+  const std::string text = ZonesToYaml(named, "the corridor");
+  const std::vector<Zone> again = ParseZones(text, "z.yaml");
+  REQUIRE(again.size() == zones.size());
+  for (std::size_t i = 0; i < zones.size(); ++i) {
+    CHECK(again[i].name == zones[i].name);
+    CHECK(again[i].cameras == zones[i].cameras);
+    CHECK(again[i].border == zones[i].border);
+    CHECK(again[i].neighbours == zones[i].neighbours);
+  }
+  CHECK(again[0].daemon == "zone1.yaml");
+  CHECK(again[1].daemon.empty());
+  CHECK(ZonesToYaml(again, "the corridor") == text);
+}
+
+TEST_CASE("zones file: mistakes are errors naming the line and the key", "[unit][config]") {
+  const auto error = [](const std::string& text) {
+    return RequireConfigError([&] { ParseZones(text, "z.yaml"); });
+  };
+  const std::string ok =
+      "format: mvtrack.zones/1\nzones:\n  - name: east\n    cameras: [0, 1]\n"
+      "    border_cameras: [2]\n  - name: west\n    cameras: [2, 3]\n    neighbours: [east]\n";
+  CHECK(ParseZones(ok, "z.yaml").size() == 2);
+  std::string text = ok;
+  text.replace(text.find("cameras: [2, 3]"), 15, "cameras: [1, 3]");
+  CheckLocated(error(text), "z.yaml", LineOf(text, "[1, 3]"), "zones[1].cameras", "zone 'east'");
+  text = ok;
+  text.replace(text.find("west"), 4, "East");
+  CheckLocated(error(text), "z.yaml", LineOf(text, "East"), "zones[1].name", "a-z, 0-9 and _");
+  text = ok;
+  text.replace(text.find("west"), 4, "east");
+  CheckLocated(error(text),
+               "z.yaml",
+               LineOf(text, "name: east\n    cameras: [2"),
+               "zones[1].name",
+               "another zone is named 'east'");
+  text = ok;
+  text.replace(text.find("[east]"), 6, "[north]");
+  CheckLocated(error(text),
+               "z.yaml",
+               LineOf(text, "north"),
+               "zones[1].neighbours[0]",
+               "no zone is named 'north'");
+  text = ok;
+  text.replace(text.find("border_cameras: [2]"), 19, "border_cameras: [1]");
+  CheckLocated(error(text),
+               "z.yaml",
+               LineOf(text, "border_cameras"),
+               "zones[0].border_cameras",
+               "one of the zone's own cameras");
+  text = ok;
+  text.replace(text.find("border_cameras"), 14, "border_camera");
+  CheckLocated(error(text),
+               "z.yaml",
+               LineOf(text, "border_camera"),
+               "zones[0].border_camera",
+               "did you mean 'border_cameras'");
+  CheckLocated(
+      error("format: mvtrack.zones/1\nzones: []\n"), "z.yaml", 2, "zones", "at least one zone");
+  CheckLocated(error("format: mvtrack.zones/1\nzones:\n  - name: a\n    cameras: []\n"),
+               "z.yaml",
+               4,
+               "zones[0].cameras",
+               "at least one camera");
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ for z in zone1 zone2; do
   expect_grep "^  channels: per_camera$" "$OUT/$z.check.txt"
 done
 expect_grep "^  - name: zone1$" "$OUT/site/zones.yaml"
-expect_grep "^    daemon: zone2.yaml$" "$OUT/site/zones.yaml"
+expect_grep "^    daemon: \"zone2.yaml\"$" "$OUT/site/zones.yaml"
 expect_exit 2 "$OUT/bad.txt" "$MVTRACK" calib zones "$CAL" --max-cameras 1
 expect_grep "max-cameras must be in" "$OUT/bad.txt"
 expect_exit 1 "$OUT/missing.txt" "$MVTRACK" calib zones "$OUT/nothing.yaml"

@@ -3,7 +3,7 @@
 # Pure modules: see docs/ARCHITECTURE.md. Usage: check_layering.sh [repo-root]
 set -euo pipefail
 root=${1:-$(cd "$(dirname "$0")/../.." && pwd)}
-pure="core json geometry tracking2d association triangulation body analytics linking tracker sim eval"
+pure="core json geometry tracking2d association triangulation body analytics linking tracker stitch sim eval"
 pattern='#[[:space:]]*include[[:space:]]*[<"](lcm/|lcm\.h|yaml-cpp/|spdlog/|thread>|mutex>|atomic>|condition_variable>|future>|shared_mutex>|semaphore>|stop_token>|opencv2/|fstream>|iostream>|cstdio>)'
 clock='std::chrono::(system|steady|high_resolution)_clock::now|[^a-z_]time\(nullptr\)|gettimeofday|clock_gettime|std::random_device|getenv'
 status=0

@@ -455,15 +455,13 @@ int RunZones(int argc, char** argv) {
     if (!out) throw std::runtime_error(file.string() + ": cannot write");
     std::cout << "wrote " << file.string() << "\n";
   };
-  std::string summary = "# Zones of " + path + " (mvtrack calib zones --max-cameras " +
-                        std::to_string(options.max_cameras) + ")\nzones:\n";
-  for (const config::Zone& z : zones) {
+  std::vector<config::Zone> written = zones;
+  for (config::Zone& z : written) {
+    z.daemon = z.name + ".yaml";
     std::vector<CameraId> ids = z.cameras;
     ids.insert(ids.end(), z.border.begin(), z.border.end());
     std::sort(ids.begin(), ids.end());
-    std::string neighbours;
-    for (const std::string& x : z.neighbours) neighbours += (neighbours.empty() ? "" : ", ") + x;
-    write(dir / (z.name + ".yaml"),
+    write(dir / z.daemon,
           "# Zone " + z.name + " of " + path + " (mvtrack calib zones): its own cameras " +
               IdList(z.cameras) + "; border cameras " +
               (z.border.empty() ? std::string("none") : IdList(z.border)) +
@@ -472,11 +470,11 @@ int RunZones(int argc, char** argv) {
               ", ...).\nformat: mvtrack.daemon/1\nzone: " + z.name + "\ncameras:\n  calibration: " +
               (ec ? fs::absolute(path).generic_string() : calibration) + "\n  ids: [" +
               IdList(ids) + "]\ninput:\n  channels: per_camera\n");
-    summary += "  - name: " + z.name + "\n    cameras: [" + IdList(z.cameras) +
-               "]\n    border_cameras: [" + IdList(z.border) + "]\n    neighbours: [" + neighbours +
-               "]\n    daemon: " + z.name + ".yaml\n";
   }
-  write(dir / "zones.yaml", summary);
+  write(dir / "zones.yaml",
+        config::ZonesToYaml(written,
+                            "Zones of " + path + " (mvtrack calib zones --max-cameras " +
+                                std::to_string(options.max_cameras) + ")"));
   return 0;
 }
 

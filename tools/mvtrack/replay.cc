@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -25,6 +27,7 @@
 #include "config/calibration.h"
 #include "config/calibration_check.h"
 #include "config/tracker_options.h"
+#include "config/zones.h"
 #include "core/keypoint_layout.h"
 #include "formats/tracks_io.h"
 #include "geometry/camera_rig.h"
@@ -32,6 +35,7 @@
 #include "pipeline/clock.h"
 #include "pipeline/executor.h"
 #include "pipeline/pipeline.h"
+#include "stitch/stitcher.h"
 #include "transport/channels.h"
 #include "transport/codec.h"
 #include "transport/log_io.h"
@@ -180,6 +184,127 @@ bool SamePath(const std::string& a, const std::string& b) {
   return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
 }
 
+// What one tracking run produced.
+struct TrackRun {
+  std::vector<tracker::Frame3D> frames;
+  std::vector<tracker::Frame3D> provisional;
+  pipeline::PipelineStatus status;
+};
+
+using RejectedFn =
+    std::function<void(CameraId, FrameIndex, tracker::FrameRejection, const std::string&)>;
+
+// Tracks `frames` (log order; moved from) with `rig`. threads 0: the stages inline on this
+// thread (tracker::Tracker, no thread at all); N: the threaded pipeline with lossless camera
+// queues and N window-job workers. The output is identical (tools/replay_threads, service
+// tests). `progress(i, frames_out)` is called before each camera-frame.
+TrackRun Track(const geometry::CameraRig& rig,
+               const tracker::TrackerOptions& options,
+               std::int64_t threads,
+               std::vector<core::CameraFrame>* frames,
+               const std::vector<std::int64_t>& event_times_us,
+               bool want_provisional,
+               const RejectedFn& rejected,
+               const std::function<void(std::size_t, std::int64_t)>& progress) {
+  TrackRun run;
+  std::string why;
+  std::mutex frames_mu;  // the pipeline's finalizer writes run.frames and run.provisional
+  std::atomic<std::int64_t> frames_out{0};
+  const std::size_t n = frames->size();
+  if (threads == 0) {
+    std::unique_ptr<tracker::Tracker> inline_tracker =
+        tracker::Tracker::Create(rig, options, &why, want_provisional);
+    if (!inline_tracker) throw std::runtime_error("tracker: " + why);
+    auto take = [&](std::vector<tracker::Frame3D>* finalized) {
+      frames_out.fetch_add(static_cast<std::int64_t>(finalized->size()));
+      for (tracker::Frame3D& f : *finalized) run.frames.push_back(std::move(f));
+      for (tracker::Frame3D& f : inline_tracker->TakeProvisional()) {
+        run.provisional.push_back(std::move(f));
+      }
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      progress(i, frames_out.load());
+      const CameraId camera = (*frames)[i].camera_id;
+      const FrameIndex frame = (*frames)[i].frame;
+      tracker::AddResult r = inline_tracker->Add((*frames)[i]);
+      if (r.rejection != tracker::FrameRejection::kNone) {
+        rejected(camera, frame, r.rejection, r.reason);
+      }
+      take(&r.finalized);
+    }
+    std::vector<tracker::Frame3D> rest = inline_tracker->Flush();
+    take(&rest);
+    run.status.tracker = inline_tracker->stats();
+  } else {
+    pipeline::PipelineOptions pipeline_options;
+    pipeline_options.camera_overflow = pipeline::OverflowPolicy::kBlock;
+    pipeline::ThreadPoolOptions pool;
+    pool.num_workers = static_cast<int>(threads);
+    pipeline::ManualClock clock(event_times_us.empty() ? 0 : event_times_us.front());
+    std::unique_ptr<pipeline::Pipeline> pipeline = pipeline::Pipeline::Create(
+        rig,
+        options,
+        pipeline_options,
+        std::make_unique<pipeline::ThreadPoolExecutor>(pool),
+        clock,
+        [&](tracker::Frame3D frame) {
+          std::lock_guard<std::mutex> lock(frames_mu);
+          run.frames.push_back(std::move(frame));
+          frames_out.fetch_add(1, std::memory_order_relaxed);
+        },
+        &why,
+        want_provisional ? pipeline::Pipeline::FrameCallback([&](tracker::Frame3D frame) {
+          std::lock_guard<std::mutex> lock(frames_mu);
+          run.provisional.push_back(std::move(frame));
+        })
+                         : pipeline::Pipeline::FrameCallback());
+    if (!pipeline) throw std::runtime_error("pipeline: " + why);
+    for (std::size_t i = 0; i < n; ++i) {
+      progress(i, frames_out.load());
+      clock.SetMicros(event_times_us[i]);
+      const CameraId camera = (*frames)[i].camera_id;
+      const FrameIndex frame = (*frames)[i].frame;
+      const pipeline::SubmitResult r = pipeline->Submit(std::move((*frames)[i]));
+      if (r.status == pipeline::SubmitStatus::kStopped) {
+        throw std::runtime_error("pipeline stopped unexpectedly");
+      }
+      if (r.status == pipeline::SubmitStatus::kRejected) {
+        rejected(camera, frame, r.rejection, r.reason);
+      }
+    }
+    if (!pipeline->Flush()) throw std::runtime_error("pipeline stopped before the final flush");
+    pipeline->Stop();
+    run.status = pipeline->Status();
+  }
+  frames->clear();
+  return run;
+}
+
+// Adds `b`'s counters to `a` (zones: a border camera's frames count in each of its zones).
+void AddStats(tracker::TrackerStats* a, const tracker::TrackerStats& b) {
+  a->camera_frames_accepted += b.camera_frames_accepted;
+  a->camera_frames_rejected += b.camera_frames_rejected;
+  for (const auto& [kind, n] : b.rejections) a->rejections[kind] += n;
+  a->detections_used += b.detections_used;
+  a->detections_rejected += b.detections_rejected;
+  a->detections_repaired += b.detections_repaired;
+  a->detections_filtered += b.detections_filtered;
+  a->frames_finalized += b.frames_finalized;
+  a->windows_processed += b.windows_processed;
+  a->reanchors += b.reanchors;
+  a->tracks_born += b.tracks_born;
+  a->tracks_revived += b.tracks_revived;
+  a->embeddings_used += b.embeddings_used;
+  a->embeddings_dropped += b.embeddings_dropped;
+  a->gallery_bytes += b.gallery_bytes;
+}
+
+std::string JoinIds(const std::vector<CameraId>& ids) {
+  std::string s;
+  for (const CameraId id : ids) s += (s.empty() ? "" : ",") + std::to_string(id);
+  return s;
+}
+
 }  // namespace
 
 int RunReplay(int argc, char** argv) {
@@ -199,6 +324,13 @@ int RunReplay(int argc, char** argv) {
               "0")
       .Option("out", "write the tracks as tracks3d_t on MVTRACK_TRACKS to this LCM log")
       .Option("jsonl", "write the tracks as canonical JSON lines to this file ('-': stdout)")
+      .Option("zones",
+              "track zone by zone and stitch: a zones file (mvtrack.zones/1, `mvtrack calib "
+              "zones --out`), one tracker per zone over its own and border cameras, the zones' "
+              "tracks joined into global ids as the stitcher joins live zone daemons'")
+      .Option("zones-jsonl",
+              "with --zones: also write each zone's own tracks (what its daemon publishes) as "
+              "canonical JSON lines to DIR/<zone>.jsonl")
       .Option("provisional-jsonl",
               "also write the provisional layer (each frame's tracks as soon as the frame is "
               "closed, as the daemon publishes them live) as canonical JSON lines to this file")
@@ -208,7 +340,10 @@ int RunReplay(int argc, char** argv) {
           argv,
           "mvtrack replay --calibration CAL.yaml [--config OPTIONS.yaml] "
           "[--mode boxes|poses] [--layout NAME] [--threads N] [--out TRACKS.lcmlog] "
-          "[--jsonl TRACKS.jsonl] [--provisional-jsonl NOW.jsonl] [--quiet] INPUT.lcmlog",
+          "[--jsonl TRACKS.jsonl] [--provisional-jsonl NOW.jsonl] [--zones ZONES.yaml "
+          "[--zones-jsonl DIR]] "
+          "[--quiet] "
+          "INPUT.lcmlog",
           "Tracks a recorded detections log offline, deterministically: the events are read\n"
           "in log order, decoded with the safe decoder and fed to the threaded pipeline with\n"
           "lossless queues, so the output depends only on the log and the options (never on\n"
@@ -220,7 +355,11 @@ int RunReplay(int argc, char** argv) {
           "(at least one of --out and --jsonl). --provisional-jsonl writes the provisional\n"
           "layer as well: every closed frame's confirmed tracks placed from that frame's 2D\n"
           "tracks with the association of the windows linked before it (docs/DECISIONS.md\n"
-          "\"The provisional layer\"), identical at any --threads.\n"
+          "\"The provisional layer\"), identical at any --threads.\n\n"
+          "--zones runs a site split into zones in one process, deterministically: each\n"
+          "zone's tracker sees its own and its border cameras' detections, and the stitcher\n"
+          "(docs/DECISIONS.md \"The stitcher\") joins the zones' tracks by capture time into\n"
+          "global ids; the output is the site's tracks.\n"
           "The decoded detections are held in memory while tracking, so the reported speed\n"
           "measures tracking only (from the first camera-frame submitted to the end of the\n"
           "final flush; reading, decoding and writing excluded).\n\n"
@@ -245,6 +384,7 @@ int RunReplay(int argc, char** argv) {
   if (args.Has("out") && out_path.empty()) throw UsageError("--out needs a file name");
   if (args.Has("jsonl") && jsonl_path.empty()) throw UsageError("--jsonl needs a file name");
   const std::string provisional_path = args.Get("provisional-jsonl");
+  const bool want_provisional_arg = args.Has("provisional-jsonl");
   if (args.Has("provisional-jsonl") && (provisional_path.empty() || provisional_path == "-")) {
     throw UsageError("--provisional-jsonl needs a file name");
   }
@@ -302,6 +442,32 @@ int RunReplay(int argc, char** argv) {
   }
   geometry::CameraRig rig(std::move(cameras), &why);
   if (!rig.ok()) throw std::runtime_error(args.Get("calibration") + ": " + why);
+  std::vector<config::Zone> zones;
+  if (args.Has("zones-jsonl") && !args.Has("zones"))
+    throw UsageError("--zones-jsonl needs --zones");
+  if (args.Has("zones")) {
+    if (want_provisional_arg) {
+      throw UsageError(
+          "--provisional-jsonl and --zones: the stitched site has no provisional "
+          "layer yet");
+    }
+    zones = config::LoadZonesFile(args.Get("zones"));
+    for (const config::Zone& z : zones) {
+      for (const std::vector<CameraId>* list : {&z.cameras, &z.border}) {
+        for (const CameraId id : *list) {
+          if (!rig.IndexOf(id)) {
+            throw std::runtime_error(args.Get("zones") + ": zone " + z.name + ": camera " +
+                                     std::to_string(id) + " is not in " + args.Get("calibration"));
+          }
+        }
+      }
+      if (z.cameras.size() + z.border.size() < 2) {
+        throw std::runtime_error(args.Get("zones") + ": zone " + z.name +
+                                 " has fewer than 2 cameras (own and border): it cannot "
+                                 "triangulate");
+      }
+    }
+  }
 
   // Open the outputs first: an unwritable path fails before any work.
   std::unique_ptr<transport::LogWriter> lcm_out;
@@ -370,18 +536,12 @@ int RunReplay(int argc, char** argv) {
               << "(--layout " << log_layouts.rbegin()->first << " tracks them as recorded)\n";
   }
 
-  // Tracking. --threads 0: the stages inline on this thread (tracker::Tracker, no thread at
-  // all); N: the threaded pipeline with lossless camera queues and N window-job workers. The
-  // output is identical (tools/replay_threads, service tests). Frames are collected in memory.
-  std::mutex frames_mu;
-  std::vector<tracker::Frame3D> frames;  // guarded by frames_mu (the pipeline's finalizer writes)
-  std::vector<tracker::Frame3D> provisional;  // likewise
-  std::atomic<std::int64_t> frames_out{0};
+  // Tracking, with the whole rig or zone by zone, then stitched. Frames are collected in memory.
   std::int64_t printed_rejections = 0;
-  auto rejected = [&](CameraId camera,
-                      FrameIndex frame,
-                      tracker::FrameRejection rejection,
-                      const std::string& reason) {
+  const RejectedFn rejected = [&](CameraId camera,
+                                  FrameIndex frame,
+                                  tracker::FrameRejection rejection,
+                                  const std::string& reason) {
     if (printed_rejections < kMaxPrintedPerKind) {
       progress.Finish();
       std::cerr << "replay: rejected camera-frame (camera " << camera << ", frame " << frame
@@ -392,78 +552,113 @@ int RunReplay(int argc, char** argv) {
     ++printed_rejections;
   };
   const std::size_t num_camera_frames = in.frames.size();
-  auto report_progress = [&](std::size_t i) {
-    if (progress.Due()) {
-      progress.Print("tracking: " + std::to_string(i) + "/" + std::to_string(num_camera_frames) +
-                     " camera-frames, " + std::to_string(frames_out.load()) + " frames out");
-    }
-  };
+  std::vector<tracker::Frame3D> frames;
+  std::vector<tracker::Frame3D> provisional;
   pipeline::PipelineStatus status;
+  std::vector<std::string> zone_lines;  // the summary's line per zone
+  std::string stitch_line;
   const auto track_start = Clock::now();
-  if (threads == 0) {
-    std::unique_ptr<tracker::Tracker> inline_tracker =
-        tracker::Tracker::Create(rig, options, &why, want_provisional);
-    if (!inline_tracker) throw std::runtime_error("tracker: " + why);
-    auto take = [&](std::vector<tracker::Frame3D>* finalized) {
-      frames_out.fetch_add(static_cast<std::int64_t>(finalized->size()));
-      for (tracker::Frame3D& f : *finalized) frames.push_back(std::move(f));
-      for (tracker::Frame3D& f : inline_tracker->TakeProvisional()) {
-        provisional.push_back(std::move(f));
-      }
-    };
-    for (std::size_t i = 0; i < num_camera_frames; ++i) {
-      report_progress(i);
-      const CameraId camera = in.frames[i].camera_id;
-      const FrameIndex frame = in.frames[i].frame;
-      tracker::AddResult r = inline_tracker->Add(in.frames[i]);
-      if (r.rejection != tracker::FrameRejection::kNone) {
-        rejected(camera, frame, r.rejection, r.reason);
-      }
-      take(&r.finalized);
-    }
-    std::vector<tracker::Frame3D> rest = inline_tracker->Flush();
-    take(&rest);
-    status.tracker = inline_tracker->stats();
+  if (zones.empty()) {
+    TrackRun run = Track(rig,
+                         options,
+                         threads,
+                         &in.frames,
+                         in.event_times_us,
+                         want_provisional,
+                         rejected,
+                         [&](std::size_t i, std::int64_t out) {
+                           if (progress.Due()) {
+                             progress.Print("tracking: " + std::to_string(i) + "/" +
+                                            std::to_string(num_camera_frames) + " camera-frames, " +
+                                            std::to_string(out) + " frames out");
+                           }
+                         });
+    frames = std::move(run.frames);
+    provisional = std::move(run.provisional);
+    status = std::move(run.status);
   } else {
-    pipeline::PipelineOptions pipeline_options;
-    pipeline_options.camera_overflow = pipeline::OverflowPolicy::kBlock;
-    pipeline::ThreadPoolOptions pool;
-    pool.num_workers = static_cast<int>(threads);
-    pipeline::ManualClock clock(in.event_times_us.empty() ? 0 : in.event_times_us.front());
-    std::unique_ptr<pipeline::Pipeline> pipeline = pipeline::Pipeline::Create(
-        rig,
-        options,
-        pipeline_options,
-        std::make_unique<pipeline::ThreadPoolExecutor>(pool),
-        clock,
-        [&](tracker::Frame3D frame) {
-          std::lock_guard<std::mutex> lock(frames_mu);
-          frames.push_back(std::move(frame));
-          frames_out.fetch_add(1, std::memory_order_relaxed);
-        },
-        &why,
-        want_provisional ? pipeline::Pipeline::FrameCallback([&](tracker::Frame3D frame) {
-          std::lock_guard<std::mutex> lock(frames_mu);
-          provisional.push_back(std::move(frame));
-        })
-                         : pipeline::Pipeline::FrameCallback());
-    if (!pipeline) throw std::runtime_error("pipeline: " + why);
-    for (std::size_t i = 0; i < num_camera_frames; ++i) {
-      report_progress(i);
-      clock.SetMicros(in.event_times_us[i]);
-      const CameraId camera = in.frames[i].camera_id;
-      const FrameIndex frame = in.frames[i].frame;
-      const pipeline::SubmitResult r = pipeline->Submit(std::move(in.frames[i]));
-      if (r.status == pipeline::SubmitStatus::kStopped) {
-        throw std::runtime_error("pipeline stopped unexpectedly");
+    std::vector<std::vector<tracker::Frame3D>> zone_frames;
+    for (std::size_t z = 0; z < zones.size(); ++z) {
+      const config::Zone& zone = zones[z];
+      std::vector<CameraId> ids = zone.cameras;
+      ids.insert(ids.end(), zone.border.begin(), zone.border.end());
+      std::sort(ids.begin(), ids.end());
+      std::vector<geometry::CameraModel> zone_cameras;
+      for (const CameraId id : ids) zone_cameras.push_back(rig.camera(*rig.IndexOf(id)));
+      geometry::CameraRig zone_rig(std::move(zone_cameras), &why);
+      if (!zone_rig.ok()) throw std::runtime_error("zone " + zone.name + ": " + why);
+      std::vector<core::CameraFrame> zone_input;
+      std::vector<std::int64_t> zone_times;
+      for (std::size_t i = 0; i < in.frames.size(); ++i) {
+        if (std::binary_search(ids.begin(), ids.end(), in.frames[i].camera_id)) {
+          zone_input.push_back(in.frames[i]);
+          zone_times.push_back(in.event_times_us[i]);
+        }
       }
-      if (r.status == pipeline::SubmitStatus::kRejected) {
-        rejected(camera, frame, r.rejection, r.reason);
+      const std::size_t zone_n = zone_input.size();
+      TrackRun run =
+          Track(zone_rig,
+                options,
+                threads,
+                &zone_input,
+                zone_times,
+                false,
+                rejected,
+                [&](std::size_t i, std::int64_t out) {
+                  if (progress.Due()) {
+                    progress.Print("tracking " + zone.name + " (" + std::to_string(z + 1) + "/" +
+                                   std::to_string(zones.size()) + "): " + std::to_string(i) + "/" +
+                                   std::to_string(zone_n) + " camera-frames, " +
+                                   std::to_string(out) + " frames out");
+                  }
+                });
+      std::set<TrackId3D> zone_ids;
+      for (const tracker::Frame3D& f : run.frames) {
+        for (const tracker::Track3D& t : f.tracks) zone_ids.insert(t.id);
+      }
+      zone_lines.push_back("  " + zone.name + ": cameras " + JoinIds(zone.cameras) +
+                           (zone.border.empty() ? "" : " + border " + JoinIds(zone.border)) + "; " +
+                           std::to_string(run.frames.size()) + " frame(s), " +
+                           std::to_string(zone_ids.size()) + " track id(s), " +
+                           std::to_string(run.status.tracker.windows_processed) + " window(s)");
+      AddStats(&status.tracker, run.status.tracker);
+      status.windows_failed += run.status.windows_failed;
+      status.output_callback_errors += run.status.output_callback_errors;
+      if (!run.status.last_failure.empty()) status.last_failure = run.status.last_failure;
+      if (args.Has("zones-jsonl")) {
+        const std::filesystem::path dir = args.Get("zones-jsonl");
+        std::error_code ec;
+        std::filesystem::create_directories(dir, ec);
+        const std::string path = (dir / (zone.name + ".jsonl")).string();
+        std::ofstream file(path, std::ios::binary | std::ios::trunc);
+        for (const tracker::Frame3D& f : run.frames) {
+          file << transport::TracksJsonLine(f, output_layout);
+        }
+        file.close();
+        if (!file) throw std::runtime_error(path + ": cannot write");
+      }
+      zone_frames.push_back(std::move(run.frames));
+    }
+    // Stitching: the zones' frames aligned by capture time, half a frame period apart at most.
+    Utime tolerance = 0;
+    for (const std::vector<tracker::Frame3D>& f : zone_frames) {
+      if (const std::optional<Utime> half = stitch::HalfFramePeriod(f)) {
+        tolerance = tolerance == 0 ? *half : std::min(tolerance, *half);
       }
     }
-    if (!pipeline->Flush()) throw std::runtime_error("pipeline stopped before the final flush");
-    pipeline->Stop();
-    status = pipeline->Status();
+    stitch::Stitcher stitcher(static_cast<int>(zones.size()), options.linking);
+    for (const stitch::ZoneFrames& group :
+         stitch::AlignZoneFrames(zone_frames, tolerance > 0 ? tolerance : 1)) {
+      frames.push_back(std::move(stitcher.Stitch(group).frame));
+    }
+    const stitch::StitchStats& ss = stitcher.stats();
+    stitch_line = "  stitched: " + std::to_string(ss.frames) + " site frame(s), " +
+                  std::to_string(ss.global_ids) + " global id(s); zone tracks joined in an " +
+                  "overlap " + std::to_string(ss.joined_overlap) + ", by motion " +
+                  std::to_string(ss.joined_motion) + "; joins undone " + std::to_string(ss.splits) +
+                  ", ids merged " + std::to_string(ss.merges) +
+                  "; track-frames seen by two or more zones " +
+                  std::to_string(ss.multi_zone_track_frames) + "\n";
   }
   const double track_seconds = SecondsSince(track_start);
   in.frames.clear();
@@ -545,12 +740,19 @@ int RunReplay(int argc, char** argv) {
   }
   if (st.reanchors > 0) report << ", " << st.reanchors << " stream restart(s)";
   report << "\n";
+  if (!zones.empty()) {
+    report << "  zones: " << zones.size() << " (camera-frames and detections above count a "
+           << "border camera in each of its zones)\n";
+    for (const std::string& line : zone_lines) report << "  " << line << "\n";
+    report << stitch_line;
+  }
   char speed[160];
   const double fps = track_seconds > 0.0 ? static_cast<double>(frames.size()) / track_seconds : 0.0;
   std::snprintf(speed, sizeof(speed), "%.3f s = %.0f frames/s", track_seconds, fps);
   report << "  tracking: " << frames.size() << " frame(s) in " << speed << " ("
          << (threads == 0 ? std::string("inline, no threads")
                           : "pipeline, " + std::to_string(threads) + " worker thread(s)")
+         << (zones.empty() ? "" : ", the zones one after the other, and stitching")
          << "; timed from the first submit to the end of the flush; reading "
          << std::llround(read_seconds * 1000.0) << " ms and writing "
          << std::llround(write_seconds * 1000.0) << " ms not included)\n";
