@@ -647,10 +647,12 @@ int RunReplay(int argc, char** argv) {
       }
     }
     stitch::Stitcher stitcher(static_cast<int>(zones.size()), options.linking);
+    const auto stitch_start = Clock::now();
     for (const stitch::ZoneFrames& group :
          stitch::AlignZoneFrames(zone_frames, tolerance > 0 ? tolerance : 1)) {
       frames.push_back(std::move(stitcher.Stitch(group).frame));
     }
+    const double stitch_ms = SecondsSince(stitch_start) * 1000.0;
     const stitch::StitchStats& ss = stitcher.stats();
     stitch_line = "  stitched: " + std::to_string(ss.frames) + " site frame(s), " +
                   std::to_string(ss.global_ids) + " global id(s); zone tracks joined in an " +
@@ -658,7 +660,8 @@ int RunReplay(int argc, char** argv) {
                   std::to_string(ss.joined_motion) + "; joins undone " + std::to_string(ss.splits) +
                   ", ids merged " + std::to_string(ss.merges) +
                   "; track-frames seen by two or more zones " +
-                  std::to_string(ss.multi_zone_track_frames) + "\n";
+                  std::to_string(ss.multi_zone_track_frames) + "; stitching took " +
+                  std::to_string(std::llround(stitch_ms)) + " ms\n";
   }
   const double track_seconds = SecondsSince(track_start);
   in.frames.clear();
