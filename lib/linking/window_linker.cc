@@ -325,6 +325,20 @@ std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
   return motion;
 }
 
+bool UnambiguousMinimum(const Eigen::MatrixXd& cost,
+                        Eigen::Index row,
+                        Eigen::Index col,
+                        double margin) {
+  const double v = cost(row, col);
+  for (Eigen::Index k = 0; k < cost.cols(); ++k) {
+    if (k != col && cost(row, k) < v + margin) return false;
+  }
+  for (Eigen::Index k = 0; k < cost.rows(); ++k) {
+    if (k != row && cost(k, col) < v + margin) return false;
+  }
+  return true;
+}
+
 WindowLinker::WindowLinker(LinkerOptions options,
                            LinkerContext context,
                            core::AppearanceOptions appearance)
@@ -1081,14 +1095,7 @@ LinkResult WindowLinker::Link(std::int64_t window_id,
             track_of_col[static_cast<std::size_t>(c)] >= 0) {
           continue;
         }
-        bool unambiguous = true;
-        for (Eigen::Index k = 0; k < d2.cols() && unambiguous; ++k) {
-          if (k != j && d2(i, k) < v + options_.reid_margin_chi2) unambiguous = false;
-        }
-        for (Eigen::Index k = 0; k < d2.rows() && unambiguous; ++k) {
-          if (k != i && d2(k, j) < v + options_.reid_margin_chi2) unambiguous = false;
-        }
-        if (!unambiguous) continue;
+        if (!UnambiguousMinimum(d2, i, j, options_.reid_margin_chi2)) continue;
         tracklet_of_track[static_cast<std::size_t>(r)] = c;
         track_of_col[static_cast<std::size_t>(c)] = r;
         result.link_kind[static_cast<std::size_t>(c)] = LinkKind::kReidentified;

@@ -9,6 +9,7 @@
 /// motion model whose uncertainty grows with the length of a gap (floor_motion.h). Pure: no
 /// threads, no I/O, no clock. docs/DECISIONS.md "Window linking" has the measurements.
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -272,6 +273,14 @@ std::optional<FloorMotion> InitialMotion(const core::Tracklet3D& tracklet,
                                          const LinkerContext& context,
                                          const MotionOptions& options,
                                          double seconds_per_frame);
+
+/// Whether entry (row, col) of `cost` is smaller by at least `margin` than every other entry of
+/// its row and of its column: a match by motion alone that no other candidate of either side
+/// comes near (re-identification's reid_margin_chi2). Stateless.
+bool UnambiguousMinimum(const Eigen::MatrixXd& cost,
+                        Eigen::Index row,
+                        Eigen::Index col,
+                        double margin);
 
 /// Appearance re-identification never links a tracklet to a track whose footprint would have
 /// had to move faster than this since the track's last frame (a brisk walk is 1.5-2 m/s).

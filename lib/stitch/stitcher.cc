@@ -251,15 +251,10 @@ SiteFrame Stitcher::Stitch(const ZoneFrames& zone_frames) {
         for (Eigen::Index r = 0; r < d2.rows(); ++r) {
           Eigen::Index c = 0;
           const double best = d2.row(r).minCoeff(&c);
-          if (!(best <= linker_.reid_gate_chi2)) continue;
-          bool clear = true;
-          for (Eigen::Index k = 0; k < d2.cols() && clear; ++k) {
-            if (k != c && d2(r, k) < best + linker_.reid_margin_chi2) clear = false;
+          if (!(best <= linker_.reid_gate_chi2) ||
+              !linking::UnambiguousMinimum(d2, r, c, linker_.reid_margin_chi2)) {
+            continue;
           }
-          for (Eigen::Index k = 0; k < d2.rows() && clear; ++k) {
-            if (k != r && d2(k, c) < best + linker_.reid_margin_chi2) clear = false;
-          }
-          if (!clear) continue;
           join(rest[static_cast<std::size_t>(r)], lost[static_cast<std::size_t>(c)]);
           ++stats_.joined_motion;
         }

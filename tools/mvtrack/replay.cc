@@ -327,7 +327,7 @@ int RunReplay(int argc, char** argv) {
       .Option("zones",
               "track zone by zone and stitch: a zones file (mvtrack.zones/1, `mvtrack calib "
               "zones --out`), one tracker per zone over its own and border cameras, the zones' "
-              "tracks joined into global ids as the stitcher joins live zone daemons'")
+              "tracks stitched into global ids")
       .Option("zones-jsonl",
               "with --zones: also write each zone's own tracks (what its daemon publishes) as "
               "canonical JSON lines to DIR/<zone>.jsonl")
@@ -359,7 +359,7 @@ int RunReplay(int argc, char** argv) {
           "--zones runs a site split into zones in one process, deterministically: each\n"
           "zone's tracker sees its own and its border cameras' detections, and the stitcher\n"
           "(docs/DECISIONS.md \"The stitcher\") joins the zones' tracks by capture time into\n"
-          "global ids; the output is the site's tracks.\n"
+          "global ids; the output is the site's tracks.\n\n"
           "The decoded detections are held in memory while tracking, so the reported speed\n"
           "measures tracking only (from the first camera-frame submitted to the end of the\n"
           "final flush; reading, decoding and writing excluded).\n\n"
