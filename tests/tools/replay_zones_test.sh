@@ -14,7 +14,7 @@ expect_grep "^zones of .*: 16 camera\(s\), 2 zone\(s\)" "$OUT/zones.txt"
 for n in 0 2; do
   expect_exit 0 "$OUT/z$n.txt" "$MVTRACK" replay --quiet --threads "$n" --mode boxes \
     --calibration "$S/calibration.yaml" --zones "$S/zones/zones.yaml" \
-    --jsonl "$OUT/z$n.jsonl" --out "$OUT/z$n.lcmlog" "$S/detections.lcmlog"
+    --jsonl "$OUT/z$n.jsonl" --out "$OUT/z$n.lcmlog" --zones-jsonl "$OUT/zj" "$S/detections.lcmlog"
 done
 cat "$OUT/z0.txt"
 cmp "$OUT/z0.jsonl" "$OUT/z2.jsonl" || fail "--zones: --threads 2 JSONL differs from --threads 0"
@@ -43,6 +43,36 @@ print("zones: IDF1 %.4f MOTA %.4f; one tracker: IDF1 %.4f MOTA %.4f" % (zi, zm, 
 assert zi >= oi - 0.02, "IDF1 more than 2 points below one tracker"
 assert zm >= om - 0.02, "MOTA more than 2 points below one tracker"
 PY
+
+# A zone daemon that dies 3 s in and comes back at 6 s (a fresh tracker, ids above its first's):
+# deterministic, the zone's ids after the return are new, and the site goes on.
+for n in 0 2; do
+  expect_exit 0 "$OUT/o$n.txt" "$MVTRACK" replay --quiet --threads "$n" --mode boxes \
+    --calibration "$S/calibration.yaml" --zones "$S/zones/zones.yaml" --zone-outage zone2:3:6 \
+    --zones-jsonl "$OUT/oz$n" --jsonl "$OUT/o$n.jsonl" "$S/detections.lcmlog"
+done
+cmp "$OUT/o0.jsonl" "$OUT/o2.jsonl" || fail "--zone-outage: --threads 2 differs from --threads 0"
+expect_grep "output: 300 frame\(s\)" "$OUT/o0.txt"
+py - "$OUT/oz0/zone2.jsonl" "$OUT/zj/zone2.jsonl" <<'PY' || fail "the zone's outage is not as asked"
+import json, sys
+def frames(path):
+    return [json.loads(l) for l in open(path)]
+out, base = frames(sys.argv[1]), frames(sys.argv[2])
+t0 = base[0]["utime"]
+sec = lambda f: (f["utime"] - t0) / 1e6
+assert not [f for f in out if 3.0 <= sec(f) < 6.0], "zone2 has frames during its outage"
+before = {t["id"] for f in out if sec(f) < 3.0 for t in f["tracks"]}
+after = {t["id"] for f in out if sec(f) >= 6.0 for t in f["tracks"]}
+assert after and min(after) > max(before), "ids after the return must be new: %s %s" % (before, after)
+PY
+expect_exit 2 "$OUT/o_bad.txt" "$MVTRACK" replay --quiet --mode boxes \
+  --calibration "$S/calibration.yaml" --zones "$S/zones/zones.yaml" --zone-outage zone2:6:3 \
+  --jsonl "$OUT/x.jsonl" "$S/detections.lcmlog"
+expect_grep "is not ZONE:FROM:TO" "$OUT/o_bad.txt"
+expect_exit 2 "$OUT/o_none.txt" "$MVTRACK" replay --quiet --mode boxes \
+  --calibration "$S/calibration.yaml" --zones "$S/zones/zones.yaml" --zone-outage zone9:1:2 \
+  --jsonl "$OUT/x.jsonl" "$S/detections.lcmlog"
+expect_grep "no zone is named 'zone9'" "$OUT/o_none.txt"
 
 # Errors: a zone camera the calibration lacks; a zone of one camera; --provisional-jsonl.
 sed 's/cameras: \[0,/cameras: [99, 0,/' "$S/zones/zones.yaml" > "$OUT/bad_camera.yaml"

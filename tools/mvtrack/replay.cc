@@ -18,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -184,6 +185,36 @@ bool SamePath(const std::string& a, const std::string& b) {
   return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
 }
 
+// --zone-outage ZONE:FROM:TO (seconds from the log's first capture time).
+struct ZoneOutage {
+  std::string zone;
+  Utime from_us = 0;
+  Utime to_us = 0;
+  bool found = false;  // the zones file has the zone
+};
+
+ZoneOutage ParseZoneOutage(const std::string& text) {
+  const std::size_t a = text.find(':');
+  const std::size_t b = a == std::string::npos ? a : text.find(':', a + 1);
+  const auto seconds = [](const std::string& part) -> std::optional<double> {
+    double v = 0.0;
+    std::istringstream in(part);
+    if (!(in >> v) || !in.eof() || !std::isfinite(v) || v < 0.0 || v > 1e9) return std::nullopt;
+    return v;
+  };
+  std::optional<double> from, to;
+  if (b != std::string::npos) {
+    from = seconds(text.substr(a + 1, b - a - 1));
+    to = seconds(text.substr(b + 1));
+  }
+  if (a == 0 || !from || !to || !(*from < *to)) {
+    throw UsageError("--zone-outage: '" + text +
+                     "' is not ZONE:FROM:TO (seconds from the log's first capture time, "
+                     "0 <= FROM < TO)");
+  }
+  return {text.substr(0, a), std::llround(*from * 1e6), std::llround(*to * 1e6), false};
+}
+
 // What one tracking run produced.
 struct TrackRun {
   std::vector<tracker::Frame3D> frames;
@@ -331,6 +362,10 @@ int RunReplay(int argc, char** argv) {
       .Option("zones-jsonl",
               "with --zones: also write each zone's own tracks (what its daemon publishes) as "
               "canonical JSON lines to DIR/<zone>.jsonl")
+      .Option("zone-outage",
+              "with --zones: ZONE:FROM:TO, zone ZONE's tracker stops FROM seconds after the "
+              "log's first capture time and a fresh one (new ids) starts at TO: a zone daemon "
+              "that died and came back")
       .Option("provisional-jsonl",
               "also write the provisional layer (each frame's tracks as soon as the frame is "
               "closed, as the daemon publishes them live) as canonical JSON lines to this file")
@@ -341,7 +376,7 @@ int RunReplay(int argc, char** argv) {
           "mvtrack replay --calibration CAL.yaml [--config OPTIONS.yaml] "
           "[--mode boxes|poses] [--layout NAME] [--threads N] [--out TRACKS.lcmlog] "
           "[--jsonl TRACKS.jsonl] [--provisional-jsonl NOW.jsonl] [--zones ZONES.yaml "
-          "[--zones-jsonl DIR]] "
+          "[--zones-jsonl DIR] [--zone-outage ZONE:FROM:TO]] "
           "[--quiet] "
           "INPUT.lcmlog",
           "Tracks a recorded detections log offline, deterministically: the events are read\n"
@@ -445,6 +480,9 @@ int RunReplay(int argc, char** argv) {
   std::vector<config::Zone> zones;
   if (args.Has("zones-jsonl") && !args.Has("zones"))
     throw UsageError("--zones-jsonl needs --zones");
+  if (args.Has("zone-outage") && !args.Has("zones")) throw UsageError("--zone-outage needs --zones");
+  std::optional<ZoneOutage> outage;
+  if (args.Has("zone-outage")) outage = ParseZoneOutage(args.Get("zone-outage"));
   if (args.Has("zones")) {
     if (want_provisional_arg) {
       throw UsageError(
@@ -461,6 +499,7 @@ int RunReplay(int argc, char** argv) {
           }
         }
       }
+      if (outage && outage->zone == z.name) outage->found = true;
       if (z.cameras.size() + z.border.size() < 2) {
         throw std::runtime_error(args.Get("zones") + ": zone " + z.name +
                                  " has fewer than 2 cameras (own and border): it cannot "
@@ -500,6 +539,14 @@ int RunReplay(int argc, char** argv) {
   if (in.end == transport::LogEnd::kIoError) {
     progress.Finish();
     throw std::runtime_error(in.end_error);
+  }
+  if (outage && !outage->found) {
+    throw UsageError("--zone-outage: no zone is named '" + outage->zone + "' in " +
+                     args.Get("zones"));
+  }
+  Utime log_start = 0;  // the earliest capture time of the log (--zone-outage counts from it)
+  for (std::size_t i = 0; i < in.frames.size(); ++i) {
+    if (i == 0 || in.frames[i].utime < log_start) log_start = in.frames[i].utime;
   }
   // What the log says about the mode and layout it was recorded for.
   std::map<std::string, std::int64_t> log_layouts;  // keypoint layout name -> detections
@@ -596,22 +643,56 @@ int RunReplay(int argc, char** argv) {
         }
       }
       const std::size_t zone_n = zone_input.size();
-      TrackRun run =
-          Track(zone_rig,
-                options,
-                threads,
-                &zone_input,
-                zone_times,
-                false,
-                rejected,
-                [&](std::size_t i, std::int64_t out) {
-                  if (progress.Due()) {
-                    progress.Print("tracking " + zone.name + " (" + std::to_string(z + 1) + "/" +
-                                   std::to_string(zones.size()) + "): " + std::to_string(i) + "/" +
-                                   std::to_string(zone_n) + " camera-frames, " +
-                                   std::to_string(out) + " frames out");
-                  }
-                });
+      auto track_zone = [&](std::vector<core::CameraFrame>* input,
+                            const std::vector<std::int64_t>& times) {
+        return Track(zone_rig,
+                     options,
+                     threads,
+                     input,
+                     times,
+                     false,
+                     rejected,
+                     [&](std::size_t i, std::int64_t out) {
+                       if (progress.Due()) {
+                         progress.Print("tracking " + zone.name + " (" + std::to_string(z + 1) +
+                                        "/" + std::to_string(zones.size()) + "): " +
+                                        std::to_string(i) + "/" + std::to_string(zone_n) +
+                                        " camera-frames, " + std::to_string(out) + " frames out");
+                       }
+                     });
+      };
+      TrackRun run;
+      if (outage && outage->zone == zone.name) {
+        // The zone's daemon stops at `from` (flushing, as on SIGTERM) and a fresh one starts at
+        // `to`, its ids above the first's (as its state directory's reservation makes them).
+        std::vector<core::CameraFrame> before, after;
+        std::vector<std::int64_t> before_times, after_times;
+        for (std::size_t i = 0; i < zone_input.size(); ++i) {
+          const Utime t = zone_input[i].utime - log_start;
+          if (t < outage->from_us) {
+            before.push_back(std::move(zone_input[i]));
+            before_times.push_back(zone_times[i]);
+          } else if (t >= outage->to_us) {
+            after.push_back(std::move(zone_input[i]));
+            after_times.push_back(zone_times[i]);
+          }
+        }
+        run = track_zone(&before, before_times);
+        TrackRun second = track_zone(&after, after_times);
+        TrackId3D offset = 0;
+        for (const tracker::Frame3D& f : run.frames) {
+          for (const tracker::Track3D& t : f.tracks) offset = std::max(offset, t.id);
+        }
+        for (tracker::Frame3D& f : second.frames) {
+          for (tracker::Track3D& t : f.tracks) t.id += offset;
+          run.frames.push_back(std::move(f));
+        }
+        AddStats(&run.status.tracker, second.status.tracker);
+        run.status.windows_failed += second.status.windows_failed;
+        run.status.output_callback_errors += second.status.output_callback_errors;
+      } else {
+        run = track_zone(&zone_input, zone_times);
+      }
       std::set<TrackId3D> zone_ids;
       for (const tracker::Frame3D& f : run.frames) {
         for (const tracker::Track3D& t : f.tracks) zone_ids.insert(t.id);
