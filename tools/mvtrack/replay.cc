@@ -480,7 +480,8 @@ int RunReplay(int argc, char** argv) {
   std::vector<config::Zone> zones;
   if (args.Has("zones-jsonl") && !args.Has("zones"))
     throw UsageError("--zones-jsonl needs --zones");
-  if (args.Has("zone-outage") && !args.Has("zones")) throw UsageError("--zone-outage needs --zones");
+  if (args.Has("zone-outage") && !args.Has("zones"))
+    throw UsageError("--zone-outage needs --zones");
   std::optional<ZoneOutage> outage;
   if (args.Has("zone-outage")) outage = ParseZoneOutage(args.Get("zone-outage"));
   if (args.Has("zones")) {
@@ -655,8 +656,8 @@ int RunReplay(int argc, char** argv) {
                      [&](std::size_t i, std::int64_t out) {
                        if (progress.Due()) {
                          progress.Print("tracking " + zone.name + " (" + std::to_string(z + 1) +
-                                        "/" + std::to_string(zones.size()) + "): " +
-                                        std::to_string(i) + "/" + std::to_string(zone_n) +
+                                        "/" + std::to_string(zones.size()) +
+                                        "): " + std::to_string(i) + "/" + std::to_string(zone_n) +
                                         " camera-frames, " + std::to_string(out) + " frames out");
                        }
                      });
