@@ -91,9 +91,10 @@ std::optional<Utime> HalfFramePeriod(const std::vector<tracker::Frame3D>& frames
   return std::max<Utime>(1, *mid / 2);
 }
 
-Stitcher::Stitcher(int num_zones, const linking::LinkerOptions& linker)
-    : num_zones_(num_zones), linker_(linker) {
+Stitcher::Stitcher(int num_zones, const linking::LinkerOptions& linker, TrackId3D first_id)
+    : num_zones_(num_zones), linker_(linker), next_id_(first_id) {
   MVTRACK_CHECK(num_zones >= 1);
+  MVTRACK_CHECK(first_id >= 1);
   std::string why;
   MVTRACK_CHECK_MSG(linker_.Validate(&why), why.c_str());
 }

@@ -87,8 +87,9 @@ class Stitcher {
   static constexpr int kSplitFrames = 3;
 
   /// `num_zones` >= 1; `linker` valid (checked): the zones' linker options (max_lost_s, the
-  /// motion model and the re-identification gates).
-  Stitcher(int num_zones, const linking::LinkerOptions& linker);
+  /// motion model and the re-identification gates). Global ids start at `first_id` (>= 1; a
+  /// restarted stitcher starts past the ids it gave out before, service::IdReservation).
+  Stitcher(int num_zones, const linking::LinkerOptions& linker, TrackId3D first_id = 1);
 
   /// Stitches one site frame: `zone_frames` has one entry per zone (checked), at least one not
   /// null, their utimes after those of the previous call (checked).

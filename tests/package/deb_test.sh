@@ -66,7 +66,9 @@ expected_files() {
     mvtrackd)
       printf '%s\n' "$p/bin/mvtrackd" "$UNIT_PATH" "$SYSCONF/mvtrack/mvtrackd.yaml" \
         "$SYSCONF/mvtrack/calibration.example.yaml" "$doc/DAEMON.md" "$doc/copyright" \
-        "$p/share/man/man8/mvtrackd.8.gz" ;;
+        "$p/share/man/man8/mvtrackd.8.gz" "$p/bin/mvtrack-stitcher" \
+        "$(dirname "$UNIT_PATH")/mvtrack-stitcher.service" "$doc/SCALING.md" \
+        "$p/share/man/man8/mvtrack-stitcher.8.gz" ;;
     mvtrack-tools)
       printf '%s\n' "$p/bin/mvtrack" "$p/bin/mvtrack-pictures" "$doc/copyright" \
         "$p/share/man/man1/mvtrack.1.gz" "$p/share/man/man1/mvtrack-pictures.1.gz" \

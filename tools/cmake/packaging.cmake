@@ -80,16 +80,18 @@ if(TARGET mvtrack AND TARGET mvtrackd AND TARGET mvtrack-pictures AND MVTRACK_MA
   endif()
   set(_man_dir ${PROJECT_BINARY_DIR}/man)
   configure_file(${_pkg_src}/mvtrackd.h2m.in ${_man_dir}/h2m/mvtrackd.h2m @ONLY)
+  configure_file(${_pkg_src}/mvtrack-stitcher.h2m.in ${_man_dir}/h2m/mvtrack-stitcher.h2m @ONLY)
   configure_file(${_pkg_src}/mvtrack.h2m.in ${_man_dir}/h2m/mvtrack.h2m @ONLY)
   configure_file(${_pkg_src}/mvtrack-command.h2m ${_man_dir}/h2m/mvtrack-command.h2m COPYONLY)
   add_custom_command(
     OUTPUT ${_man_dir}/man1/mvtrack.1.gz ${_man_dir}/man8/mvtrackd.8.gz
     COMMAND bash ${_pkg_src}/make_man_pages.sh ${MVTRACK_HELP2MAN} ${_man_dir}
             $<TARGET_FILE:mvtrack> $<TARGET_FILE:mvtrackd> ${_man_dir}/h2m ${PROJECT_SOURCE_DIR}
-    DEPENDS mvtrack mvtrack-pictures mvtrackd ${_pkg_src}/make_man_pages.sh
+    DEPENDS mvtrack mvtrack-pictures mvtrackd mvtrack-stitcher ${_pkg_src}/make_man_pages.sh
             ${_man_dir}/h2m/mvtrackd.h2m ${_man_dir}/h2m/mvtrack.h2m
+            ${_man_dir}/h2m/mvtrack-stitcher.h2m
             ${_man_dir}/h2m/mvtrack-command.h2m
-    COMMENT "help2man: mvtrack(1), mvtrack-<command>(1), mvtrackd(8)"
+    COMMENT "help2man: mvtrack(1), mvtrack-<command>(1), mvtrackd(8), mvtrack-stitcher(8)"
     VERBATIM)
   add_custom_target(mvtrack_man_pages ALL
                     DEPENDS ${_man_dir}/man1/mvtrack.1.gz ${_man_dir}/man8/mvtrackd.8.gz)

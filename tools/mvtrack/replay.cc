@@ -362,6 +362,11 @@ int RunReplay(int argc, char** argv) {
       .Option("zones-jsonl",
               "with --zones: also write each zone's own tracks (what its daemon publishes) as "
               "canonical JSON lines to DIR/<zone>.jsonl")
+      .Option("zones-lcmlog",
+              "with --zones: also write every zone's tracks on its zone channel "
+              "(MVTRACK_TRACKS_<ZONE>, what its daemon publishes) into one LCM log, in capture "
+              "order with the capture time as the event time (mvtrack-stitcher --input-log "
+              "stitches it)")
       .Option("zone-outage",
               "with --zones: ZONE:FROM:TO, zone ZONE's tracker stops FROM seconds after the "
               "log's first capture time and a fresh one (new ids) starts at TO: a zone daemon "
@@ -376,7 +381,7 @@ int RunReplay(int argc, char** argv) {
           "mvtrack replay --calibration CAL.yaml [--config OPTIONS.yaml] "
           "[--mode boxes|poses] [--layout NAME] [--threads N] [--out TRACKS.lcmlog] "
           "[--jsonl TRACKS.jsonl] [--provisional-jsonl NOW.jsonl] [--zones ZONES.yaml "
-          "[--zones-jsonl DIR] [--zone-outage ZONE:FROM:TO]] "
+          "[--zones-jsonl DIR] [--zones-lcmlog LOG] [--zone-outage ZONE:FROM:TO]] "
           "[--quiet] "
           "INPUT.lcmlog",
           "Tracks a recorded detections log offline, deterministically: the events are read\n"
@@ -482,6 +487,9 @@ int RunReplay(int argc, char** argv) {
     throw UsageError("--zones-jsonl needs --zones");
   if (args.Has("zone-outage") && !args.Has("zones"))
     throw UsageError("--zone-outage needs --zones");
+  if (args.Has("zones-lcmlog") && !args.Has("zones")) {
+    throw UsageError("--zones-lcmlog needs --zones");
+  }
   std::optional<ZoneOutage> outage;
   if (args.Has("zone-outage")) outage = ParseZoneOutage(args.Get("zone-outage"));
   if (args.Has("zones")) {
@@ -720,6 +728,32 @@ int RunReplay(int argc, char** argv) {
         if (!file) throw std::runtime_error(path + ": cannot write");
       }
       zone_frames.push_back(std::move(run.frames));
+    }
+    if (args.Has("zones-lcmlog")) {
+      // Every zone's frames on its channel, by capture time (then zone), as the daemons publish.
+      std::vector<std::pair<Utime, std::size_t>> order;
+      std::vector<std::size_t> next(zone_frames.size(), 0);
+      std::unique_ptr<transport::LogWriter> log =
+          transport::LogWriter::Open(args.Get("zones-lcmlog"), &why);
+      if (!log) throw std::runtime_error(why);
+      while (true) {
+        std::optional<std::size_t> pick;
+        for (std::size_t z = 0; z < zone_frames.size(); ++z) {
+          if (next[z] < zone_frames[z].size() &&
+              (!pick || zone_frames[z][next[z]].utime < zone_frames[*pick][next[*pick]].utime)) {
+            pick = z;
+          }
+        }
+        if (!pick) break;
+        const tracker::Frame3D& f = zone_frames[*pick][next[*pick]++];
+        if (!log->Write(config::ZoneChannel(transport::kTracksChannel, zones[*pick].name),
+                        f.utime,
+                        transport::EncodeTracks(f, output_layout, f.utime, 0),
+                        &why)) {
+          throw std::runtime_error(why);
+        }
+      }
+      if (!log->Flush(&why)) throw std::runtime_error(why);
     }
     // Stitching: the zones' frames aligned by capture time, half a frame period apart at most.
     Utime tolerance = 0;

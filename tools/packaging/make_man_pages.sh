@@ -3,6 +3,8 @@
 # and --version (run by the build: target mvtrack_man_pages, tools/cmake/packaging.cmake):
 #   OUT/man8/mvtrackd.8.gz          mvtrackd --help, plus tools/packaging/mvtrackd.h2m.in (FILES,
 #                                   SEE ALSO)
+#   OUT/man8/mvtrack-stitcher.8.gz  mvtrack-stitcher --help (next to MVTRACKD), plus
+#                                   mvtrack-stitcher.h2m.in
 #   OUT/man1/mvtrack.1.gz           mvtrack --help, plus mvtrack.h2m.in (ENVIRONMENT, NOTES, SEE
 #                                   ALSO naming the pages below)
 #   OUT/man1/mvtrack-CMD.1.gz       mvtrack CMD --help, one page per command that `mvtrack --help`
@@ -15,7 +17,8 @@
 # nothing else of the text is changed.
 #
 # Usage: make_man_pages.sh HELP2MAN OUT_DIR MVTRACK MVTRACKD H2M_DIR SOURCE_DIR
-#   H2M_DIR holds mvtrackd.h2m, mvtrack.h2m (configured with the install paths) and
+#   H2M_DIR holds mvtrackd.h2m, mvtrack-stitcher.h2m, mvtrack.h2m (configured with the install
+#   paths) and
 #   mvtrack-command.h2m.
 set -euo pipefail
 if [ $# -ne 6 ]; then
@@ -101,5 +104,10 @@ ln -sf mvtrack.1.gz "$OUT/man1/mvtrack-pictures.1.gz"
 wrapper mvtrackd "$MVTRACKD"
 page mvtrackd 8 "multi-view multi-person 3D tracking daemon (LCM in, LCM out)" \
   --include "$H2M/mvtrackd.h2m"
+
+# The site stitcher is built next to mvtrackd (daemon/).
+wrapper mvtrack-stitcher "$(dirname "$MVTRACKD")/mvtrack-stitcher"
+page mvtrack-stitcher 8 "joins the tracks of a site's zone daemons into one id space" \
+  --include "$H2M/mvtrack-stitcher.h2m"
 
 echo "make_man_pages: $(ls "$OUT/man1" "$OUT/man8" | grep -c '\.gz$') pages in $OUT"
