@@ -193,8 +193,9 @@ class Outputs {
   }
 
   // The status line every second (and with `force`), and a log line when a zone changes state.
-  void Status(const StitchService& service, std::int64_t now_us, bool force) {
-    const mvtrack::service::SiteStatus s = service.Status(now_us);
+  void Status(StitchService& service, std::int64_t now_us, bool force) {
+    const bool due = force || now_us - last_status_us_ >= 1'000'000;
+    const mvtrack::service::SiteStatus s = service.Status(now_us, due);
     bool changed = false;
     for (const mvtrack::service::ZoneStatus& z : s.zones) {
       const bool was = stale_.count(z.name) > 0 ? stale_[z.name] : true;
@@ -208,7 +209,7 @@ class Outputs {
       }
       stale_[z.name] = z.input.stale;
     }
-    if (status_.is_open() && (force || changed || now_us - last_status_us_ >= 1'000'000)) {
+    if (status_.is_open() && (due || changed)) {
       status_ << mvtrack::service::SiteStatusJson(s) << std::flush;
       last_status_us_ = now_us;
     }

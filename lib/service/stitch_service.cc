@@ -1,5 +1,6 @@
 #include "service/stitch_service.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <system_error>
@@ -14,6 +15,8 @@ namespace {
 
 // Global ids reserved per write of the state directory's reservation (as the daemon's default).
 constexpr std::int64_t kIdBlock = 100000;
+// Site frame waits kept between status lines.
+constexpr std::size_t kMaxWaits = 4096;
 
 }  // namespace
 
@@ -23,6 +26,12 @@ std::string SiteStatusJson(const SiteStatus& status) {
   doc["site_frames"] = status.site_frames;
   doc["global_tracks"] = status.global_tracks;
   doc["global_ids"] = status.stitch.global_ids;
+  const auto ms = [](std::int64_t us) {
+    return std::round(static_cast<double>(us) / 100.0) / 10.0;
+  };
+  doc["wait_ms"] = {{"p50", ms(status.wait_p50_us)},
+                    {"p99", ms(status.wait_p99_us)},
+                    {"max", ms(status.wait_max_us)}};
   json::OrderedDocument zones = json::OrderedDocument::array();
   for (const ZoneStatus& z : status.zones) {
     json::OrderedDocument o;
@@ -32,7 +41,7 @@ std::string SiteStatusJson(const SiteStatus& status) {
     o["frames"] = z.input.frames;
     o["late"] = z.input.late;
     o["decode_errors"] = z.decode_errors;
-    o["latency_ms"] = std::round(static_cast<double>(z.latency_us) / 100.0) / 10.0;
+    o["latency_ms"] = ms(z.latency_us);
     o["last_utime"] = z.input.last_utime;
     o["tracks"] = z.tracks;
     zones.push_back(std::move(o));
@@ -101,13 +110,17 @@ void StitchService::OnMessage(int zone, const void* data, std::size_t size, std:
 
 std::vector<stitch::SiteFrame> StitchService::Poll(std::int64_t now_us, bool flush) {
   std::vector<stitch::SiteFrame> out;
-  for (stitch::ZoneFrameGroup& group : aligner_.Pop(now_us, flush)) {
+  std::vector<std::int64_t> waits;
+  for (stitch::ZoneFrameGroup& group : aligner_.Pop(now_us, flush, &waits)) {
     stitch::ZoneFrames frames(group.size(), nullptr);
     for (std::size_t z = 0; z < group.size(); ++z) {
       if (group[z]) frames[z] = &*group[z];
     }
     out.push_back(stitcher_.Stitch(frames));
     global_tracks_ = static_cast<int>(out.back().frame.tracks.size());
+  }
+  for (const std::int64_t w : waits) {
+    if (waits_.size() < kMaxWaits) waits_.push_back(w);
   }
   if (ids_ && !out.empty()) {
     std::string why;
@@ -116,9 +129,20 @@ std::vector<stitch::SiteFrame> StitchService::Poll(std::int64_t now_us, bool flu
   return out;
 }
 
-SiteStatus StitchService::Status(std::int64_t now_us) const {
+SiteStatus StitchService::Status(std::int64_t now_us, bool reset_waits) {
   SiteStatus s;
   s.now_us = now_us;
+  if (!waits_.empty()) {
+    std::vector<std::int64_t> w = waits_;
+    std::sort(w.begin(), w.end());
+    const auto at = [&](double q) {
+      return w[static_cast<std::size_t>(q * static_cast<double>(w.size() - 1) + 0.5)];
+    };
+    s.wait_p50_us = at(0.5);
+    s.wait_p99_us = at(0.99);
+    s.wait_max_us = w.back();
+  }
+  if (reset_waits) waits_.clear();
   for (std::size_t z = 0; z < channels_.size(); ++z) {
     ZoneStatus zs;
     zs.name = config_.zones[z].name;

@@ -58,6 +58,12 @@ struct SiteStatus {
   std::int64_t site_frames = 0;  ///< site frames stitched
   int global_tracks = 0;         ///< tracks in the latest site frame
   stitch::StitchStats stitch;
+  /// How long the site frames of the last status period (at most the last 4096) waited from
+  /// their first zone frame's arrival to being stitched, µs: the latency the stitcher adds to
+  /// the earliest zone's output (p50, p99, max; 0 without frames).
+  std::int64_t wait_p50_us = 0;
+  std::int64_t wait_p99_us = 0;
+  std::int64_t wait_max_us = 0;
 };
 
 /// The site status as one JSON line (terminated by "\n"): {"utime", "site_frames",
@@ -85,8 +91,9 @@ class StitchService {
   /// The layout of the zones' joints (kNone in box mode; the first message's).
   core::KeypointLayoutId layout() const { return layout_; }
 
-  /// The status now.
-  SiteStatus Status(std::int64_t now_us) const;
+  /// The status now; the wait figures cover the site frames since the previous call with
+  /// `reset_waits`.
+  SiteStatus Status(std::int64_t now_us, bool reset_waits = false);
 
   /// Why the id reservation could not be extended ("" when it could; ids stay unique for this
   /// run either way).
@@ -107,6 +114,7 @@ class StitchService {
   core::KeypointLayoutId layout_ = core::KeypointLayoutId::kNone;
   bool layout_known_ = false;
   int global_tracks_ = 0;
+  std::vector<std::int64_t> waits_;  // of the site frames since the last reset, at most 4096
   std::string id_warning_;
 };
 

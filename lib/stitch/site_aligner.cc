@@ -63,7 +63,9 @@ void SiteAligner::Push(int zone, tracker::Frame3D frame, std::int64_t now_us) {
   queue.push_back({std::move(frame), now_us});
 }
 
-std::vector<ZoneFrameGroup> SiteAligner::Pop(std::int64_t now_us, bool flush) {
+std::vector<ZoneFrameGroup> SiteAligner::Pop(std::int64_t now_us,
+                                             bool flush,
+                                             std::vector<std::int64_t>* waits) {
   UpdateStale(now_us);
   std::vector<ZoneFrameGroup> out;
   const std::size_t n = pending_.size();
@@ -98,6 +100,7 @@ std::vector<ZoneFrameGroup> SiteAligner::Pop(std::int64_t now_us, bool flush) {
       pending_[z].erase(pending_[z].begin());
     }
     released_ = *open;
+    if (waits != nullptr) waits->push_back(now_us - first_arrival);
     out.push_back(std::move(group));
   }
   return out;

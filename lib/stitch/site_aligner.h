@@ -61,8 +61,11 @@ class SiteAligner {
   /// going back; checked). A frame not after the zone's previous one is dropped (late).
   void Push(int zone, tracker::Frame3D frame, std::int64_t now_us);
 
-  /// The site frames ready at `now_us`, oldest first; with `flush`, every frame kept.
-  std::vector<ZoneFrameGroup> Pop(std::int64_t now_us, bool flush = false);
+  /// The site frames ready at `now_us`, oldest first; with `flush`, every frame kept. With
+  /// `waits`, also how long each waited: `now_us` minus the arrival of its first zone frame.
+  std::vector<ZoneFrameGroup> Pop(std::int64_t now_us,
+                                  bool flush = false,
+                                  std::vector<std::int64_t>* waits = nullptr);
 
   /// Zone inputs as of the latest Push or Pop.
   const std::vector<ZoneInput>& zones() const { return inputs_; }

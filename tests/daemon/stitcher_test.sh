@@ -117,5 +117,9 @@ frames = [json.loads(l) for l in open(sys.argv[3])]
 print("site frames published: %d, global ids: %d" % (
     len(frames), len({t["id"] for f in frames for t in f["tracks"]})))
 assert len(frames) >= 300, "too few site frames"
+both = [s["wait_ms"]["p99"] for s in status
+        if s["site_frames"] > 0 and all(z["state"] == "live" for z in s["zones"])]
+print("site frames waited for the zones, p99 per status second while both were live: %s ms" % both)
+assert both and max(both) <= 1000.0, "a site frame waited longer than --wait-ms"
 PY
 echo "ok"
