@@ -198,8 +198,9 @@ class Outputs {
     const mvtrack::service::SiteStatus s = service.Status(now_us, due);
     bool changed = false;
     for (const mvtrack::service::ZoneStatus& z : s.zones) {
+      if (z.input.frames == 0) continue;  // not heard from yet
       const bool was = stale_.count(z.name) > 0 ? stale_[z.name] : true;
-      if (z.input.frames > 0 && was != z.input.stale) {
+      if (was != z.input.stale) {
         std::cerr << "mvtrack-stitcher: zone " << z.name
                   << (z.input.stale ? " is stale: nothing on " + z.channel + " for " +
                                           std::to_string(options_.stale_ms) + " ms"

@@ -12,6 +12,9 @@ namespace mvtrack::stitch {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Rule 3: an open zone track takes a global track from the same zone's track only when it is
+// nearer the other zones' tracks by at least this much (metres).
+constexpr double kContestMarginM = 0.2;
 
 bool Finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
 
@@ -201,23 +204,51 @@ SiteFrame Stitcher::Stitch(const ZoneFrames& zone_frames) {
       if (entries[i].zone == z && entries[i].global == 0) open.push_back(i);
     }
     if (open.empty()) continue;
-    // Rule 3: the global tracks other zones see now, within kSamePersonApartM.
+    // Rule 3: the global tracks other zones see now, within kSamePersonApartM; and those whose
+    // track of this zone is clearly farther from the other zones' tracks than the open one
+    // (contested: the zone has two tracks there, the wrong one joined first).
     const std::map<TrackId3D, Present> present = present_globals();
     std::vector<TrackId3D> candidates;
+    std::vector<Vec3> reference;  // per candidate: the other zones' mean footprint
+    std::vector<int> holder;      // per candidate: its entry of this zone, or -1
     for (const auto& [id, p] : present) {
-      if (!p.HasZone(entries, z)) candidates.push_back(id);
+      std::vector<int> others;
+      int mine = -1;
+      for (const int e : p.entries) {
+        if (entries[e].zone == z) {
+          mine = e;
+        } else {
+          others.push_back(e);
+        }
+      }
+      if (others.empty()) continue;
+      candidates.push_back(id);
+      reference.push_back(mine < 0 ? p.position : MeanPosition(entries, others));
+      holder.push_back(mine);
     }
     if (!candidates.empty()) {
       Eigen::MatrixXd cost(open.size(), candidates.size());
       for (std::size_t r = 0; r < open.size(); ++r) {
         for (std::size_t c = 0; c < candidates.size(); ++c) {
-          cost(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) =
-              FloorDistance(entries[open[r]].track->position, present.at(candidates[c]).position);
+          double d = FloorDistance(entries[open[r]].track->position, reference[c]);
+          if (holder[c] >= 0 &&
+              !(d + kContestMarginM <
+                FloorDistance(entries[holder[c]].track->position, reference[c]))) {
+            d = kInf;
+          }
+          cost(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = d;
         }
       }
       const core::Assignment a = core::SolveAssignment(cost, linking::kSamePersonApartM);
       for (const auto& [r, c] : a.matches) {
-        join(open[r], candidates[c]);
+        if (holder[static_cast<std::size_t>(c)] >= 0) {
+          const int displaced = holder[static_cast<std::size_t>(c)];
+          joins_.erase({entries[displaced].zone, entries[displaced].track->id});
+          entries[displaced].global = 0;
+          open.push_back(displaced);
+          ++stats_.splits;
+        }
+        join(open[static_cast<std::size_t>(r)], candidates[static_cast<std::size_t>(c)]);
         ++stats_.joined_overlap;
       }
     }

@@ -66,9 +66,11 @@ struct StitchStats {
 ///     the 99th, 0.74 m at most on the simulated corridor), or nearer a global track its zone
 ///     does not see, within kSamePersonApartM (it was joined to the wrong one of two people).
 ///  3. Every zone track without a global id is matched (core::SolveAssignment, cost = the
-///     footprint distance) to the global tracks seen at this frame by other zones only, within
-///     kSamePersonApartM (the linker's same-person bound: in an overlap both zones triangulate
-///     the person from largely the same detections).
+///     footprint distance) to the global tracks other zones see now, within kSamePersonApartM
+///     (the linker's same-person bound: in an overlap both zones triangulate the person from
+///     largely the same detections) of the other zones' mean footprint; a global track that a
+///     track of the same zone already holds only when the open one is nearer by 0.2 m (the
+///     zone has two tracks there, and the worse one was joined first: it starts its own).
 ///  4. What is left, with LinkerOptions::reid_gate_chi2 > 0, is matched by motion alone to the
 ///     global tracks no zone sees now, lost for at most max_reid_gap_s by another zone: the
 ///     linker's re-identification (state test within reid_gate_chi2, unambiguous by

@@ -135,6 +135,37 @@ TEST_CASE("stitch/a join of two people who go apart is undone after kSplitFrames
   CHECK(stitcher.stats().global_ids == 2);
 }
 
+TEST_CASE("stitch/a zone's better track takes the global track from its worse one") {
+  // Zone 1 has two tracks by zone 0's person: id 4, 0.35 m off, joined first; then id 5 at
+  // 0.02 m appears. The nearer takes the global track, the other starts its own.
+  std::vector<std::vector<tracker::Frame3D>> zones(2);
+  for (FrameIndex f = 0; f < 10; ++f) {
+    zones[0].push_back(MakeFrame(f, {{1, 5.0, 2.0}}));
+    std::vector<At> z1 = {{4, 5.0, 2.35}};
+    if (f >= 3) z1.push_back({5, 5.0, 2.02});
+    zones[1].push_back(MakeFrame(f, z1));
+  }
+  Stitcher stitcher(2, linking::LinkerOptions{});
+  const std::vector<SiteFrame> site = StitchAll(&stitcher, zones);
+  REQUIRE(site[2].frame.tracks.size() == 1);
+  CHECK(site[2].zones[0] == std::vector<int>{0, 1});
+  REQUIRE(site[3].frame.tracks.size() == 2);
+  CHECK(IdAt(site[3], 5.0, 2.01) == 1);  // the mean of zone 0's 2.0 and zone 1's 2.02
+  CHECK(IdAt(site[3], 5.0, 2.35) == 2);
+  CHECK(IdAt(site.back(), 5.0, 2.01) == 1);
+  // Not when the newcomer is nearer by less than the margin (0.2 m).
+  std::vector<std::vector<tracker::Frame3D>> close(2);
+  for (FrameIndex f = 0; f < 10; ++f) {
+    close[0].push_back(MakeFrame(f, {{1, 5.0, 2.0}}));
+    std::vector<At> z1 = {{4, 5.0, 2.15}};
+    if (f >= 3) z1.push_back({5, 5.0, 1.98});
+    close[1].push_back(MakeFrame(f, z1));
+  }
+  Stitcher again(2, linking::LinkerOptions{});
+  const std::vector<SiteFrame> kept = StitchAll(&again, close);
+  CHECK(IdAt(kept.back(), 5.0, 2.075) == 1);  // zone 1's id 4 stays with the person
+}
+
 TEST_CASE("stitch/a person first seen by two zones in the same frame gets one id") {
   std::vector<std::vector<tracker::Frame3D>> zones(3);
   for (FrameIndex f = 0; f < 10; ++f) {
