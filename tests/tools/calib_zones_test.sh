@@ -22,6 +22,15 @@ for z in zone1 zone2; do
 done
 expect_grep "^  - name: zone1$" "$OUT/site/zones.yaml"
 expect_grep "^    daemon: \"zone2.yaml\"$" "$OUT/site/zones.yaml"
+# --mode and --lcm-url go into the zone daemons' configurations, which stay valid.
+expect_exit 0 "$OUT/modes.txt" "$MVTRACK" calib zones "$CAL" --max-cameras 2 --out "$OUT/site2" \
+  --mode boxes --lcm-url "udpm://239.255.76.67:7667?ttl=1"
+expect_grep "^  mode: boxes$" "$OUT/site2/zone1.yaml"
+expect_grep "^  lcm_url: \"udpm://239.255.76.67:7667\?ttl=1\"$" "$OUT/site2/zone1.yaml"
+expect_exit 0 "$OUT/modes_check.txt" "$MVTRACK" check-config "$OUT/site2/zone1.yaml"
+expect_grep "^  mode: boxes$" "$OUT/modes_check.txt"
+expect_exit 2 "$OUT/badmode.txt" "$MVTRACK" calib zones "$CAL" --out "$OUT/x" --mode cars
+expect_grep "--mode must be 'boxes' or 'poses'" "$OUT/badmode.txt"
 expect_exit 2 "$OUT/bad.txt" "$MVTRACK" calib zones "$CAL" --max-cameras 1
 expect_grep "max-cameras must be in" "$OUT/bad.txt"
 expect_exit 1 "$OUT/missing.txt" "$MVTRACK" calib zones "$OUT/nothing.yaml"

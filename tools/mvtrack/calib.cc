@@ -20,6 +20,7 @@
 #include "config/calibration_check.h"
 #include "config/calibration_import.h"
 #include "config/site.h"
+#include "config/tracker_options.h"
 #include "config/zones.h"
 #include "mvtrack/cli.h"
 #include "viz/coverage_map.h"
@@ -382,7 +383,9 @@ int RunZones(int argc, char** argv) {
       .Option("min-shared",
               "floor area another zone's camera must see of a zone to be its border camera, m^2",
               "2")
-      .Option("out", "write one daemon configuration per zone (ZONE.yaml) and zones.yaml here");
+      .Option("out", "write one daemon configuration per zone (ZONE.yaml) and zones.yaml here")
+      .Option("mode", "--out: the zone daemons' tracker.mode, boxes or poses (default: theirs)")
+      .Option("lcm-url", "--out: the zone daemons' input.lcm_url (default: LCM's default)");
   if (!args.Parse(
           argc,
           argv,
@@ -407,6 +410,21 @@ int RunZones(int argc, char** argv) {
   options.cell_m = args.GetDouble("cell");
   options.sample_height_m = args.GetDouble("height");
   options.min_shared_area_m2 = args.GetDouble("min-shared");
+  std::string daemon_extra;  // lines the zone daemons' configurations get
+  if (args.Has("mode")) {
+    if (!config::InputModeFromName(args.Get("mode"))) {
+      throw UsageError("--mode must be 'boxes' or 'poses', not '" + args.Get("mode") + "'");
+    }
+    daemon_extra += "tracker:\n  mode: " + args.Get("mode") + "\n";
+  }
+  std::string input_url;
+  if (args.Has("lcm-url")) {
+    const std::string url = args.Get("lcm-url");
+    if (url.empty() || url.find_first_of("\"\\\n") != std::string::npos) {
+      throw UsageError("--lcm-url needs a URL (without quotes or backslashes)");
+    }
+    input_url = "  lcm_url: \"" + url + "\"\n";
+  }
   std::string why;
   if (!options.Validate(&why)) throw UsageError(why);
   const std::string path = args.Get("CAL.yaml");
@@ -469,7 +487,7 @@ int RunZones(int argc, char** argv) {
               config::ZoneChannel("MVTRACK_TRACKS", z.name) +
               ", ...).\nformat: mvtrack.daemon/1\nzone: " + z.name + "\ncameras:\n  calibration: " +
               (ec ? fs::absolute(path).generic_string() : calibration) + "\n  ids: [" +
-              IdList(ids) + "]\ninput:\n  channels: per_camera\n");
+              IdList(ids) + "]\ninput:\n" + input_url + "  channels: per_camera\n" + daemon_extra);
   }
   write(dir / "zones.yaml",
         config::ZonesToYaml(written,
