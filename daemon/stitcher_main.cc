@@ -195,23 +195,25 @@ class Outputs {
   // The status line every second (and with `force`), and a log line when a zone changes state.
   void Status(StitchService& service, std::int64_t now_us, bool force) {
     const bool due = force || now_us - last_status_us_ >= 1'000'000;
-    const mvtrack::service::SiteStatus s = service.Status(now_us, due);
     bool changed = false;
-    for (const mvtrack::service::ZoneStatus& z : s.zones) {
-      if (z.input.frames == 0) continue;  // not heard from yet
-      const bool was = stale_.count(z.name) > 0 ? stale_[z.name] : true;
-      if (was != z.input.stale) {
-        std::cerr << "mvtrack-stitcher: zone " << z.name
-                  << (z.input.stale ? " is stale: nothing on " + z.channel + " for " +
-                                          std::to_string(options_.stale_ms) + " ms"
-                                    : " is live (" + z.channel + ")")
+    stale_.resize(service.channels().size());
+    for (std::size_t i = 0; i < stale_.size(); ++i) {
+      const int z = static_cast<int>(i);
+      if (!service.heard_from(z)) continue;
+      const bool stale = service.stale(z, now_us);
+      if (stale_[i].value_or(true) != stale) {
+        std::cerr << "mvtrack-stitcher: zone " << service.zone_name(z)
+                  << (stale ? " is stale: nothing on " + service.channels()[i] + " for " +
+                                  std::to_string(options_.stale_ms) + " ms"
+                            : " is live (" + service.channels()[i] + ")")
                   << "\n";
         changed = true;
       }
-      stale_[z.name] = z.input.stale;
+      stale_[i] = stale;
     }
+    // The whole status (and its wait percentiles) only when a line is written.
     if (status_.is_open() && (due || changed)) {
-      status_ << mvtrack::service::SiteStatusJson(s) << std::flush;
+      status_ << mvtrack::service::SiteStatusJson(service.Status(now_us, due)) << std::flush;
       last_status_us_ = now_us;
     }
   }
@@ -235,7 +237,7 @@ class Outputs {
   lcm::LCM* lcm_;
   std::ofstream tracks_;
   std::ofstream status_;
-  std::map<std::string, bool> stale_;
+  std::vector<std::optional<bool>> stale_;  // per zone, once heard from
   std::int64_t last_status_us_ = 0;
   std::int64_t published_ = 0;
   std::int64_t publish_errors_ = 0;

@@ -148,9 +148,7 @@ SiteStatus StitchService::Status(std::int64_t now_us, bool reset_waits) {
     zs.name = config_.zones[z].name;
     zs.channel = channels_[z];
     zs.input = aligner_.zones()[z];
-    if (zs.input.frames > 0) {
-      zs.input.stale = now_us - zs.input.last_arrival_us >= config_.aligner.stale_after_us;
-    }
+    zs.input.stale = aligner_.Stale(static_cast<int>(z), now_us);
     zs.decode_errors = decode_errors_[z];
     zs.other_layer = other_layer_[z];
     zs.tracks = zone_tracks_[z];

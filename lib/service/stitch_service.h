@@ -80,6 +80,16 @@ class StitchService {
 
   /// Each zone's tracks channel, parallel to the zones.
   const std::vector<std::string>& channels() const { return channels_; }
+  /// Zone `zone`'s name (an index into channels()).
+  const std::string& zone_name(int zone) const {
+    return config_.zones.at(static_cast<std::size_t>(zone)).name;
+  }
+  /// Whether zone `zone` has delivered a frame yet.
+  bool heard_from(int zone) const {
+    return aligner_.zones().at(static_cast<std::size_t>(zone)).frames > 0;
+  }
+  /// Whether zone `zone` is stale at `now_us` (stitch::SiteAligner::Stale).
+  bool stale(int zone, std::int64_t now_us) const { return aligner_.Stale(zone, now_us); }
 
   /// A message on zone `zone`'s channel (an index into channels(); checked) received at
   /// `now_us` (the program's clock, never going back).

@@ -33,18 +33,24 @@ void SiteAligner::UpdateStale(std::int64_t now_us) {
   MVTRACK_CHECK_MSG(!start_us_ || now_us >= now_us_, "the aligner's clock went back");
   if (!start_us_) start_us_ = now_us;
   now_us_ = now_us;
-  for (ZoneInput& in : inputs_) {
-    // A zone not heard from yet is waited for as long as a silent one.
-    const std::int64_t since = in.frames == 0 ? *start_us_ : in.last_arrival_us;
-    in.stale = now_us - since >= options_.stale_after_us;
+  for (std::size_t z = 0; z < inputs_.size(); ++z) {
+    inputs_[z].stale = Stale(static_cast<int>(z), now_us);
   }
+}
+
+bool SiteAligner::Stale(int zone, std::int64_t now_us) const {
+  MVTRACK_CHECK(zone >= 0 && zone < static_cast<int>(inputs_.size()));
+  const ZoneInput& in = inputs_[static_cast<std::size_t>(zone)];
+  // A zone not heard from yet is waited for as long as a silent one.
+  const std::int64_t since = in.frames == 0 ? start_us_.value_or(now_us) : in.last_arrival_us;
+  return now_us - since >= options_.stale_after_us;
 }
 
 void SiteAligner::Push(int zone, tracker::Frame3D frame, std::int64_t now_us) {
   MVTRACK_CHECK(zone >= 0 && zone < static_cast<int>(pending_.size()));
   UpdateStale(now_us);
   ZoneInput& in = inputs_[static_cast<std::size_t>(zone)];
-  std::vector<Pending>& queue = pending_[static_cast<std::size_t>(zone)];
+  std::deque<Pending>& queue = pending_[static_cast<std::size_t>(zone)];
   const bool out_of_order = in.frames > 0 && frame.utime <= in.last_utime;
   const bool released = released_ && frame.utime < *released_ + options_.tolerance_us;
   ++in.frames;
@@ -57,7 +63,7 @@ void SiteAligner::Push(int zone, tracker::Frame3D frame, std::int64_t now_us) {
   in.last_utime = frame.utime;
   in.latency_us = now_us - frame.utime;
   if (static_cast<int>(queue.size()) >= options_.max_pending) {
-    queue.erase(queue.begin());
+    queue.pop_front();
     ++in.late;
   }
   queue.push_back({std::move(frame), now_us});
@@ -71,14 +77,14 @@ std::vector<ZoneFrameGroup> SiteAligner::Pop(std::int64_t now_us,
   const std::size_t n = pending_.size();
   while (true) {
     std::optional<Utime> open;
-    for (const std::vector<Pending>& q : pending_) {
+    for (const std::deque<Pending>& q : pending_) {
       if (!q.empty() && (!open || q.front().frame.utime < *open)) open = q.front().frame.utime;
     }
     if (!open) break;
     std::vector<bool> member(n, false);
     std::int64_t first_arrival = now_us;
     for (std::size_t z = 0; z < n; ++z) {
-      const std::vector<Pending>& q = pending_[z];
+      const std::deque<Pending>& q = pending_[z];
       if (!q.empty() && q.front().frame.utime - *open < options_.tolerance_us) {
         member[z] = true;
         first_arrival = std::min(first_arrival, q.front().arrival_us);
@@ -97,7 +103,7 @@ std::vector<ZoneFrameGroup> SiteAligner::Pop(std::int64_t now_us,
     for (std::size_t z = 0; z < n; ++z) {
       if (!member[z]) continue;
       group[z] = std::move(pending_[z].front().frame);
-      pending_[z].erase(pending_[z].begin());
+      pending_[z].pop_front();
     }
     released_ = *open;
     if (waits != nullptr) waits->push_back(now_us - first_arrival);

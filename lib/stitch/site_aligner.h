@@ -10,6 +10,7 @@
 /// caller passes its clock; deterministic.
 
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <string>
 #include <vector>
@@ -70,6 +71,10 @@ class SiteAligner {
   /// Zone inputs as of the latest Push or Pop.
   const std::vector<ZoneInput>& zones() const { return inputs_; }
 
+  /// Whether zone `zone` (an index, checked) is stale at `now_us` (ZoneInput::stale computed
+  /// for that time instead of the latest call's).
+  bool Stale(int zone, std::int64_t now_us) const;
+
  private:
   struct Pending {
     tracker::Frame3D frame;
@@ -78,7 +83,7 @@ class SiteAligner {
   void UpdateStale(std::int64_t now_us);
 
   AlignerOptions options_;
-  std::vector<std::vector<Pending>> pending_;  // per zone, increasing utime
+  std::vector<std::deque<Pending>> pending_;  // per zone, increasing utime
   std::vector<ZoneInput> inputs_;
   std::optional<Utime> released_;         // capture time of the latest released site frame
   std::optional<std::int64_t> start_us_;  // the clock at the first call

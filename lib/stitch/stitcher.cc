@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
+#include <utility>
 
 #include "core/check.h"
 #include "core/linear_assignment.h"
@@ -129,15 +131,18 @@ SiteFrame Stitcher::Stitch(const ZoneFrames& zone_frames) {
     }
   }
   // One zone track per zone and global track (a merge can leave two joins of one zone): the
-  // later joined leaves.
-  for (std::size_t i = 0; i < entries.size(); ++i) {
-    for (std::size_t k = 0; k < entries.size() && entries[i].global != 0; ++k) {
-      if (k == i || entries[k].zone != entries[i].zone || entries[k].global != entries[i].global) {
-        continue;
-      }
-      const std::int64_t oi = joins_.at({entries[i].zone, entries[i].track->id}).order;
-      const std::int64_t ok = joins_.at({entries[k].zone, entries[k].track->id}).order;
-      const std::size_t later = oi > ok ? i : k;
+  // earliest joined stays, the others leave.
+  {
+    std::map<std::pair<int, TrackId3D>, std::size_t> kept;  // (zone, global) -> entry
+    const auto order = [&](std::size_t e) {
+      return joins_.at({entries[e].zone, entries[e].track->id}).order;
+    };
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      if (entries[i].global == 0) continue;
+      const auto [it, first_of_pair] = kept.try_emplace({entries[i].zone, entries[i].global}, i);
+      if (first_of_pair) continue;
+      std::size_t later = i;
+      if (order(i) < order(it->second)) std::swap(later, it->second);
       joins_.erase({entries[later].zone, entries[later].track->id});
       entries[later].global = 0;
     }

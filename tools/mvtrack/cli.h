@@ -16,6 +16,10 @@
 #include "analytics/recording.h"
 #include "eval/sequence.h"
 
+namespace mvtrack::formats {
+struct TrackFile;
+}  // namespace mvtrack::formats
+
 namespace mvtrack::cli {
 
 /// Seconds of the steady clock since `start` (progress lines and timings).
@@ -114,6 +118,10 @@ int RunAnalyticsPictures(int argc, char** argv);
 /// `value` with `decimals` digits after the point ("%.*f"); "" when it is not finite (a figure
 /// that does not exist, e.g. the median of no visits).
 std::string Fixed(double value, int decimals);
+
+/// The frames of `file` as an evaluation sequence of ids and footprints, joints dropped (eval.cc;
+/// `mvtrack eval --points` and `mvtrack diff --layers`).
+eval::EvalSequence FootprintSequence(const formats::TrackFile& file);
 
 /// The helper mvtrack-pictures next to the running executable (build tree and install alike),
 /// or "" when it is not there.

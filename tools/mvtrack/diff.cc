@@ -136,23 +136,9 @@ std::string Source(const formats::TrackFile& f, const formats::TrackFileFrame& f
          std::to_string(frame.source);
 }
 
-// The footprints of a track file as an evaluation sequence.
-eval::EvalSequence Footprints(const formats::TrackFile& file) {
-  eval::EvalSequence seq;
-  for (const formats::TrackFileFrame& f : file.frames) {
-    eval::EvalFrame frame;
-    frame.frame = f.frame.frame;
-    for (const tracker::Track3D& t : f.frame.tracks) {
-      frame.objects.push_back(eval::EvalObject{t.id, t.position, {}});
-    }
-    seq.push_back(std::move(frame));
-  }
-  return seq;
-}
-
 // --layers: B is a provisional layer of the run whose final output is A.
 int CompareLayerFiles(const formats::TrackFile& a, const formats::TrackFile& b) {
-  const eval::LayerAgreement g = eval::CompareLayers(Footprints(a), Footprints(b));
+  const eval::LayerAgreement g = eval::CompareLayers(FootprintSequence(a), FootprintSequence(b));
   std::cout << "A (final): " << a.Describe() << "\n";
   std::cout << "B (provisional): " << b.Describe() << "\n";
   std::cout << "track-frames: " << g.provisional_track_frames << " in B, " << g.final_track_frames

@@ -171,9 +171,7 @@ int RunPointComparison(const Args& args,
   out << "predictions:  " << pred.Describe() << "\n";
   out << "joints: not compared (--points: footprints only, ids ignored on both sides)\n\n";
   eval::EvaluationReport report;
-  report.points = eval::ComparePoints(ToSequence(gt, false, nullptr, eval::HeadRule::kCampus),
-                                      ToSequence(pred, false, nullptr, eval::HeadRule::kCampus),
-                                      options);
+  report.points = eval::ComparePoints(FootprintSequence(gt), FootprintSequence(pred), options);
   if (!report.points->valid) {
     std::cerr << "mvtrack eval: point comparison failed: " << report.points->error << "\n";
     return 1;
@@ -184,6 +182,10 @@ int RunPointComparison(const Args& args,
 }
 
 }  // namespace
+
+eval::EvalSequence FootprintSequence(const formats::TrackFile& file) {
+  return ToSequence(file, false, nullptr, eval::HeadRule::kCampus);
+}
 
 int RunEval(int argc, char** argv) {
   Args args;
