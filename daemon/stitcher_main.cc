@@ -41,6 +41,7 @@ void OnSignal(int signal) { g_signal.store(signal); }
 const char kUsage[] =
     "usage: mvtrack-stitcher --zones ZONES.yaml [--lcm-url URL] [--output-url URL]\n"
     "                        [--input-log LOG] [--channel NAME] [--zone-channel NAME]\n"
+    "                        [--status-channel NAME] [--zone-status-channel NAME]\n"
     "                        [--state-dir DIR] [--wait-ms N] [--stale-ms N]\n"
     "                        [--tracks-jsonl FILE] [--status-jsonl FILE]\n"
     "       mvtrack-stitcher --version | --help\n";
@@ -52,9 +53,12 @@ const char kHelp[] =
     "zone, e.g. MVTRACK_TRACKS_ZONE1), aligns their frames by capture time, waiting at most\n"
     "--wait-ms for a late zone and not at all for a zone silent for --stale-ms (stale), joins\n"
     "the zones' tracks in their border overlaps (docs/DECISIONS.md \"The stitcher\") and\n"
-    "publishes the site's tracks (tracks3d_t, global ids) on --channel. Every second a status\n"
-    "line (JSON: zones live or stale, their latency, late frames) goes to --status-jsonl, and\n"
-    "at once when a zone goes stale or comes back, which is also logged on stderr.\n"
+    "publishes the site's tracks (tracks3d_t, global ids, which zones see each person) on\n"
+    "--channel. Every second it publishes the site's status (site_status_t: zones live or\n"
+    "stale, their latency, late frames, each zone daemon's own health from its status channel)\n"
+    "on --status-channel, where `mvtrack status` and `mvtrack web` read it, and writes it as a\n"
+    "JSON line to --status-jsonl; at once too when a zone goes stale or comes back, which is\n"
+    "also logged on stderr.\n"
     "\n"
     "  --zones FILE         the zones file (mvtrack.zones/1), required\n"
     "  --lcm-url URL        LCM to subscribe (default: LCM's default, LCM_DEFAULT_URL)\n"
@@ -64,6 +68,9 @@ const char kHelp[] =
     "  --channel NAME       the site's tracks channel (default MVTRACK_TRACKS)\n"
     "  --zone-channel NAME  the zone daemons' tracks channel before the zone suffix\n"
     "                       (default MVTRACK_TRACKS)\n"
+    "  --status-channel NAME  the site's status channel (default MVTRACK_STATUS; \"\" = none)\n"
+    "  --zone-status-channel NAME  the zone daemons' status channel before the zone suffix\n"
+    "                       (default MVTRACK_STATUS)\n"
     "  --state-dir DIR      keep the global id reservation here: ids never repeat across\n"
     "                       restarts\n"
     "  --wait-ms N          longest wait for a late zone, ms (default 1000)\n"
@@ -85,6 +92,8 @@ struct Options {
   std::string input_log;
   std::string channel = "MVTRACK_TRACKS";
   std::string zone_channel = "MVTRACK_TRACKS";
+  std::string status_channel = "MVTRACK_STATUS";
+  std::string zone_status_channel = "MVTRACK_STATUS";
   std::string state_dir;
   std::int64_t wait_ms = 1000;
   std::int64_t stale_ms = 2000;
@@ -108,14 +117,17 @@ std::int64_t Milliseconds(const std::string& flag, const std::string& text) {
 
 std::optional<Options> Parse(int argc, char** argv) {
   Options o;
-  const std::map<std::string, std::string*> strings = {{"--zones", &o.zones},
-                                                       {"--lcm-url", &o.lcm_url},
-                                                       {"--input-log", &o.input_log},
-                                                       {"--channel", &o.channel},
-                                                       {"--zone-channel", &o.zone_channel},
-                                                       {"--state-dir", &o.state_dir},
-                                                       {"--tracks-jsonl", &o.tracks_jsonl},
-                                                       {"--status-jsonl", &o.status_jsonl}};
+  const std::map<std::string, std::string*> strings = {
+      {"--zones", &o.zones},
+      {"--lcm-url", &o.lcm_url},
+      {"--input-log", &o.input_log},
+      {"--channel", &o.channel},
+      {"--zone-channel", &o.zone_channel},
+      {"--status-channel", &o.status_channel},
+      {"--zone-status-channel", &o.zone_status_channel},
+      {"--state-dir", &o.state_dir},
+      {"--tracks-jsonl", &o.tracks_jsonl},
+      {"--status-jsonl", &o.status_jsonl}};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") {
@@ -142,7 +154,9 @@ std::optional<Options> Parse(int argc, char** argv) {
     }
   }
   if (o.zones.empty()) throw UsageError("--zones is required");
-  if (o.channel.empty() || o.zone_channel.empty()) throw UsageError("channel names are empty");
+  if (o.channel.empty() || o.zone_channel.empty() || o.zone_status_channel.empty()) {
+    throw UsageError("channel names are empty");
+  }
   return o;
 }
 
@@ -157,9 +171,15 @@ std::int64_t NowUs() {
 struct Subscription {
   StitchService* service = nullptr;
   int zone = 0;
+  bool status = false;  // the zone daemon's status channel, not its tracks
 };
 void OnRaw(const lcm::ReceiveBuffer* rbuf, const std::string&, Subscription* s) {
-  s->service->OnMessage(s->zone, rbuf->data, static_cast<std::size_t>(rbuf->data_size), NowUs());
+  const auto size = static_cast<std::size_t>(rbuf->data_size);
+  if (s->status) {
+    s->service->OnZoneStatus(s->zone, rbuf->data, size, NowUs());
+  } else {
+    s->service->OnMessage(s->zone, rbuf->data, size, NowUs());
+  }
 }
 
 class Outputs {
@@ -211,11 +231,20 @@ class Outputs {
       }
       stale_[i] = stale;
     }
-    // The whole status (and its wait percentiles) only when a line is written.
-    if (status_.is_open() && (due || changed)) {
-      status_ << mvtrack::service::SiteStatusJson(service.Status(now_us, due)) << std::flush;
-      last_status_us_ = now_us;
+    // The whole status (and its wait percentiles) only when it is written.
+    const bool publish = lcm_ != nullptr && !options_.status_channel.empty();
+    if ((status_.is_open() || publish) && (due || changed)) {
+      const mvtrack::transport::SiteStatus s = service.Status(now_us, due);
+      if (status_.is_open()) status_ << mvtrack::service::SiteStatusJson(s) << std::flush;
+      if (publish) {
+        const std::vector<std::uint8_t> bytes = mvtrack::transport::EncodeSiteStatus(s);
+        if (lcm_->publish(
+                options_.status_channel, bytes.data(), static_cast<unsigned>(bytes.size())) != 0) {
+          ++publish_errors_;
+        }
+      }
     }
+    if (due) last_status_us_ = now_us;
   }
 
   void Close() {
@@ -247,6 +276,8 @@ int Run(const Options& o) {
   mvtrack::service::StitchConfig config;
   config.zones = mvtrack::config::LoadZonesFile(o.zones);
   config.zone_tracks_channel = o.zone_channel;
+  config.zone_status_channel = o.zone_status_channel;
+  config.version = MVTRACK_VERSION;
   config.state_dir = o.state_dir;
   config.aligner.wait_us = o.wait_ms * 1000;
   config.aligner.stale_after_us = o.stale_ms * 1000;
@@ -277,14 +308,18 @@ int Run(const Options& o) {
     std::unique_ptr<mvtrack::transport::LogReader> reader =
         mvtrack::transport::LogReader::Open(o.input_log, &why);
     if (!reader) throw std::runtime_error(why);
-    std::map<std::string, int> zone_of;
+    std::map<std::string, int> zone_of;         // tracks channel -> zone
+    std::map<std::string, int> zone_status_of;  // status channel -> zone
     for (std::size_t z = 0; z < service->channels().size(); ++z) {
       zone_of[service->channels()[z]] = static_cast<int>(z);
+      zone_status_of[service->status_channels()[z]] = static_cast<int>(z);
     }
     while (std::optional<mvtrack::transport::LogEvent> e = reader->Next()) {
       now = std::max(now, e->timestamp_us);
       if (const auto it = zone_of.find(e->channel); it != zone_of.end()) {
         service->OnMessage(it->second, e->data.data(), e->data.size(), now);
+      } else if (const auto st = zone_status_of.find(e->channel); st != zone_status_of.end()) {
+        service->OnZoneStatus(st->second, e->data.data(), e->data.size(), now);
       }
       out.Publish(service->Poll(now), service->layout(), now);
       out.Status(*service, now, false);
@@ -294,11 +329,16 @@ int Run(const Options& o) {
       throw std::runtime_error(reader->error());
     }
   } else {
-    std::vector<Subscription> subscriptions(service->channels().size());
-    for (std::size_t z = 0; z < subscriptions.size(); ++z) {
-      subscriptions[z] = {service.get(), static_cast<int>(z)};
-      if (input->subscribeFunction(service->channels()[z], &OnRaw, &subscriptions[z]) == nullptr) {
-        throw std::runtime_error("cannot subscribe to " + service->channels()[z]);
+    std::vector<Subscription> subscriptions;
+    subscriptions.reserve(2 * service->channels().size());
+    for (std::size_t z = 0; z < service->channels().size(); ++z) {
+      for (const bool status : {false, true}) {
+        subscriptions.push_back({service.get(), static_cast<int>(z), status});
+        const std::string& channel =
+            status ? service->status_channels()[z] : service->channels()[z];
+        if (input->subscribeFunction(channel, &OnRaw, &subscriptions.back()) == nullptr) {
+          throw std::runtime_error("cannot subscribe to " + channel);
+        }
       }
     }
     while (g_signal.load() == 0) {
@@ -314,14 +354,15 @@ int Run(const Options& o) {
   out.Publish(service->Poll(now, /*flush=*/true), service->layout(), now);
   out.Status(*service, now, true);
   out.Close();
-  const mvtrack::service::SiteStatus s = service->Status(now);
+  const mvtrack::transport::SiteStatus s = service->Status(now);
+  const mvtrack::stitch::StitchStats& ss = service->stitch_stats();
   std::cerr << "mvtrack-stitcher: stopped" << (g_signal.load() != 0 ? " by a signal" : "")
-            << "; summary: site_frames=" << out.published() << " global_ids=" << s.stitch.global_ids
-            << " joined_overlap=" << s.stitch.joined_overlap << " splits=" << s.stitch.splits
-            << " merges=" << s.stitch.merges << " publish_errors=" << out.publish_errors();
-  for (const mvtrack::service::ZoneStatus& z : s.zones) {
-    std::cerr << " " << z.name << ".frames=" << z.input.frames << " " << z.name
-              << ".late=" << z.input.late << " " << z.name << ".decode_errors=" << z.decode_errors;
+            << "; summary: site_frames=" << out.published() << " global_ids=" << ss.global_ids
+            << " joined_overlap=" << ss.joined_overlap << " splits=" << ss.splits
+            << " merges=" << ss.merges << " publish_errors=" << out.publish_errors();
+  for (const mvtrack::transport::ZoneStatus& z : s.zones) {
+    std::cerr << " " << z.name << ".frames=" << z.frames << " " << z.name << ".late=" << z.late
+              << " " << z.name << ".decode_errors=" << z.decode_errors;
   }
   std::cerr << "\n";
   if (!service->id_warning().empty()) {

@@ -89,6 +89,10 @@ std::vector<Zone> ParseZones(std::string_view text, const std::string& source_na
   const NodeRef list = root.Get("zones");
   const std::vector<NodeRef> items = GetSequence(list);
   if (items.empty()) list.Fail("a site needs at least one zone");
+  if (items.size() > static_cast<std::size_t>(kMaxZones)) {
+    list.Fail("a site has at most " + std::to_string(kMaxZones) + " zones, not " +
+              std::to_string(items.size()));
+  }
   std::vector<Zone> zones;
   std::map<CameraId, std::string> owner;  // camera -> the zone that owns it
   std::vector<std::pair<NodeRef, std::string>> neighbour_refs;
@@ -170,6 +174,13 @@ std::string ZonesToYaml(const std::vector<Zone>& zones, const std::string& comme
     if (!z.daemon.empty()) out += "    daemon: " + internal::QuoteString(z.daemon) + "\n";
   }
   return out;
+}
+
+std::vector<std::string> ZoneNames(const std::vector<Zone>& zones) {
+  std::vector<std::string> names;
+  names.reserve(zones.size());
+  for (const Zone& z : zones) names.push_back(z.name);
+  return names;
 }
 
 std::string ZoneChannel(const std::string& channel, const std::string& zone) {

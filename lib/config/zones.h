@@ -59,6 +59,10 @@ struct Zone {
   std::string daemon;
 };
 
+/// Most zones of a site (the stitched output's zone indices are int16; the decoders' limit,
+/// transport::DecodeLimits::max_zones, and stitch::Stitcher's).
+inline constexpr int kMaxZones = 256;
+
 /// The `format` of a zones file.
 inline constexpr std::string_view kZonesFormat = "mvtrack.zones/1";
 
@@ -91,6 +95,9 @@ std::string ZonesToYaml(const std::vector<Zone>& zones, const std::string& comme
 /// when there are at most max_cameras cameras. `options` must be valid (checked).
 std::vector<Zone> PartitionZones(const std::vector<geometry::CameraModel>& cameras,
                                  const ZoneOptions& options = {});
+
+/// The names of `zones`, in order.
+std::vector<std::string> ZoneNames(const std::vector<Zone>& zones);
 
 /// The channel of zone `zone` for a site channel: "<channel>_<ZONE>" (the zone name in upper
 /// case), e.g. MVTRACK_TRACKS_ZONE1.

@@ -23,18 +23,6 @@
 namespace mvtrack::service {
 namespace {
 
-// 16 lowercase hex digits from the system's entropy source: the instance id of
-// tracker_status_t, different for every start of a daemon.
-std::string RandomInstanceId() {
-  std::random_device entropy;
-  const std::uint64_t value = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
-  constexpr char kHex[] = "0123456789abcdef";
-  std::string id(16, '0');
-  for (int i = 0; i < 16; ++i)
-    id[static_cast<std::size_t>(i)] = kHex[(value >> (60 - 4 * i)) & 0xF];
-  return id;
-}
-
 // Bounds on bookkeeping that grows with the input (memory stays bounded whatever arrives).
 constexpr std::size_t kMaxReleaseTimes = 4096;
 constexpr std::size_t kMaxLatencySamples = 100000;

@@ -2,9 +2,21 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <random>
 #include <string>
 
 namespace mvtrack::service {
+
+std::string RandomInstanceId() {
+  std::random_device entropy;
+  const std::uint64_t value = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
+  constexpr char kHex[] = "0123456789abcdef";
+  std::string id(16, '0');
+  for (int i = 0; i < 16; ++i)
+    id[static_cast<std::size_t>(i)] = kHex[(value >> (60 - 4 * i)) & 0xF];
+  return id;
+}
+
 namespace {
 
 constexpr std::int64_t kCameraNoData = 1, kCameraStale = 2, kCameraClockOffset = 64;
@@ -88,6 +100,39 @@ HealthReport AssessStatus(const transport::TrackerStatus& status) {
       warning.push_back("camera " + std::to_string(c.camera_id) + " " + Join(names, ","));
     }
   }
+  r.health = !critical.empty()  ? Health::kCritical
+             : !warning.empty() ? Health::kWarning
+                                : Health::kOk;
+  r.reasons = critical;
+  r.reasons.insert(r.reasons.end(), warning.begin(), warning.end());
+  return r;
+}
+
+HealthReport AssessSiteStatus(const transport::SiteStatus& status) {
+  constexpr std::int64_t kZoneMissing = 1 | 2;  // zone_status_t FLAG_NO_DATA | FLAG_STALE
+  constexpr std::int64_t kZoneDegraded = 16;    // zone_status_t FLAG_DEGRADED
+  constexpr std::int64_t kSiteNoOutput = 8;     // site_status_t FLAG_NO_OUTPUT
+  std::vector<std::string> critical;
+  std::vector<std::string> warning;
+  int live = 0;
+  for (const transport::ZoneStatus& z : status.zones) {
+    if ((z.flags & kZoneMissing) == 0) ++live;
+    const std::vector<std::string> names = transport::ZoneFlagNames(z.flags);
+    if (names.empty()) continue;
+    std::string reason = "zone " + Printable(z.name) + " " + Join(names, ",");
+    if ((z.flags & kZoneDegraded) != 0 && !z.daemon_reasons.empty()) {
+      reason += " (" + z.daemon_reasons + ")";
+    }
+    warning.push_back(std::move(reason));
+  }
+  if (live == 0) {
+    critical.push_back("0 of " + std::to_string(status.zones.size()) + " zones live");
+  }
+  if ((status.flags & kSiteNoOutput) != 0) {
+    critical.push_back("NO_OUTPUT: zones deliver but no site frame was published for " +
+                       std::to_string(kNoOutputAfterUs / 1000000) + " s");
+  }
+  HealthReport r;
   r.health = !critical.empty()  ? Health::kCritical
              : !warning.empty() ? Health::kWarning
                                 : Health::kOk;

@@ -48,6 +48,12 @@ inline constexpr std::int64_t kNoOutputAfterUs = 3'000'000;
 /// flag set (each camera's flags are named); otherwise OK.
 HealthReport AssessStatus(const transport::TrackerStatus& status);
 
+/// The verdict of a site's stitcher status (site_status_t, issue 43): CRITICAL when no zone
+/// is live (every zone NO_DATA or STALE) or the site flags NO_OUTPUT; WARNING when a zone has
+/// a flag (each zone named with its flags, a degraded zone daemon with its own reasons) or the
+/// site has another flag; otherwise OK.
+HealthReport AssessSiteStatus(const transport::SiteStatus& status);
+
 /// Cameras delivering (see AssessStatus).
 int CamerasDelivering(const transport::TrackerStatus& status);
 
@@ -112,6 +118,10 @@ class StatusSourceWatch {
   std::vector<Instance> instances_;  // least recently heard first
   Event restart_, conflict_, backwards_;
 };
+
+/// 16 lowercase hex digits from the system's entropy source: the instance id of a status
+/// sender (tracker_status_t, site_status_t), different for every start.
+std::string RandomInstanceId();
 
 /// The daemon's systemd status line, e.g. "tracking: 3/3 cameras, 30.0 fps, 4 tracks (3
 /// confirmed), OK" or "... WARNING: camera 2 CLOCK_OFFSET", with `fps` (FrameRateMeter).

@@ -18,14 +18,37 @@ constexpr std::int64_t kIdBlock = 100000;
 // Site frame waits kept between status lines.
 constexpr std::size_t kMaxWaits = 4096;
 
+// zone_status_t and site_status_t flags (lcmtypes/zone_status_t.lcm, site_status_t.lcm).
+constexpr std::int64_t kZoneNoData = 1;
+constexpr std::int64_t kZoneStale = 2;
+constexpr std::int64_t kZoneLate = 4;
+constexpr std::int64_t kZoneDecodeErrors = 8;
+constexpr std::int64_t kZoneDegraded = 16;
+constexpr std::int64_t kSiteZoneMissing = 1;
+constexpr std::int64_t kSiteInputLoss = 2;
+constexpr std::int64_t kSiteZoneDegraded = 4;
+constexpr std::int64_t kSiteNoOutput = 8;
+
+// A zone daemon's status is current for three of its periods, at least kStatusFreshUs.
+constexpr std::int64_t kStatusFreshUs = 3'000'000;
+
+// At most kMaxDaemonReasons characters of `text`, "..." marking a cut.
+std::string Clip(std::string text) {
+  const auto limit = static_cast<std::size_t>(transport::kMaxDaemonReasons);
+  if (text.size() > limit) text = text.substr(0, limit - 3) + "...";
+  return text;
+}
+
 }  // namespace
 
-std::string SiteStatusJson(const SiteStatus& status) {
+std::string SiteStatusJson(const transport::SiteStatus& status) {
   json::OrderedDocument doc;
-  doc["utime"] = status.now_us;
+  doc["utime"] = status.utime;
+  doc["sequence"] = status.sequence;
+  doc["flags"] = transport::SiteFlagNames(status.flags);
   doc["site_frames"] = status.site_frames;
-  doc["global_tracks"] = status.global_tracks;
-  doc["global_ids"] = status.stitch.global_ids;
+  doc["global_tracks"] = status.active_tracks;
+  doc["global_ids"] = status.global_ids;
   const auto ms = [](std::int64_t us) {
     return std::round(static_cast<double>(us) / 100.0) / 10.0;
   };
@@ -33,17 +56,20 @@ std::string SiteStatusJson(const SiteStatus& status) {
                     {"p99", ms(status.wait_p99_us)},
                     {"max", ms(status.wait_max_us)}};
   json::OrderedDocument zones = json::OrderedDocument::array();
-  for (const ZoneStatus& z : status.zones) {
+  for (const transport::ZoneStatus& z : status.zones) {
     json::OrderedDocument o;
     o["name"] = z.name;
     o["channel"] = z.channel;
-    o["state"] = z.input.stale ? "stale" : "live";
-    o["frames"] = z.input.frames;
-    o["late"] = z.input.late;
+    o["state"] = (z.flags & (kZoneNoData | kZoneStale)) != 0 ? "stale" : "live";
+    o["flags"] = transport::ZoneFlagNames(z.flags);
+    o["frames"] = z.frames;
+    o["late"] = z.late;
     o["decode_errors"] = z.decode_errors;
     o["latency_ms"] = ms(z.latency_us);
-    o["last_utime"] = z.input.last_utime;
+    o["last_utime"] = z.last_utime;
     o["tracks"] = z.tracks;
+    o["daemon"] = ToString(static_cast<Health>(z.daemon_health));
+    o["daemon_reasons"] = z.daemon_reasons;
     zones.push_back(std::move(o));
   }
   doc["zones"] = std::move(zones);
@@ -77,18 +103,50 @@ std::unique_ptr<StitchService> StitchService::Create(StitchConfig config, std::s
 StitchService::StitchService(StitchConfig config, TrackId3D first_id)
     : config_(std::move(config)),
       aligner_(static_cast<int>(config_.zones.size()), config_.aligner),
-      stitcher_(static_cast<int>(config_.zones.size()), config_.linker, first_id),
+      stitcher_(config::ZoneNames(config_.zones), config_.linker, first_id),
       decode_errors_(config_.zones.size(), 0),
       other_layer_(config_.zones.size(), 0),
       zone_tracks_(config_.zones.size(), 0),
       zone_latency_(config_.zones.size(), 0) {
+  instance_id_ = RandomInstanceId();
   for (const config::Zone& z : config_.zones) {
     channels_.push_back(config::ZoneChannel(config_.zone_tracks_channel, z.name));
+    status_channels_.push_back(config::ZoneChannel(config_.zone_status_channel, z.name));
   }
+  daemons_.resize(config_.zones.size());
+  period_late_.assign(config_.zones.size(), 0);
+  period_decode_errors_.assign(config_.zones.size(), 0);
+}
+
+void StitchService::Touch(std::int64_t now_us) {
+  if (!start_us_) {
+    start_us_ = now_us;
+    period_start_us_ = now_us;
+  }
+}
+
+void StitchService::OnZoneStatus(int zone,
+                                 const void* data,
+                                 std::size_t size,
+                                 std::int64_t now_us) {
+  MVTRACK_CHECK(zone >= 0 && zone < static_cast<int>(status_channels_.size()));
+  Touch(now_us);
+  const auto z = static_cast<std::size_t>(zone);
+  const transport::StatusDecodeResult decoded = transport::DecodeTrackerStatus(data, size);
+  if (!decoded.ok()) {
+    ++decode_errors_[z];
+    return;
+  }
+  DaemonStatus& d = daemons_[z];
+  d.received_us = now_us;
+  d.period_us = decoded.message.period_us;
+  d.health = AssessStatus(decoded.message);
+  d.instance_id = decoded.message.instance_id;
 }
 
 void StitchService::OnMessage(int zone, const void* data, std::size_t size, std::int64_t now_us) {
   MVTRACK_CHECK(zone >= 0 && zone < static_cast<int>(channels_.size()));
+  Touch(now_us);
   const auto z = static_cast<std::size_t>(zone);
   transport::TracksDecodeResult decoded = transport::DecodeTracks(data, size);
   if (!decoded.ok()) {
@@ -109,6 +167,7 @@ void StitchService::OnMessage(int zone, const void* data, std::size_t size, std:
 }
 
 std::vector<stitch::SiteFrame> StitchService::Poll(std::int64_t now_us, bool flush) {
+  Touch(now_us);
   std::vector<stitch::SiteFrame> out;
   std::vector<std::int64_t> waits;
   for (stitch::ZoneFrameGroup& group : aligner_.Pop(now_us, flush, &waits)) {
@@ -118,6 +177,8 @@ std::vector<stitch::SiteFrame> StitchService::Poll(std::int64_t now_us, bool flu
     }
     out.push_back(stitcher_.Stitch(frames));
     global_tracks_ = static_cast<int>(out.back().frame.tracks.size());
+    last_frame_ = out.back().frame.frame;
+    last_output_us_ = now_us;
   }
   for (const std::int64_t w : waits) {
     if (waits_.size() < kMaxWaits) waits_.push_back(w);
@@ -129,9 +190,23 @@ std::vector<stitch::SiteFrame> StitchService::Poll(std::int64_t now_us, bool flu
   return out;
 }
 
-SiteStatus StitchService::Status(std::int64_t now_us, bool reset_waits) {
-  SiteStatus s;
-  s.now_us = now_us;
+transport::SiteStatus StitchService::Status(std::int64_t now_us, bool end_period) {
+  Touch(now_us);
+  transport::SiteStatus s;
+  s.utime = now_us;
+  s.period_us = now_us - period_start_us_;
+  s.uptime_us = now_us - *start_us_;
+  s.instance_id = instance_id_;
+  s.start_utime = *start_us_;
+  s.sequence = sequence_++;
+  s.version = config_.version;
+  s.last_frame = last_frame_;
+  s.site_frames = stitcher_.stats().frames;
+  s.active_tracks = global_tracks_;
+  s.global_ids = stitcher_.stats().global_ids;
+  s.splits = stitcher_.stats().splits;
+  s.merges = stitcher_.stats().merges;
+  s.num_wait_samples = static_cast<std::int32_t>(waits_.size());
   if (!waits_.empty()) {
     std::vector<std::int64_t> w = waits_;
     std::sort(w.begin(), w.end());
@@ -142,22 +217,55 @@ SiteStatus StitchService::Status(std::int64_t now_us, bool reset_waits) {
     s.wait_p99_us = at(0.99);
     s.wait_max_us = w.back();
   }
-  if (reset_waits) waits_.clear();
+  bool some_live = false;
   for (std::size_t z = 0; z < channels_.size(); ++z) {
-    ZoneStatus zs;
+    const stitch::ZoneInput& in = aligner_.zones()[z];
+    transport::ZoneStatus zs;
     zs.name = config_.zones[z].name;
     zs.channel = channels_[z];
-    zs.input = aligner_.zones()[z];
-    zs.input.stale = aligner_.Stale(static_cast<int>(z), now_us);
+    zs.frames = in.frames;
+    zs.late = in.late;
     zs.decode_errors = decode_errors_[z];
     zs.other_layer = other_layer_[z];
-    zs.tracks = zone_tracks_[z];
+    zs.last_utime = in.last_utime;
+    zs.last_receive_utime = in.last_arrival_us;
     zs.latency_us = zone_latency_[z];
+    zs.tracks = zone_tracks_[z];
+    if (in.frames == 0) zs.flags |= kZoneNoData;
+    if (aligner_.Stale(static_cast<int>(z), now_us)) zs.flags |= kZoneStale;
+    if (in.late > period_late_[z]) zs.flags |= kZoneLate;
+    if (decode_errors_[z] > period_decode_errors_[z]) zs.flags |= kZoneDecodeErrors;
+    const DaemonStatus& d = daemons_[z];
+    const std::int64_t fresh_us = std::max(kStatusFreshUs, 3 * d.period_us);
+    if (d.received_us > 0 && now_us - d.received_us <= fresh_us) {
+      zs.daemon_health = static_cast<std::int8_t>(d.health.health);
+      zs.daemon_reasons = Clip(d.health.reasons.empty() ? std::string() : HealthLine(d.health));
+      if (d.health.health == Health::kWarning || d.health.health == Health::kCritical) {
+        zs.flags |= kZoneDegraded;
+      }
+    } else {
+      zs.daemon_health = static_cast<std::int8_t>(Health::kUnknown);
+    }
+    zs.daemon_instance_id = d.instance_id;
+    if ((zs.flags & (kZoneNoData | kZoneStale)) != 0) {
+      s.flags |= kSiteZoneMissing;
+    } else {
+      some_live = true;
+    }
+    if ((zs.flags & (kZoneLate | kZoneDecodeErrors)) != 0) s.flags |= kSiteInputLoss;
+    if ((zs.flags & kZoneDegraded) != 0) s.flags |= kSiteZoneDegraded;
     s.zones.push_back(std::move(zs));
   }
-  s.site_frames = stitcher_.stats().frames;
-  s.global_tracks = global_tracks_;
-  s.stitch = stitcher_.stats();
+  const std::int64_t output_since = last_output_us_ > 0 ? last_output_us_ : *start_us_;
+  if (some_live && now_us - output_since > kNoOutputAfterUs) s.flags |= kSiteNoOutput;
+  if (end_period) {
+    waits_.clear();
+    period_start_us_ = now_us;
+    for (std::size_t z = 0; z < channels_.size(); ++z) {
+      period_late_[z] = aligner_.zones()[z].late;
+      period_decode_errors_[z] = decode_errors_[z];
+    }
+  }
   return s;
 }
 

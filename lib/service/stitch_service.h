@@ -20,8 +20,10 @@
 #include "core/keypoint_layout.h"
 #include "linking/window_linker.h"
 #include "service/id_reservation.h"
+#include "service/status_check.h"
 #include "stitch/site_aligner.h"
 #include "stitch/stitcher.h"
+#include "transport/codec.h"
 
 namespace mvtrack::service {
 
@@ -31,6 +33,11 @@ struct StitchConfig {
   /// The zone daemons' tracks channel before the zone suffix (each zone's is
   /// config::ZoneChannel(zone_tracks_channel, name)).
   std::string zone_tracks_channel = "MVTRACK_TRACKS";
+  /// The zone daemons' status channel before the zone suffix (their tracker_status_t: the
+  /// zones' own health in the site status).
+  std::string zone_status_channel = "MVTRACK_STATUS";
+  /// The stitcher's version (site_status_t.version).
+  std::string version;
   stitch::AlignerOptions aligner;
   /// The zones' linker options (their defaults unless given).
   linking::LinkerOptions linker;
@@ -38,38 +45,12 @@ struct StitchConfig {
   std::string state_dir;
 };
 
-/// One zone's state in the site status.
-struct ZoneStatus {
-  std::string name;
-  std::string channel;
-  stitch::ZoneInput input;
-  std::int64_t decode_errors = 0;  ///< messages that did not decode
-  std::int64_t other_layer = 0;    ///< provisional-layer messages (ignored)
-  int tracks = 0;                  ///< tracks in its latest frame
-  /// Capture to arrival at the stitcher of its latest frame, µs: the zone daemon's own
-  /// receive-to-publish latency (tracks3d_t.latency_us) plus publish to arrival (host clocks).
-  std::int64_t latency_us = 0;
-};
-
-/// The site status.
-struct SiteStatus {
-  std::int64_t now_us = 0;
-  std::vector<ZoneStatus> zones;
-  std::int64_t site_frames = 0;  ///< site frames stitched
-  int global_tracks = 0;         ///< tracks in the latest site frame
-  stitch::StitchStats stitch;
-  /// How long the site frames of the last status period (at most the last 4096) waited from
-  /// their first zone frame's arrival to being stitched, µs: the latency the stitcher adds to
-  /// the earliest zone's output (p50, p99, max; 0 without frames).
-  std::int64_t wait_p50_us = 0;
-  std::int64_t wait_p99_us = 0;
-  std::int64_t wait_max_us = 0;
-};
-
-/// The site status as one JSON line (terminated by "\n"): {"utime", "site_frames",
-/// "global_tracks", "global_ids", "zones": [{"name", "state": "live"|"stale", "frames", "late",
-/// "decode_errors", "latency_ms", "last_utime", "tracks"}]}.
-std::string SiteStatusJson(const SiteStatus& status);
+/// The site status as one JSON line (terminated by "\n"): {"utime", "sequence", "flags" (names),
+/// "site_frames", "global_tracks", "global_ids", "wait_ms": {"p50", "p99", "max"}, "zones":
+/// [{"name", "channel", "state": "live"|"stale", "flags" (names), "frames", "late",
+/// "decode_errors", "latency_ms", "last_utime", "tracks", "daemon": "OK"|"WARNING"|"CRITICAL"|
+/// "UNKNOWN", "daemon_reasons"}]}.
+std::string SiteStatusJson(const transport::SiteStatus& status);
 
 /// See the file comment.
 class StitchService {
@@ -80,6 +61,8 @@ class StitchService {
 
   /// Each zone's tracks channel, parallel to the zones.
   const std::vector<std::string>& channels() const { return channels_; }
+  /// Each zone daemon's status channel, parallel to the zones.
+  const std::vector<std::string>& status_channels() const { return status_channels_; }
   /// Zone `zone`'s name (an index into channels()).
   const std::string& zone_name(int zone) const {
     return config_.zones.at(static_cast<std::size_t>(zone)).name;
@@ -95,15 +78,24 @@ class StitchService {
   /// `now_us` (the program's clock, never going back).
   void OnMessage(int zone, const void* data, std::size_t size, std::int64_t now_us);
 
+  /// A message on zone `zone`'s status channel (the zone daemon's tracker_status_t; an index
+  /// into status_channels(), checked) received at `now_us`. One that does not decode is
+  /// counted with the zone's decode errors.
+  void OnZoneStatus(int zone, const void* data, std::size_t size, std::int64_t now_us);
+
   /// The site frames ready at `now_us` (with `flush`, every frame kept), stitched.
   std::vector<stitch::SiteFrame> Poll(std::int64_t now_us, bool flush = false);
 
   /// The layout of the zones' joints (kNone in box mode; the first message's).
   core::KeypointLayoutId layout() const { return layout_; }
 
-  /// The status now; the wait figures cover the site frames since the previous call with
-  /// `reset_waits`.
-  SiteStatus Status(std::int64_t now_us, bool reset_waits = false);
+  /// The site status at `now_us` (site_status_t; each call takes the next sequence number).
+  /// A status period ends at each call with `end_period`: the wait figures and the per-period
+  /// flags (LATE, DECODE_ERRORS) cover the time since the previous one.
+  transport::SiteStatus Status(std::int64_t now_us, bool end_period = false);
+
+  /// The stitcher's counters.
+  const stitch::StitchStats& stitch_stats() const { return stitcher_.stats(); }
 
   /// Why the id reservation could not be extended ("" when it could; ids stay unique for this
   /// run either way).
@@ -112,8 +104,28 @@ class StitchService {
  private:
   StitchService(StitchConfig config, TrackId3D first_id);
 
+  // The latest status of a zone daemon.
+  struct DaemonStatus {
+    std::int64_t received_us = 0;  // 0: none yet
+    std::int64_t period_us = 0;
+    HealthReport health;
+    std::string instance_id;
+  };
+
+  void Touch(std::int64_t now_us);
+
   StitchConfig config_;
+  std::string instance_id_;
+  std::optional<std::int64_t> start_us_;
+  std::int64_t period_start_us_ = 0;
+  std::int64_t sequence_ = 0;
+  std::int64_t last_output_us_ = 0;  // when Poll last stitched a frame (0: never)
+  std::int64_t last_frame_ = -1;
   std::vector<std::string> channels_;
+  std::vector<std::string> status_channels_;
+  std::vector<DaemonStatus> daemons_;
+  std::vector<std::int64_t> period_late_;           // late counts when the period started
+  std::vector<std::int64_t> period_decode_errors_;  // decode errors when the period started
   stitch::SiteAligner aligner_;
   stitch::Stitcher stitcher_;
   std::optional<IdReservation> ids_;

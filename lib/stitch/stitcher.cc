@@ -96,9 +96,16 @@ std::optional<Utime> HalfFramePeriod(const std::vector<tracker::Frame3D>& frames
   return std::max<Utime>(1, *mid / 2);
 }
 
-Stitcher::Stitcher(int num_zones, const linking::LinkerOptions& linker, TrackId3D first_id)
-    : num_zones_(num_zones), linker_(linker), next_id_(first_id) {
-  MVTRACK_CHECK(num_zones >= 1);
+Stitcher::Stitcher(std::vector<std::string> zone_names,
+                   const linking::LinkerOptions& linker,
+                   TrackId3D first_id)
+    : num_zones_(static_cast<int>(zone_names.size())),
+      zone_names_(std::move(zone_names)),
+      linker_(linker),
+      next_id_(first_id) {
+  MVTRACK_CHECK(num_zones_ >= 1);
+  for (const std::string& name : zone_names_)
+    MVTRACK_CHECK_MSG(!name.empty(), "a zone needs a name");
   MVTRACK_CHECK(first_id >= 1);
   std::string why;
   MVTRACK_CHECK_MSG(linker_.Validate(&why), why.c_str());
@@ -356,6 +363,7 @@ SiteFrame Stitcher::Stitch(const ZoneFrames& zone_frames) {
   SiteFrame out;
   out.frame.frame = first->frame;
   out.frame.utime = now;
+  out.frame.zones = zone_names_;
   for (const auto& [id, p] : present_globals()) {
     Global& g = globals_.at(id);
     tracker::Track3D t;
@@ -411,9 +419,10 @@ SiteFrame Stitcher::Stitch(const ZoneFrames& zone_frames) {
       g.motion_utime = now;
     }
     g.last_seen = now;
+    std::sort(zones.begin(), zones.end());
     g.last_zones = zones;
+    t.zones = std::move(zones);
     out.frame.tracks.push_back(std::move(t));
-    out.zones.push_back(std::move(zones));
   }
 
   // Forget what has not been seen for max_lost_s.

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -41,10 +42,9 @@ std::optional<Utime> HalfFramePeriod(const std::vector<tracker::Frame3D>& frames
 
 /// One site frame: the zones' tracks under global ids.
 struct SiteFrame {
-  /// frame and utime of the group's earliest zone frame; tracks sorted by global id.
+  /// frame and utime of the group's earliest zone frame; tracks sorted by global id, each
+  /// with the zones whose tracks make it (Track3D::zones); frame.zones names the site's zones.
   tracker::Frame3D frame;
-  /// Parallel to frame.tracks: the zones (indices, ascending) whose tracks make each.
-  std::vector<std::vector<int>> zones;
 };
 
 /// Cumulative counters.
@@ -88,10 +88,13 @@ class Stitcher {
   /// Consecutive common frames of rule 2.
   static constexpr int kSplitFrames = 3;
 
-  /// `num_zones` >= 1; `linker` valid (checked): the zones' linker options (max_lost_s, the
-  /// motion model and the re-identification gates). Global ids start at `first_id` (>= 1; a
-  /// restarted stitcher starts past the ids it gave out before, service::IdReservation).
-  Stitcher(int num_zones, const linking::LinkerOptions& linker, TrackId3D first_id = 1);
+  /// `zone_names`: at least one, non-empty, index = zone (checked); `linker` valid
+  /// (checked): the zones' linker options (max_lost_s, the motion model and the
+  /// re-identification gates). Global ids start at `first_id` (>= 1; a restarted stitcher
+  /// starts past the ids it gave out before, service::IdReservation).
+  Stitcher(std::vector<std::string> zone_names,
+           const linking::LinkerOptions& linker,
+           TrackId3D first_id = 1);
 
   /// Stitches one site frame: `zone_frames` has one entry per zone (checked), at least one not
   /// null, their utimes after those of the previous call (checked).
@@ -121,6 +124,7 @@ class Stitcher {
   double Seconds(Utime from, Utime to) const;
 
   int num_zones_;
+  std::vector<std::string> zone_names_;
   linking::LinkerOptions linker_;
   std::map<ZoneTrack, Join> joins_;
   std::map<TrackId3D, Global> globals_;

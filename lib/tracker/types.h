@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/types.h"
@@ -30,6 +31,9 @@ struct Track3D {
   std::int64_t age_frames = 0;
   /// Life-cycle state of the track in the window that produced this frame.
   linking::TrackState state = linking::TrackState::kConfirmed;
+  /// A site's stitched output (issue 43): the zones whose trackers saw the person at this
+  /// frame, indices into Frame3D::zones, ascending; empty in one tracker's output.
+  std::vector<int> zones;
 };
 
 /// All confirmed tracks of one finalized frame, sorted by id.
@@ -37,6 +41,9 @@ struct Frame3D {
   FrameIndex frame = 0;  ///< frame index of the synchronized capture
   Utime utime = 0;       ///< capture time: the smallest utime among the frame's camera-frames
   std::vector<Track3D> tracks;  ///< sorted by id
+  /// A site's stitched output (issue 43): the site's zone names, in the zones file's order;
+  /// empty in one tracker's output.
+  std::vector<std::string> zones;
 };
 
 /// Sorts `frame`'s tracks by id (stable) and returns an id that appears more than once (the

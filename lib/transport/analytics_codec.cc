@@ -21,8 +21,7 @@ using internal::kInt64Bytes;
 using internal::kInt8Bytes;
 using internal::WireWalker;
 
-// The smallest LCM string: its int32 length and the NUL.
-constexpr std::size_t kMinStringBytes = kInt32Bytes + 1;
+using internal::kMinStringBytes;
 
 bool WalkEvent(WireWalker* w, const DecodeLimits& limits) {
   if (!internal::WalkFingerprint(

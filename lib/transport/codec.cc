@@ -22,6 +22,7 @@ bool DecodeLimits::Validate(std::string* why) const {
   if (max_cameras < 0) return fail("max_cameras must be >= 0");
   if (max_joints < 0) return fail("max_joints must be >= 0");
   if (max_site_items < 0) return fail("max_site_items must be >= 0");
+  if (max_zones < 0) return fail("max_zones must be >= 0");
   return true;
 }
 

@@ -62,6 +62,8 @@ struct DecodeLimits {
   int max_joints = 64;
   /// site_counts_t.num_regions and num_lines.
   int max_site_items = analytics::kMaxRegions;
+  /// tracks3d_t.num_zones (a site's zones, config::kMaxZones) and track3d_t.num_zones.
+  int max_zones = 256;
 
   /// True when usable: 8 <= max_message_bytes <= INT32_MAX and every count limit >= 0.
   /// Otherwise false, with the first violated condition in `why` (when not null).
@@ -174,7 +176,8 @@ struct TracksDecodeResult {
 /// Decodes a tracks3d_t from untrusted bytes (same guarantees as DecodeCameraDetections()).
 /// Beyond the structure it checks what the message's own contract makes checkable without
 /// geometry: a layer that is one of LAYER_*, a known keypoint_layout name ("" = box mode), a
-/// state that is one of STATE_*, and
+/// state that is one of STATE_*, non-empty zone names, track zones that are ascending indices
+/// of the message's zones, and
 /// num_joints equal to 0 or to the layout's joint count and num_bones to 0 or its bone count
 /// (always 0 in box mode).
 TracksDecodeResult DecodeTracks(const void* data,
@@ -188,8 +191,10 @@ TracksDecodeResult DecodeTracks(const void* data,
 /// window). Joints: a valid joint has confidence 1 (the tracker estimates no per-joint
 /// confidence), an invalid one is (0, 0, 0) with confidence 0 and valid = false. age_frames
 /// saturates to the int32 range; doubles beyond the float range become +-infinity. `layer`:
-/// tracks3d_t.layer.
-/// @pre every track has at most INT16_MAX cameras and joints (checked; aborts otherwise).
+/// tracks3d_t.layer. frame.zones become tracks3d_t.zones, each track's zones its zones
+/// (ascending, no duplicates).
+/// @pre every track has at most INT16_MAX cameras and joints, and its zones index frame.zones
+/// (checked; aborts otherwise).
 std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
                                        core::KeypointLayoutId layout,
                                        Utime publish_utime,
@@ -276,6 +281,78 @@ std::vector<std::string> CameraFlagNames(std::int64_t flags);
 /// bits as
 /// CameraFlagNames does.
 std::vector<std::string> TrackerFlagNames(std::int64_t flags);
+
+/// One zone of a decoded site_status_t (the fields of zone_status_t,
+/// lcmtypes/zone_status_t.lcm, with the same units and meaning).
+struct ZoneStatus {
+  std::string name;
+  std::string channel;
+  std::int64_t flags = 0;  ///< zone_status_t::FLAG_* bits (ZoneFlagNames spells them)
+  std::int64_t frames = 0;
+  std::int64_t late = 0;
+  std::int64_t decode_errors = 0;
+  std::int64_t other_layer = 0;
+  Utime last_utime = 0;
+  Utime last_receive_utime = 0;
+  std::int64_t latency_us = 0;
+  std::int32_t tracks = 0;
+  std::int8_t daemon_health = 3;  ///< zone_status_t::HEALTH_* (3: unknown)
+  std::string daemon_reasons;     ///< at most kMaxDaemonReasons characters
+  std::string daemon_instance_id;
+};
+
+/// Longest zone_status_t.daemon_reasons.
+inline constexpr int kMaxDaemonReasons = 255;
+
+/// A decoded site_status_t (lcmtypes/site_status_t.lcm; same fields, units, meaning).
+struct SiteStatus {
+  Utime utime = 0;
+  std::int64_t period_us = 0;
+  std::int64_t uptime_us = 0;
+  std::string instance_id;
+  Utime start_utime = 0;
+  std::int64_t sequence = 0;
+  std::string version;
+  std::int64_t flags = 0;  ///< site_status_t::FLAG_* bits (SiteFlagNames spells them)
+  std::int64_t last_frame = -1;
+  std::int64_t site_frames = 0;
+  std::int32_t active_tracks = 0;
+  std::int64_t global_ids = 0;
+  std::int64_t splits = 0;
+  std::int64_t merges = 0;
+  std::int32_t num_wait_samples = 0;
+  std::int64_t wait_p50_us = 0;
+  std::int64_t wait_p99_us = 0;
+  std::int64_t wait_max_us = 0;
+  std::vector<ZoneStatus> zones;
+};
+
+/// Result of DecodeSiteStatus().
+struct SiteStatusDecodeResult {
+  DecodeStatus status = DecodeStatus::kMalformed;
+  std::string reason;  ///< empty when kOk; otherwise what, where, why
+  SiteStatus message;  ///< valid only when kOk
+  bool ok() const { return status == DecodeStatus::kOk; }
+};
+
+/// Decodes a site_status_t from untrusted bytes (same guarantees as DecodeCameraDetections();
+/// num_zones bounded by limits.max_zones, strings by limits.max_string, daemon_reasons by
+/// kMaxDaemonReasons; daemon_health one of HEALTH_*).
+SiteStatusDecodeResult DecodeSiteStatus(const void* data,
+                                        std::size_t size,
+                                        const DecodeLimits& limits = {});
+
+/// Encodes `status` as a site_status_t.
+/// @pre at most INT16_MAX zones, daemon_health one of HEALTH_* (checked; aborts otherwise).
+std::vector<std::uint8_t> EncodeSiteStatus(const SiteStatus& status);
+
+/// The names of the site_status_t::FLAG_* bits set in `flags` ("ZONE_MISSING", "INPUT_LOSS",
+/// "ZONE_DEGRADED", "NO_OUTPUT"), in bit order; unknown bits as CameraFlagNames does.
+std::vector<std::string> SiteFlagNames(std::int64_t flags);
+
+/// The names of the zone_status_t::FLAG_* bits set in `flags` ("NO_DATA", "STALE", "LATE",
+/// "DECODE_ERRORS", "DEGRADED"), in bit order; unknown bits as CameraFlagNames does.
+std::vector<std::string> ZoneFlagNames(std::int64_t flags);
 
 /// A decoded analytics_event_t (lcmtypes/analytics_event_t.lcm; same fields and units).
 struct AnalyticsEventMessage {

@@ -3,7 +3,9 @@
 #include <climits>
 #include <cstdint>
 #include <mvtrack/camera_status_t.hpp>
+#include <mvtrack/site_status_t.hpp>
 #include <mvtrack/tracker_status_t.hpp>
+#include <mvtrack/zone_status_t.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,6 +20,7 @@ namespace {
 using internal::kFloatBytes;
 using internal::kInt32Bytes;
 using internal::kInt64Bytes;
+using internal::kInt8Bytes;
 using internal::WireWalker;
 
 // camera_status_t: camera_id, flags, rate_hz, 2 utimes, 8 counters, 2 queue fields.
@@ -52,6 +55,105 @@ bool WalkStatus(WireWalker* w, const DecodeLimits& limits) {
                    w->position());
   }
   return w->ok();
+}
+
+// The smallest zone_status_t: three empty strings (int32 length and NUL each), 9 int64
+// fields, tracks and daemon_health.
+constexpr std::size_t kMinZoneStatusBytes =
+    3 * internal::kMinStringBytes + 9 * kInt64Bytes + kInt32Bytes + kInt8Bytes;
+
+bool IsHealth(std::int8_t health) {
+  return health >= mvtrack::zone_status_t::HEALTH_OK &&
+         health <= mvtrack::zone_status_t::HEALTH_UNKNOWN;
+}
+
+bool WalkSiteStatus(WireWalker* w, const DecodeLimits& limits) {
+  if (!internal::WalkFingerprint(
+          w, mvtrack::site_status_t::getHash(), mvtrack::site_status_t::getTypeName())) {
+    return false;
+  }
+  w->Skip("utime, period_us, uptime_us", 3 * kInt64Bytes);
+  std::string_view text;
+  if (!w->ReadString("instance_id", limits.max_string, &text)) return false;
+  w->Skip("start_utime, sequence", 2 * kInt64Bytes);
+  if (!w->ReadString("version", limits.max_string, &text)) return false;
+  w->Skip("flags, last_frame, site_frames", 3 * kInt64Bytes);
+  w->Skip("active_tracks", kInt32Bytes);
+  w->Skip("global_ids, splits, merges", 3 * kInt64Bytes);
+  w->Skip("num_wait_samples", kInt32Bytes);
+  w->Skip("wait_p50_us, wait_p99_us, wait_max_us", 3 * kInt64Bytes);
+  std::int32_t num_zones = 0;
+  if (!w->ReadCount16("num_zones", limits.max_zones, kMinZoneStatusBytes, &num_zones)) {
+    return false;
+  }
+  for (std::int32_t i = 0; i < num_zones; ++i) {
+    w->set_context("zone " + std::to_string(i));
+    if (!w->ReadString("name", limits.max_string, &text)) return false;
+    if (!w->ReadString("channel", limits.max_string, &text)) return false;
+    w->Skip("flags, frames, late, decode_errors, other_layer", 5 * kInt64Bytes);
+    w->Skip("last_utime, last_receive_utime, latency_us", 3 * kInt64Bytes);
+    w->Skip("tracks", kInt32Bytes);
+    const std::size_t health_at = w->position();
+    std::int8_t health = 0;
+    if (!w->ReadInt8("daemon_health", &health)) return false;
+    if (!IsHealth(health)) {
+      return w->Fail(DecodeStatus::kMalformed,
+                     "daemon_health " + std::to_string(static_cast<int>(health)) +
+                         " is not one of zone_status_t::HEALTH_* (0..3)",
+                     health_at);
+    }
+    if (!w->ReadString("daemon_reasons", kMaxDaemonReasons, &text)) return false;
+    if (!w->ReadString("daemon_instance_id", limits.max_string, &text)) return false;
+  }
+  w->set_context("");
+  if (w->ok() && w->remaining() > 0) {
+    return w->Fail(DecodeStatus::kMalformed,
+                   std::to_string(w->remaining()) + " trailing bytes after the message",
+                   w->position());
+  }
+  return w->ok();
+}
+
+// The fields zone_status_t and ZoneStatus share by name, copied in either direction.
+template <typename From, typename To>
+void CopyZoneFields(const From& z, To* out) {
+  out->name = z.name;
+  out->channel = z.channel;
+  out->flags = z.flags;
+  out->frames = z.frames;
+  out->late = z.late;
+  out->decode_errors = z.decode_errors;
+  out->other_layer = z.other_layer;
+  out->last_utime = z.last_utime;
+  out->last_receive_utime = z.last_receive_utime;
+  out->latency_us = z.latency_us;
+  out->tracks = z.tracks;
+  out->daemon_health = z.daemon_health;
+  out->daemon_reasons = z.daemon_reasons;
+  out->daemon_instance_id = z.daemon_instance_id;
+}
+
+// The fields site_status_t and SiteStatus share by name (all but the zones).
+template <typename From, typename To>
+void CopySiteFields(const From& msg, To* out) {
+  out->utime = msg.utime;
+  out->period_us = msg.period_us;
+  out->uptime_us = msg.uptime_us;
+  out->instance_id = msg.instance_id;
+  out->start_utime = msg.start_utime;
+  out->sequence = msg.sequence;
+  out->version = msg.version;
+  out->flags = msg.flags;
+  out->last_frame = msg.last_frame;
+  out->site_frames = msg.site_frames;
+  out->active_tracks = msg.active_tracks;
+  out->global_ids = msg.global_ids;
+  out->splits = msg.splits;
+  out->merges = msg.merges;
+  out->num_wait_samples = msg.num_wait_samples;
+  out->wait_p50_us = msg.wait_p50_us;
+  out->wait_p99_us = msg.wait_p99_us;
+  out->wait_max_us = msg.wait_max_us;
 }
 
 std::vector<std::string> FlagNames(std::int64_t flags, const std::vector<std::string_view>& names) {
@@ -144,6 +246,46 @@ std::vector<std::uint8_t> EncodeTrackerStatus(const TrackerStatus& s) {
   const int written = msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   MVTRACK_CHECK(written == static_cast<int>(bytes.size()));
   return bytes;
+}
+
+SiteStatusDecodeResult DecodeSiteStatus(const void* data,
+                                        std::size_t size,
+                                        const DecodeLimits& limits) {
+  SiteStatusDecodeResult result;
+  const auto convert = [&](const mvtrack::site_status_t& msg) {
+    CopySiteFields(msg, &result.message);
+    result.message.zones.resize(msg.zones.size());
+    for (std::size_t i = 0; i < msg.zones.size(); ++i) {
+      CopyZoneFields(msg.zones[i], &result.message.zones[i]);
+    }
+  };
+  internal::CheckedDecode<mvtrack::site_status_t>(
+      data, size, limits, WalkSiteStatus, convert, &result.status, &result.reason);
+  return result;
+}
+
+std::vector<std::uint8_t> EncodeSiteStatus(const SiteStatus& s) {
+  MVTRACK_CHECK(s.zones.size() <= static_cast<std::size_t>(INT16_MAX));
+  mvtrack::site_status_t msg;
+  CopySiteFields(s, &msg);
+  msg.zones.resize(s.zones.size());
+  for (std::size_t i = 0; i < s.zones.size(); ++i) {
+    MVTRACK_CHECK(IsHealth(s.zones[i].daemon_health));
+    CopyZoneFields(s.zones[i], &msg.zones[i]);
+  }
+  msg.num_zones = static_cast<std::int16_t>(msg.zones.size());
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
+  const int written = msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  MVTRACK_CHECK(written == static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+std::vector<std::string> SiteFlagNames(std::int64_t flags) {
+  return FlagNames(flags, {"ZONE_MISSING", "INPUT_LOSS", "ZONE_DEGRADED", "NO_OUTPUT"});
+}
+
+std::vector<std::string> ZoneFlagNames(std::int64_t flags) {
+  return FlagNames(flags, {"NO_DATA", "STALE", "LATE", "DECODE_ERRORS", "DEGRADED"});
 }
 
 std::vector<std::string> CameraFlagNames(std::int64_t flags) {

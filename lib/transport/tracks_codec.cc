@@ -33,7 +33,8 @@ using internal::WireWalker;
 // smallest track3d_t has no cameras and no joints.
 constexpr std::size_t kJointBytes = 3 * kDoubleBytes + kFloatBytes + kInt8Bytes;
 constexpr std::size_t kMinTrackBytes =
-    kInt64Bytes + kInt8Bytes + 3 * kDoubleBytes + kFloatBytes + 2 * kInt32Bytes + 3 * kInt16Bytes;
+    kInt64Bytes + kInt8Bytes + 3 * kDoubleBytes + kFloatBytes + 2 * kInt32Bytes + 4 * kInt16Bytes;
+using internal::kMinStringBytes;
 
 using internal::LayoutOfName;
 
@@ -42,11 +43,12 @@ bool IsWireState(std::int8_t state) {
 }
 
 // Walks one track3d_t; `layout_joints` and `layout_bones` are the joint and bone counts of the
-// message's layout (0 in box mode).
+// message's layout (0 in box mode), `site_zones` the message's num_zones.
 bool WalkTrack(WireWalker* w,
                const DecodeLimits& limits,
                int layout_joints,
                int layout_bones,
+               std::int32_t site_zones,
                std::int32_t index) {
   std::int64_t id = 0;
   if (!w->ReadInt64("id", &id)) return false;
@@ -88,7 +90,25 @@ bool WalkTrack(WireWalker* w,
                        std::to_string(layout_bones) + " bones of the message's layout",
                    bones_at);
   }
-  return w->Skip("bone_lengths", static_cast<std::size_t>(num_bones) * kFloatBytes);
+  if (!w->Skip("bone_lengths", static_cast<std::size_t>(num_bones) * kFloatBytes)) return false;
+  std::int32_t num_zones = 0;
+  if (!w->ReadCount16("num_zones", limits.max_zones, kInt16Bytes, &num_zones)) return false;
+  std::int32_t previous = -1;
+  for (std::int32_t i = 0; i < num_zones; ++i) {
+    const std::size_t zone_at = w->position();
+    std::int16_t zone = 0;
+    if (!w->ReadInt16("zones", &zone)) return false;
+    if (zone <= previous || zone >= site_zones) {
+      return w->Fail(DecodeStatus::kMalformed,
+                     "zones[" + std::to_string(i) + "] = " + std::to_string(zone) +
+                         (zone >= site_zones ? " is not an index of the message's " +
+                                                   std::to_string(site_zones) + " zones"
+                                             : " is not ascending without duplicates"),
+                     zone_at);
+    }
+    previous = zone;
+  }
+  return true;
 }
 
 bool WalkTracks(WireWalker* w, const DecodeLimits& limits) {
@@ -121,13 +141,25 @@ bool WalkTracks(WireWalker* w, const DecodeLimits& limits) {
   }
   const int layout_joints = core::GetKeypointLayout(*layout).num_joints();
   const auto layout_bones = static_cast<int>(core::GetKeypointLayout(*layout).bones.size());
+  std::int32_t num_zones = 0;
+  if (!w->ReadCount16("num_zones", limits.max_zones, kMinStringBytes, &num_zones)) return false;
+  for (std::int32_t i = 0; i < num_zones; ++i) {
+    const std::size_t zone_at = w->position();
+    std::string_view zone;
+    if (!w->ReadString("zones", limits.max_string, &zone)) return false;
+    if (zone.empty()) {
+      return w->Fail(DecodeStatus::kMalformed,
+                     "zones[" + std::to_string(i) + "] is an empty zone name",
+                     zone_at);
+    }
+  }
   std::int32_t num_tracks = 0;
   if (!w->ReadCount32("num_tracks", limits.max_tracks, kMinTrackBytes, &num_tracks)) {
     return false;
   }
   for (std::int32_t i = 0; i < num_tracks; ++i) {
     w->set_context("track " + std::to_string(i));
-    if (!WalkTrack(w, limits, layout_joints, layout_bones, i)) return false;
+    if (!WalkTrack(w, limits, layout_joints, layout_bones, num_zones, i)) return false;
   }
   w->set_context("");
   if (w->remaining() > 0) {
@@ -181,6 +213,7 @@ TracksDecodeResult DecodeTracks(const void* data, std::size_t size, const Decode
     out.layer = msg.layer == mvtrack::tracks3d_t::LAYER_PROVISIONAL ? TracksLayer::kProvisional
                                                                     : TracksLayer::kFinal;
     out.layout = LayoutOfName(msg.keypoint_layout).value_or(core::KeypointLayoutId::kNone);
+    out.frame.zones = msg.zones;
     out.frame.tracks.reserve(msg.tracks.size());
     out.info.reserve(msg.tracks.size());
     for (const mvtrack::track3d_t& t : msg.tracks) {
@@ -203,6 +236,7 @@ TracksDecodeResult DecodeTracks(const void* data, std::size_t size, const Decode
         }
       }
       track.bone_lengths.assign(t.bone_lengths.begin(), t.bone_lengths.end());
+      track.zones.assign(t.zones.begin(), t.zones.end());
       out.frame.tracks.push_back(std::move(track));
       out.info.push_back(info);
     }
@@ -235,6 +269,10 @@ std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
   msg.keypoint_layout = layout == core::KeypointLayoutId::kNone
                             ? std::string()
                             : core::GetKeypointLayout(layout).name;
+  MVTRACK_CHECK_MSG(frame.zones.size() <= static_cast<std::size_t>(INT16_MAX),
+                    "too many zones for tracks3d_t");
+  msg.num_zones = static_cast<std::int16_t>(frame.zones.size());
+  msg.zones = frame.zones;
   msg.num_tracks = static_cast<std::int32_t>(frame.tracks.size());
 
   std::vector<std::size_t> order(frame.tracks.size());
@@ -278,6 +316,15 @@ std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
     t.num_bones = static_cast<std::int16_t>(track.bone_lengths.size());
     t.bone_lengths.reserve(track.bone_lengths.size());
     for (const double length : track.bone_lengths) t.bone_lengths.push_back(NarrowToFloat(length));
+    std::vector<int> zones = track.zones;
+    std::sort(zones.begin(), zones.end());
+    zones.erase(std::unique(zones.begin(), zones.end()), zones.end());
+    for (const int zone : zones) {
+      MVTRACK_CHECK_MSG(zone >= 0 && static_cast<std::size_t>(zone) < frame.zones.size(),
+                        "a track's zone is not one of the frame's zones");
+      t.zones.push_back(static_cast<std::int16_t>(zone));
+    }
+    t.num_zones = static_cast<std::int16_t>(t.zones.size());
     msg.tracks.push_back(std::move(t));
   }
   const int size = msg.getEncodedSize();

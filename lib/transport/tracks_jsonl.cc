@@ -95,7 +95,7 @@ bool GetTrack(json::Checker* c,
   std::map<std::string, const json::Value*> m;
   if (!c->Members(v,
                   path,
-                  {"bone_lengths", "id", "joints", "position"},
+                  {"bone_lengths", "id", "joints", "position", "zones"},
                   {"id", "joints", "position"},
                   &m)) {
     return false;
@@ -140,6 +140,23 @@ bool GetTrack(json::Checker* c,
         return false;
       }
       track->bone_lengths.push_back(length);
+    }
+  }
+  if (const auto zones = m.find("zones"); zones != m.end()) {
+    const std::string zones_path = json::Checker::Join(path, "zones");
+    if (zones->second->kind != json::Value::Kind::kArray) {
+      return c->ExpectKind(*zones->second, zones_path, json::Value::Kind::kArray);
+    }
+    for (std::size_t z = 0; z < zones->second->items.size(); ++z) {
+      std::int64_t zone = 0;
+      if (!c->GetInt(zones->second->items[z],
+                     json::Checker::Index(zones_path, z),
+                     0,
+                     std::numeric_limits<std::int16_t>::max(),
+                     &zone)) {
+        return false;
+      }
+      track->zones.push_back(static_cast<int>(zone));
     }
   }
   return true;
@@ -197,10 +214,26 @@ std::string TracksJsonLine(const tracker::Frame3D& frame, core::KeypointLayoutId
     } else {
       out.append("null");
     }
+    if (!track.zones.empty()) {
+      out.append(", \"zones\": [");
+      for (std::size_t z = 0; z < track.zones.size(); ++z) {
+        if (z > 0) out.append(", ");
+        AppendInt(track.zones[z], &out);
+      }
+      out.push_back(']');
+    }
     out.push_back('}');
   }
   out.append("], \"utime\": ");
   AppendInt(frame.utime, &out);
+  if (!frame.zones.empty()) {
+    out.append(", \"zones\": [");
+    for (std::size_t z = 0; z < frame.zones.size(); ++z) {
+      if (z > 0) out.append(", ");
+      json::AppendQuoted(frame.zones[z], &out);
+    }
+    out.push_back(']');
+  }
   out.append("}\n");
   return out;
 }
@@ -217,14 +250,15 @@ std::optional<tracker::Frame3D> ParseTracksJsonLine(std::string_view line,
   if (!root.has_value()) return fail(Describe(error));
   json::Checker c;
   std::map<std::string, const json::Value*> m;
-  const std::vector<std::string_view> keys = {"frame", "layout", "tracks", "utime"};
+  const std::vector<std::string_view> keys = {"frame", "layout", "tracks", "utime", "zones"};
+  const std::vector<std::string_view> required = {"frame", "layout", "tracks", "utime"};
   if (root->kind != json::Value::Kind::kObject) {
     c.Fail(*root,
            "",
            std::string("a line must be a JSON object, found ") + json::KindName(root->kind));
     return fail(Describe(c.error()));
   }
-  if (!c.Members(*root, "", keys, keys, &m)) return fail(Describe(c.error()));
+  if (!c.Members(*root, "", keys, required, &m)) return fail(Describe(c.error()));
   tracker::Frame3D frame;
   constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
   constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
@@ -238,6 +272,19 @@ std::optional<tracker::Frame3D> ParseTracksJsonLine(std::string_view line,
   if (!parsed_layout) {
     c.Fail(*m.at("layout"), "layout", "unknown layout \"" + name + "\"");
     return fail(Describe(c.error()));
+  }
+  if (const auto zones = m.find("zones"); zones != m.end()) {
+    if (!c.ExpectKind(*zones->second, "zones", json::Value::Kind::kArray)) {
+      return fail(Describe(c.error()));
+    }
+    for (std::size_t z = 0; z < zones->second->items.size(); ++z) {
+      std::string zone;
+      if (!c.GetString(zones->second->items[z], json::Checker::Index("zones", z), &zone)) {
+        return fail(Describe(c.error()));
+      }
+      if (zone.empty()) return fail("zones[" + std::to_string(z) + "] is an empty zone name");
+      frame.zones.push_back(std::move(zone));
+    }
   }
   const json::Value& tracks = *m.at("tracks");
   if (!c.ExpectKind(tracks, "tracks", json::Value::Kind::kArray)) return fail(Describe(c.error()));
@@ -256,6 +303,16 @@ std::optional<tracker::Frame3D> ParseTracksJsonLine(std::string_view line,
                   std::to_string(track.joints.size()) + " joints; layout \"" +
                   core::GetKeypointLayout(*parsed_layout).name + "\" needs 0 or " +
                   std::to_string(layout_joints));
+    }
+  }
+  for (const tracker::Track3D& track : frame.tracks) {
+    for (std::size_t z = 0; z < track.zones.size(); ++z) {
+      if (static_cast<std::size_t>(track.zones[z]) >= frame.zones.size() ||
+          (z > 0 && track.zones[z] <= track.zones[z - 1])) {
+        return fail("track id " + std::to_string(track.id) +
+                    ": zones must be ascending indices of the line's " +
+                    std::to_string(frame.zones.size()) + " zones");
+      }
     }
   }
   if (const std::optional<TrackId3D> twice = tracker::SortTracksById(&frame)) {

@@ -37,6 +37,17 @@ class Exposition {
   std::string text_;
 };
 
+// A Prometheus label value: backslash, double quote and line feed escaped (names are printable
+// ASCII, ValidateName, but a hostile message may still carry quotes).
+std::string LabelValue(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\\' || c == '"') out += '\\';
+    out += c == '\n' ? std::string("\\n") : std::string(1, c);
+  }
+  return out;
+}
+
 std::string CameraLabel(const transport::CameraStatus& c) {
   return "camera=\"" + std::to_string(c.camera_id) + "\"";
 }
@@ -58,13 +69,72 @@ void FlagSamples(Exposition* e,
 
 }  // namespace
 
+namespace {
+
+// The site stitcher's series (issue 43): per zone its state, counters, latency and its daemon's
+// health; the site's tracks, ids and how long site frames waited.
+void SiteStatusSamples(Exposition& e, const transport::SiteStatus& s) {
+  const auto zone = [](const transport::ZoneStatus& z) {
+    return "zone=\"" + LabelValue(z.name) + "\"";
+  };
+  e.Family("mvtrack_uptime_seconds", "gauge", "stitcher uptime");
+  e.Sample(D(s.uptime_us) / 1e6);
+  e.Family("mvtrack_start_time_seconds",
+           "gauge",
+           "when the stitcher instance started, seconds since the Unix epoch (changes on restart)");
+  e.Sample(D(s.start_utime) / 1e6);
+  e.Family("mvtrack_last_frame", "gauge", "frame index of the latest published site frame");
+  e.Sample(D(s.last_frame));
+  e.Family("mvtrack_active_tracks", "gauge", "global tracks in the latest site frame");
+  e.Sample(s.active_tracks);
+  e.Family("mvtrack_site_frames_total", "counter", "site frames published");
+  e.Sample(D(s.site_frames));
+  e.Family("mvtrack_site_global_ids_total", "counter", "global ids given out");
+  e.Sample(D(s.global_ids));
+  e.Family("mvtrack_site_wait_seconds",
+           "gauge",
+           "how long the period's site frames waited for the zones");
+  e.Sample(D(s.wait_p50_us) / 1e6, "quantile=\"0.5\"");
+  e.Sample(D(s.wait_p99_us) / 1e6, "quantile=\"0.99\"");
+  e.Sample(D(s.wait_max_us) / 1e6, "quantile=\"1\"");
+  e.Family("mvtrack_site_flag", "gauge", "1 when the site flag is set this period");
+  FlagSamples(&e, s.flags, transport::SiteFlagNames, "");
+  e.Family("mvtrack_zones", "gauge", "zones of the site");
+  e.Sample(D(static_cast<std::int64_t>(s.zones.size())));
+  e.Family("mvtrack_zone_live", "gauge", "1 while the zone delivers (not NO_DATA or STALE)");
+  for (const transport::ZoneStatus& z : s.zones) e.Sample((z.flags & 3) == 0 ? 1.0 : 0.0, zone(z));
+  e.Family("mvtrack_zone_frames_total", "counter", "tracks frames received from the zone");
+  for (const transport::ZoneStatus& z : s.zones) e.Sample(D(z.frames), zone(z));
+  e.Family("mvtrack_zone_late_total", "counter", "zone frames that came after their site frame");
+  for (const transport::ZoneStatus& z : s.zones) e.Sample(D(z.late), zone(z));
+  e.Family("mvtrack_zone_decode_errors_total", "counter", "zone messages that failed to decode");
+  for (const transport::ZoneStatus& z : s.zones) e.Sample(D(z.decode_errors), zone(z));
+  e.Family("mvtrack_zone_latency_seconds",
+           "gauge",
+           "the zone's latest frame: its daemon's latency plus the transport to the stitcher");
+  for (const transport::ZoneStatus& z : s.zones) e.Sample(D(z.latency_us) / 1e6, zone(z));
+  e.Family("mvtrack_zone_tracks", "gauge", "tracks in the zone's latest frame");
+  for (const transport::ZoneStatus& z : s.zones) e.Sample(z.tracks, zone(z));
+  e.Family("mvtrack_zone_daemon_health",
+           "gauge",
+           "the zone daemon's own health: 0 OK, 1 WARNING, 2 CRITICAL, 3 UNKNOWN");
+  for (const transport::ZoneStatus& z : s.zones) e.Sample(z.daemon_health, zone(z));
+  e.Family("mvtrack_zone_flag", "gauge", "1 when the zone flag is set this period");
+  for (const transport::ZoneStatus& z : s.zones) {
+    FlagSamples(&e, z.flags, transport::ZoneFlagNames, zone(z) + ",");
+  }
+}
+
+}  // namespace
+
 std::string PrometheusText(const std::optional<transport::TrackerStatus>& status,
                            double status_age_s,
                            double stale_after_s,
                            const WebCounters& web,
-                           const service::HealthReport& source) {
+                           const service::HealthReport& source,
+                           const std::optional<transport::SiteStatus>& site) {
   Exposition e;
-  const bool fresh = status && !(status_age_s > stale_after_s);
+  const bool fresh = (status || site) && !(status_age_s > stale_after_s);
   e.Family("mvtrack_up",
            "gauge",
            "1 while tracker status messages arrive (the latest within the staleness period)");
@@ -87,8 +157,7 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
   e.Sample(D(web.clients_dropped));
   e.Family("mvtrack_web_events_sent_total", "counter", "events written to /events clients");
   e.Sample(D(web.events_sent));
-  if (!status) return e.text();
-  const transport::TrackerStatus& s = *status;
+  if (!status && !site) return e.text();
   e.Family("mvtrack_status_age_seconds", "gauge", "time since the latest status message");
   e.Sample(status_age_s);
   e.Family("mvtrack_health",
@@ -99,6 +168,13 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
     e.Sample(static_cast<double>(static_cast<int>(service::Health::kUnknown)));
     return e.text();
   }
+  if (site) {
+    e.Sample(static_cast<double>(
+        static_cast<int>(service::Combine(service::AssessSiteStatus(*site), source).health)));
+    SiteStatusSamples(e, *site);
+    return e.text();
+  }
+  const transport::TrackerStatus& s = *status;
   e.Sample(static_cast<double>(
       static_cast<int>(service::Combine(service::AssessStatus(s), source).health)));
   e.Family("mvtrack_uptime_seconds", "gauge", "tracker uptime");
@@ -201,24 +277,6 @@ std::string PrometheusText(const std::optional<transport::TrackerStatus>& status
   }
   return e.text();
 }
-
-}  // namespace mvtrack::web
-
-namespace mvtrack::web {
-namespace {
-
-// A Prometheus label value: backslash, double quote and line feed escaped (names are printable
-// ASCII, ValidateName, but a hostile message may still carry quotes).
-std::string LabelValue(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    if (c == '\\' || c == '"') out += '\\';
-    out += c == '\n' ? std::string("\\n") : std::string(1, c);
-  }
-  return out;
-}
-
-}  // namespace
 
 void DwellHistogram::Add(double dwell_s) {
   if (!std::isfinite(dwell_s) || dwell_s < 0.0) return;

@@ -43,12 +43,15 @@ struct DwellHistogram {
 /// `stale_after_s` (the tracker stopped publishing: /healthz's staleness rule) is not reported
 /// as if it were current: mvtrack_up 0, mvtrack_health 3 (UNKNOWN), its age, and none of the
 /// tracker's or the cameras' values. `source`: what the status messages say about who sends
-/// them (service::StatusSourceWatch), combined into mvtrack_health.
+/// them (service::StatusSourceWatch), combined into mvtrack_health. With `site` instead of
+/// `status` (a site's stitcher publishes the status channel, issue 43): the site's series,
+/// mvtrack_zone_* per zone (docs/OPERATING.md "Metrics").
 std::string PrometheusText(const std::optional<transport::TrackerStatus>& status,
                            double status_age_s,
                            double stale_after_s,
                            const WebCounters& web,
-                           const service::HealthReport& source = {service::Health::kOk, {}});
+                           const service::HealthReport& source = {service::Health::kOk, {}},
+                           const std::optional<transport::SiteStatus>& site = std::nullopt);
 
 /// Adds a visit's dwell to `name`'s histogram in `dwell`. Names come from messages (untrusted):
 /// at most analytics::kMaxRegions of them are kept, a visit of another name once the map is

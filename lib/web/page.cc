@@ -59,7 +59,13 @@ const std::string& IndexPage() {
 <main>
   <canvas id="floor" width="640" height="560"></canvas>
   <div>
-    <section>
+    <section id="zones-section" hidden>
+      <h2>Zones</h2>
+      <table id="zones"><thead><tr><th>zone</th><th>state</th><th>frames</th><th>late</th>
+        <th>latency ms</th><th>last msg s</th><th>tracks</th><th>daemon</th><th>flags</th></tr></thead>
+        <tbody></tbody></table>
+    </section>
+    <section id="cameras-section">
       <h2>Cameras</h2>
       <table id="cameras"><thead><tr><th>camera</th><th>rate Hz</th><th>last msg s</th>
         <th>latency ms</th><th>clock offset ms</th><th>late</th><th>dropped</th><th>lost</th><th>rejected</th>
@@ -76,7 +82,7 @@ const std::string& IndexPage() {
     <section>
       <h2>Tracks <span id="tracks-note"></span></h2>
       <table id="tracks"><thead><tr><th>id</th><th>state</th><th>x m</th><th>y m</th>
-        <th>in view s</th><th>cameras</th></tr></thead><tbody></tbody></table>
+        <th>in view s</th><th>cameras</th><th>zones</th></tr></thead><tbody></tbody></table>
     </section>
   </div>
 </main>
@@ -284,10 +290,12 @@ function onTracks(e) {
     const y = t.position[1] === null ? "" : t.position[1].toFixed(3);
     // time in view: the track's age (frames since its first) at the stream's frame period
     const age = framePeriodS === null ? "" : (t.age_frames * framePeriodS).toFixed(1);
+    // a site's stitched output: the zones that see the person (names from the network: escaped)
+    const zones = escapeHtml((t.zones || []).join(" "));
     rows.push('<tr data-id="' + t.id + '" data-x="' + x + '" data-y="' + y + '" data-color="' + trackColor(t.id) +
-              '" data-age-s="' + age + '"><td><span class="swatch" style="background:' + trackColor(t.id) + '"></span>' +
-              t.id + "</td><td>" + t.state + "</td><td>" + x + "</td><td>" + y + "</td><td>" + age +
-              "</td><td>" + t.cameras.join(" ") + "</td></tr>");
+              '" data-age-s="' + age + '" data-zones="' + zones + '"><td><span class="swatch" style="background:' +
+              trackColor(t.id) + '"></span>' + t.id + "</td><td>" + t.state + "</td><td>" + x + "</td><td>" + y +
+              "</td><td>" + age + "</td><td>" + t.cameras.join(" ") + "</td><td>" + zones + "</td></tr>");
   }
   document.querySelector("#tracks tbody").innerHTML = rows.join("");
   text("frame", e.frame);
@@ -332,6 +340,29 @@ function onStatus(s) {
               '</td><td class="flags' + (c.flags.length ? '">' + c.flags.join(" ") : ' ok">ok') + "</td></tr>");
   }
   document.querySelector("#cameras tbody").innerHTML = rows.join("");
+}
+
+// A site's stitcher status (issue 43): the site's health, and a row per zone instead of the
+// cameras (each zone daemon's cameras are on its own status channel).
+function onSiteStatus(s) {
+  lastStatusMs = performance.now();
+  if (statusStale) text("connection", "live");
+  checkStale();
+  const h = document.getElementById("health");
+  h.textContent = s.health; h.className = s.health;
+  text("reasons", s.reasons.join("; "));
+  document.getElementById("zones-section").hidden = false;
+  document.getElementById("cameras-section").hidden = true;
+  document.querySelector("#zones tbody").innerHTML = s.zones.map((z) => {
+    const state = z.flags.includes("NO_DATA") || z.flags.includes("STALE") ? "stale" : "live";
+    const age = z.last_receive_utime > 0 ? ((s.utime - z.last_receive_utime) / 1e6).toFixed(1) : "never";
+    const daemon = escapeHtml(z.daemon_health) + (z.daemon_reasons ? ": " + escapeHtml(z.daemon_reasons) : "");
+    return '<tr data-zone="' + escapeHtml(z.name) + '" data-state="' + state + '" data-daemon="' +
+      escapeHtml(z.daemon_health) + '"><td>' + escapeHtml(z.name) + "</td><td>" + state + "</td><td>" + z.frames +
+      "</td><td>" + z.late + "</td><td>" + (z.latency_us / 1000).toFixed(1) + "</td><td>" + age + "</td><td>" +
+      z.tracks + "</td><td>" + daemon + '</td><td class="flags' +
+      (z.flags.length ? '">' + z.flags.join(" ") : ' ok">ok') + "</td></tr>";
+  }).join("");
 }
 
 // Names come from the daemon's messages: written as text, never as HTML.
@@ -381,6 +412,7 @@ function connect() {
       showLayer();
       if (layer === shownLayer()) onTracks(e);
     } else if (e.type === "status") onStatus(e);
+    else if (e.type === "site_status") onSiteStatus(e);
     else if (e.type === "site_counts") onSiteCounts(e); else if (e.type === "analytics") onAnalytics(e);
   };
 }

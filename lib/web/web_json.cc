@@ -45,6 +45,9 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
     for (const std::optional<Vec3>& j : t.joints) joints.push_back(j ? Point(*j) : Json(nullptr));
     Json bones = Json::array();
     for (const double b : t.bone_lengths) bones.push_back(Number(b));
+    Json zones = Json::array();  // by name (the decoder checked the indices)
+    for (const int z : t.zones)
+      zones.push_back(message.frame.zones.at(static_cast<std::size_t>(z)));
     tracks.push_back(
         {{"id", t.id},
          {"state", i < message.info.size() ? StateName(message.info[i].state) : "confirmed"},
@@ -53,7 +56,8 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
          {"age_frames", t.age_frames},
          {"cameras", t.cameras},
          {"joints", std::move(joints)},
-         {"bone_lengths", std::move(bones)}});
+         {"bone_lengths", std::move(bones)},
+         {"zones", std::move(zones)}});
   }
   const Json o = {{"type", "tracks"},
                   {"layer", transport::ToString(message.layer)},
@@ -65,7 +69,54 @@ std::string TracksEventJson(const transport::TracksMessage& message) {
                    message.layout == core::KeypointLayoutId::kNone
                        ? std::string()
                        : core::GetKeypointLayout(message.layout).name},
+                  {"zones", message.frame.zones},
                   {"tracks", std::move(tracks)}};
+  return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);
+}
+
+std::string SiteStatusEventJson(const transport::SiteStatus& s,
+                                const service::HealthReport& source) {
+  const service::HealthReport health = service::Combine(service::AssessSiteStatus(s), source);
+  Json zones = Json::array();
+  for (const transport::ZoneStatus& z : s.zones) {
+    zones.push_back(
+        {{"name", z.name},
+         {"channel", z.channel},
+         {"flags", Names(transport::ZoneFlagNames(z.flags))},
+         {"frames", z.frames},
+         {"late", z.late},
+         {"decode_errors", z.decode_errors},
+         {"other_layer", z.other_layer},
+         {"last_utime", z.last_utime},
+         {"last_receive_utime", z.last_receive_utime},
+         {"latency_us", z.latency_us},
+         {"tracks", z.tracks},
+         {"daemon_health", service::ToString(static_cast<service::Health>(z.daemon_health))},
+         {"daemon_reasons", z.daemon_reasons},
+         {"daemon_instance_id", z.daemon_instance_id}});
+  }
+  const Json o = {{"type", "site_status"},
+                  {"utime", s.utime},
+                  {"period_us", s.period_us},
+                  {"uptime_us", s.uptime_us},
+                  {"instance_id", s.instance_id},
+                  {"start_utime", s.start_utime},
+                  {"sequence", s.sequence},
+                  {"version", s.version},
+                  {"flags", Names(transport::SiteFlagNames(s.flags))},
+                  {"health", service::ToString(health.health)},
+                  {"reasons", health.reasons},
+                  {"last_frame", s.last_frame},
+                  {"site_frames", s.site_frames},
+                  {"active_tracks", s.active_tracks},
+                  {"global_ids", s.global_ids},
+                  {"splits", s.splits},
+                  {"merges", s.merges},
+                  {"num_wait_samples", s.num_wait_samples},
+                  {"wait_p50_us", s.wait_p50_us},
+                  {"wait_p99_us", s.wait_p99_us},
+                  {"wait_max_us", s.wait_max_us},
+                  {"zones", std::move(zones)}};
   return mvtrack::json::Dump(o, -1, mvtrack::json::Ascii::kEscape);
 }
 

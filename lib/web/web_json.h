@@ -14,11 +14,12 @@
 
 namespace mvtrack::web {
 
-/// {"type":"tracks", "frame", "utime", "publish_utime", "latency_us", "layout", "tracks":[{"id",
-/// "state", "position":[x,y,z], "confidence", "age_frames", "cameras":[...], "joints":[[x,y,z]
-/// or null, ...], "bone_lengths":[metres per bone of the layout, 0 = not known yet; empty
-/// without the skeleton fit]}]} on one line. `state` is "tentative", "confirmed", "lost" or
-/// "ended".
+/// {"type":"tracks", "frame", "utime", "publish_utime", "latency_us", "layout", "zones":[the
+/// site's zone names; empty from one tracker], "tracks":[{"id", "state", "position":[x,y,z],
+/// "confidence", "age_frames", "cameras":[...], "joints":[[x,y,z] or null, ...],
+/// "bone_lengths":[metres per bone of the layout, 0 = not known yet; empty without the skeleton
+/// fit], "zones":[names of the zones that saw it]}]} on one line. `state` is "tentative",
+/// "confirmed", "lost" or "ended".
 std::string TracksEventJson(const transport::TracksMessage& message);
 
 /// {"type":"status", every tracker_status_t field, "flags":[names], "health", "reasons":[...],
@@ -27,6 +28,13 @@ std::string TracksEventJson(const transport::TracksMessage& message);
 /// status messages say about who sends them, service::StatusSourceWatch).
 std::string StatusEventJson(const transport::TrackerStatus& status,
                             const service::HealthReport& source = {service::Health::kOk, {}});
+
+/// {"type":"site_status", every site_status_t field, "flags":[names], "health", "reasons":[...],
+/// "zones":[{every zone_status_t field, "flags":[names], "daemon_health": "OK"|"WARNING"|
+/// "CRITICAL"|"UNKNOWN"}]} on one line: a site's stitcher status (issue 43; `health` and
+/// `reasons`: service::AssessSiteStatus combined with `source`).
+std::string SiteStatusEventJson(const transport::SiteStatus& status,
+                                const service::HealthReport& source = {service::Health::kOk, {}});
 
 /// {"type":"analytics", "kind":"enter"|"exit"|"crossing", "name", "track_id", "utime",
 /// "enter_utime", "dwell_s" (exit; else null), "direction" (crossing: "left_to_right" or

@@ -449,23 +449,38 @@ class WebServer::Impl {
     self->hub_.Publish(SiteCountsEventJson(d.message), EventHub::Retain::kCounts);
   }
 
+  // A tracker's status, or a site stitcher's (issue 43) on the same channel.
   static void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&, Impl* self) {
     const transport::StatusDecodeResult d =
         transport::DecodeTrackerStatus(rbuf->data, rbuf->data_size);
+    std::optional<transport::SiteStatusDecodeResult> site;
+    if (d.status == transport::DecodeStatus::kBadFingerprint) {
+      site = transport::DecodeSiteStatus(rbuf->data, rbuf->data_size);
+    }
     service::HealthReport source;
     {
       std::lock_guard<std::mutex> lock(self->mu_);
-      if (!d.ok()) {
+      if (!d.ok() && !(site && site->ok())) {
         ++self->counters_.decode_errors;
         return;
       }
       ++self->counters_.status_messages;
-      self->status_ = d.message;
       self->status_at_ = SteadyClock::now();
-      self->source_.Add(d.message, Seconds(self->status_at_));
+      if (d.ok()) {
+        self->status_ = d.message;
+        self->site_status_.reset();
+        self->source_.Add(d.message, Seconds(self->status_at_));
+      } else {
+        self->site_status_ = site->message;
+        self->status_.reset();
+        self->source_.Add({site->message.instance_id, site->message.sequence},
+                          Seconds(self->status_at_));
+      }
       source = self->source_.Assess(Seconds(self->status_at_));
     }
-    self->hub_.Publish(StatusEventJson(d.message, source), EventHub::Retain::kStatus);
+    self->hub_.Publish(
+        d.ok() ? StatusEventJson(d.message, source) : SiteStatusEventJson(site->message, source),
+        EventHub::Retain::kStatus);
   }
 
   static double Seconds(SteadyClock::time_point t) {
@@ -474,15 +489,22 @@ class WebServer::Impl {
 
   // The latest status, its age (seconds) and what the statuses say about who sends them.
   struct Latest {
-    transport::TrackerStatus status;
+    std::optional<transport::TrackerStatus> status;  // a tracker's, or
+    std::optional<transport::SiteStatus> site;       // a site stitcher's
     double age_s = 0.0;
     service::HealthReport source;
+    // The status's verdict combined with what the statuses say about their senders.
+    service::HealthReport Assess() const {
+      return service::Combine(
+          status ? service::AssessStatus(*status) : service::AssessSiteStatus(*site), source);
+    }
   };
   std::optional<Latest> LatestStatus() const {
     std::lock_guard<std::mutex> lock(mu_);
-    if (!status_) return std::nullopt;
+    if (!status_ && !site_status_) return std::nullopt;
     const SteadyClock::time_point now = SteadyClock::now();
-    return Latest{*status_,
+    return Latest{status_,
+                  site_status_,
                   std::chrono::duration<double>(now - status_at_).count(),
                   source_.Assess(Seconds(now))};
   }
@@ -533,11 +555,12 @@ class WebServer::Impl {
         site = SiteMetricsText(counts_, dwell_);
       }
       return Ok(conn,
-                PrometheusText(s ? std::optional(s->status) : std::nullopt,
+                PrometheusText(s ? s->status : std::nullopt,
                                s ? s->age_s : 0.0,
                                options_.stale_after_s,
                                Counters(),
-                               s ? s->source : service::HealthReport{service::Health::kOk, {}}) +
+                               s ? s->source : service::HealthReport{service::Health::kOk, {}},
+                               s ? s->site : std::nullopt) +
                     site,
                 "text/plain; version=0.0.4",
                 head);
@@ -564,7 +587,7 @@ class WebServer::Impl {
       text = "UNKNOWN: the latest status is " + std::to_string(s->age_s) +
              " s old (the tracker stopped publishing)\n";
     } else {
-      const service::HealthReport h = service::Combine(service::AssessStatus(s->status), s->source);
+      const service::HealthReport h = s->Assess();
       status = h.health == service::Health::kCritical ? 503 : 200;
       text = service::HealthLine(h) + "\n";
     }
@@ -620,9 +643,10 @@ class WebServer::Impl {
   std::atomic<std::int64_t> events_sent_{0};
   mutable std::mutex mu_;
   WebCounters counters_;
-  std::optional<transport::SiteCounts> counts_;  // the latest site_counts_t
-  std::map<std::string, DwellHistogram> dwell_;  // by region: the visits ended (exit events)
-  std::optional<transport::TrackerStatus> status_;
+  std::optional<transport::SiteCounts> counts_;       // the latest site_counts_t
+  std::map<std::string, DwellHistogram> dwell_;       // by region: the visits ended (exit events)
+  std::optional<transport::TrackerStatus> status_;    // the latest status: a tracker's,
+  std::optional<transport::SiteStatus> site_status_;  // or a site stitcher's
   SteadyClock::time_point status_at_;
   service::StatusSourceWatch source_{options_.stale_after_s};
 };

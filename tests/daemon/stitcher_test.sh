@@ -6,7 +6,11 @@
 # 2. Live, as separate processes over udpm:// inside a private network namespace (skipped, exit
 #    77, where none can be made): lcm-logplayer publishes the cameras, one mvtrackd per zone, the
 #    stitcher, lcm-logger capturing the site's MVTRACK_TRACKS; one zone daemon is killed midway
-#    and the stitcher flags it stale within 2.5 s while the site output goes on.
+#    and the stitcher flags it stale within 2.5 s while the site output goes on; `mvtrack status`
+#    reads the site's status (site_status_t) on MVTRACK_STATUS: OK with both zones live and their
+#    daemons' own health, WARNING naming the killed zone after the kill; `mvtrack web` serves it
+#    to a headless Chromium (skipped without Chromium or python3-websocket unless CI is set):
+#    the page shows the zones' rows and which zones see each track, then the killed zone stale.
 source "$(dirname "$0")/common.sh"
 py() { python3 -S "$@"; }
 STITCHER=$(dirname "$MVTRACKD")/mvtrack-stitcher
@@ -59,7 +63,13 @@ for z in zone1 zone2; do
     >> "$OUT/$z.yaml"
   sed -i "s|calibration: ../calibration.yaml|calibration: $S/calibration.yaml|" "$OUT/$z.yaml"
 done
-export MVTRACKD STITCHER OUT S URL
+BROWSER=1
+if ! command -v chromium > /dev/null || ! /usr/bin/python3 -c "import websocket" 2> /dev/null; then
+  [ -z "${CI:-}" ] || fail "chromium or python3-websocket missing (CI is set: the page must be tested)"
+  echo "SKIP (the page part only): chromium or python3-websocket is not installed"
+  BROWSER=0
+fi
+export MVTRACK MVTRACKD STITCHER OUT S URL SRC BROWSER
 unshare -n bash -euc '
   trap "kill -KILL \$(jobs -p) 2> /dev/null || true" EXIT
   ip link set lo up
@@ -73,6 +83,16 @@ unshare -n bash -euc '
   "$STITCHER" --zones "$S/zones/zones.yaml" --lcm-url "$URL" --wait-ms 500 --stale-ms 2000 \
     --tracks-jsonl "$OUT/live.jsonl" --status-jsonl "$OUT/live_status.jsonl" > "$OUT/stitcher.log" 2>&1 &
   ST=$!
+  if [ "$BROWSER" = 1 ]; then
+    "$MVTRACK" web --listen 127.0.0.1:18081 --url "$URL" --stale-after 3 > "$OUT/web.log" 2>&1 &
+    chromium --headless --no-sandbox --disable-gpu --remote-debugging-port=19223 \
+      --window-size=1400,820 about:blank > "$OUT/chromium.log" 2>&1 &
+    for _ in $(seq 100); do grep -q "serving http" "$OUT/web.log" && break; sleep 0.1; done
+    # Phase 1 after 60 site frames (both zones live), phase 2 once zone2 was seen stale.
+    /usr/bin/python3 "$SRC/tests/web/page_probe.py" 19223 http://127.0.0.1:18081/ 30 \
+      "$OUT/page.png" "$OUT/phase" 60 "@$OUT/status_stale.code" > "$OUT/probe.jsonl" \
+      2> "$OUT/probe.err" &
+  fi
   for _ in $(seq 100); do
     grep -q "input udpm" "$OUT/zone1.log" && grep -q "input udpm" "$OUT/zone2.log" && break
     sleep 0.1
@@ -80,9 +100,21 @@ unshare -n bash -euc '
   sleep 0.3
   (sleep 8; date +%s%N > "$OUT/killed_at"; kill -KILL $Z2 || true) &
   KILLER=$!
+  site_status() {  # site_status NAME AT: mvtrack status AT s from now into status_NAME.txt/.code
+    sleep "$2"
+    rc=0
+    "$MVTRACK" status --url "$URL" --timeout 3 > "$OUT/status_$1.txt" 2>&1 || rc=$?
+    echo $rc > "$OUT/status_$1.code"
+  }
+  site_status live 5 &
+  LIVE=$!
+  (sleep 5; curl -s http://127.0.0.1:18081/metrics > "$OUT/metrics_live.txt" || true) &
+  site_status stale 11 &
+  STALE=$!
   lcm-logplayer --lcm-url="$URL" -s 1 "$S/detections.lcmlog"
   wait $KILLER
-  sleep 3
+  wait $LIVE $STALE
+  sleep 1
   kill -TERM $Z1 || true
   wait $Z1 || true
   wait $Z2 || true
@@ -95,7 +127,33 @@ unshare -n bash -euc '
   kill -INT $LOGGER || true
   wait $LOGGER || true
 ' || fail "the namespace run failed (see $OUT/*.log)"
-cat "$OUT/stitcher.log"
+cat "$OUT/stitcher.log" "$OUT/status_live.txt" "$OUT/status_stale.txt"
+expect_eq "$(cat "$OUT/status_live.code")" 0 "mvtrack status on the site with both zones live"
+expect_grep "^site stitcher .*, instance [0-9a-f]{16}, status #" "$OUT/status_live.txt"
+expect_grep "^zones: 2 of 2 live" "$OUT/status_live.txt"
+expect_grep "^  zone1 +MVTRACK_TRACKS_ZONE1 .* OK +-$" "$OUT/status_live.txt"
+expect_eq "$(cat "$OUT/status_stale.code")" 1 "mvtrack status on the site with zone2 killed"
+expect_grep "^mvtrack status: WARNING: zone zone2 STALE" "$OUT/status_stale.txt"
+expect_grep "^zones: 1 of 2 live" "$OUT/status_stale.txt"
+if [ "$BROWSER" = 1 ]; then
+  expect_grep '^mvtrack_zone_live\{zone="zone1"\} 1$' "$OUT/metrics_live.txt"
+  expect_grep '^mvtrack_zone_daemon_health\{zone="zone2"\} 0$' "$OUT/metrics_live.txt"
+  py - "$OUT/probe.jsonl" <<'PY' || fail "the page on the site (see $OUT/probe.jsonl, $OUT/page.png)"
+import json, sys
+phases = [json.loads(l) for l in open(sys.argv[1])]
+assert len(phases) == 2, "the page reached %d of 2 phases" % len(phases)
+live, stale = phases
+print("page, both zones live:", live["health"], live["zones"])
+assert live["zones_shown"] and live["cameras"] == [], live
+assert live["zones"] == [{"name": "zone1", "state": "live", "daemon": "OK"},
+                         {"name": "zone2", "state": "live", "daemon": "OK"}], live["zones"]
+assert live["health"] == "OK", live["health"] + " " + live["reasons"]
+assert live["tracks"] and all(t["zones"] in ("zone1", "zone2", "zone1 zone2") for t in live["tracks"]), live["tracks"]
+print("page, zone2 killed:", stale["health"], stale["reasons"], stale["zones"])
+assert stale["zones"][1]["state"] == "stale" and stale["zones"][0]["state"] == "live", stale["zones"]
+assert stale["health"] == "WARNING" and "zone zone2 STALE" in stale["reasons"], stale
+PY
+fi
 [ "$(cat "$OUT/stitcher_rc")" = 0 ] || fail "the stitcher did not exit 0 on SIGTERM"
 expect_grep "zone zone2 is stale" "$OUT/stitcher.log"
 expect_grep "stopped by a signal; summary: site_frames=" "$OUT/stitcher.log"
@@ -117,6 +175,12 @@ frames = [json.loads(l) for l in open(sys.argv[3])]
 print("site frames published: %d, global ids: %d" % (
     len(frames), len({t["id"] for f in frames for t in f["tracks"]})))
 assert len(frames) >= 300, "too few site frames"
+# Which zones see each person: the site's zone names, and per track indices into them.
+assert all(f["zones"] == ["zone1", "zone2"] for f in frames), frames[0]
+seen = [t["zones"] for f in frames for t in f["tracks"]]
+assert seen and all(z and z == sorted(set(z)) for z in seen), seen[:5]
+print("track-frames seen by both zones: %d of %d" % (sum(len(z) == 2 for z in seen), len(seen)))
+assert any(len(z) == 2 for z in seen), "no person seen by both zones"
 both = [s["wait_ms"]["p99"] for s in status
         if s["site_frames"] > 0 and all(z["state"] == "live" for z in s["zones"])]
 print("site frames waited for the zones, p99 per status second while both were live: %s ms" % both)

@@ -6,8 +6,8 @@
 //   dump_log LOG OUT_DUMP [--channels OUT_CHANNELS]
 //
 // Reads LOG with transport::LogReader (it must end cleanly), decodes each event by its
-// fingerprint as tracks3d_t, camera_detections_t or tracker_status_t (anything else is an
-// error), and writes the dump; with --channels, one "<channel> <type> <count>" line per
+// fingerprint as tracks3d_t, camera_detections_t, tracker_status_t or site_status_t (anything else
+// is an error), and writes the dump; with --channels, one "<channel> <type> <count>" line per
 // channel (sorted). Exit status 0 on success, 1 on a bad log or message, 2 on usage errors.
 
 #include <cstdint>
@@ -86,6 +86,8 @@ int main(int argc, char** argv) {
       ok = DecodeAs<mvtrack::camera_detections_t>(e->data, &event);
     } else if (fp == mvtrack::tracker_status_t::getHash()) {
       ok = DecodeAs<mvtrack::tracker_status_t>(e->data, &event);
+    } else if (fp == mvtrack::site_status_t::getHash()) {
+      ok = DecodeAs<mvtrack::site_status_t>(e->data, &event);
     } else {
       std::cerr << "dump_log: " << where << ": not an mvtrack top-level type\n";
       return 1;

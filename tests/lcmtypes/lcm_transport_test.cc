@@ -139,6 +139,8 @@ TEST_CASE("a file:// log written in mode=w reads back with lcm::LogFile", "[unit
     try_decode(tracks3d_t{});
     try_decode(camera_status_t{});
     try_decode(tracker_status_t{});
+    try_decode(zone_status_t{});
+    try_decode(site_status_t{});
     CHECK(decoded == event->datalen);
     CHECK(dump == want.dump);
     ++index;

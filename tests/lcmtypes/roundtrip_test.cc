@@ -50,6 +50,15 @@ tracker_status_t MakeSample<tracker_status_t>() {
   return MakeTrackerStatus(8, 4);
 }
 
+template <>
+zone_status_t MakeSample<zone_status_t>() {
+  return MakeZoneStatus(9, "EAST", false);
+}
+template <>
+site_status_t MakeSample<site_status_t>() {
+  return MakeSiteStatus(10, 3);
+}
+
 // Decodes `bytes[0, len)` into a fresh message; returns decode()'s result.
 template <typename Msg>
 int DecodePrefix(const std::vector<std::uint8_t>& bytes, std::size_t len, Msg* msg) {
@@ -79,7 +88,9 @@ std::vector<TypeCase> AllTypeCases() {
           MakeTypeCase<track3d_t>(),
           MakeTypeCase<tracks3d_t>(),
           MakeTypeCase<camera_status_t>(),
-          MakeTypeCase<tracker_status_t>()};
+          MakeTypeCase<tracker_status_t>(),
+          MakeTypeCase<zone_status_t>(),
+          MakeTypeCase<site_status_t>()};
 }
 
 void WriteBigEndian16(std::vector<std::uint8_t>* bytes, std::size_t offset, std::int16_t v) {
@@ -120,7 +131,9 @@ TEMPLATE_TEST_CASE("encode/decode round trip preserves every field",
                    track3d_t,
                    tracks3d_t,
                    camera_status_t,
-                   tracker_status_t) {
+                   tracker_status_t,
+                   zone_status_t,
+                   site_status_t) {
   const TestType original = MakeSample<TestType>();
   const std::vector<std::uint8_t> bytes = Encode(original);
   REQUIRE(static_cast<int>(bytes.size()) == original.getEncodedSize());
@@ -187,7 +200,9 @@ TEMPLATE_TEST_CASE("decoding a truncated buffer fails cleanly",
                    track3d_t,
                    tracks3d_t,
                    camera_status_t,
-                   tracker_status_t) {
+                   tracker_status_t,
+                   zone_status_t,
+                   site_status_t) {
   const std::vector<std::uint8_t> bytes = Encode(MakeSample<TestType>());
   int accepted = 0;
   for (std::size_t len = 0; len < bytes.size(); ++len) {
@@ -222,7 +237,9 @@ TEST_CASE("every type has a distinct fingerprint", "[unit]") {
                                             track3d_t::getHash(),
                                             tracks3d_t::getHash(),
                                             camera_status_t::getHash(),
-                                            tracker_status_t::getHash()};
+                                            tracker_status_t::getHash(),
+                                            zone_status_t::getHash(),
+                                            site_status_t::getHash()};
   for (std::size_t i = 0; i < hashes.size(); ++i) {
     for (std::size_t j = i + 1; j < hashes.size(); ++j) {
       INFO("types " << i << " and " << j);

@@ -80,6 +80,13 @@ class Fields {
     }
     blocks_[name] = block;
   }
+  void StrArray(const std::string& name, const std::vector<std::string>& values) {
+    std::string block;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      block += Path(name, i) + "=" + StringText(values[i]) + "\n";
+    }
+    blocks_[name] = block;
+  }
   template <typename Msg>
   void StructArray(const std::string& name, const std::vector<Msg>& elements) {
     std::string block;
@@ -248,6 +255,7 @@ track3d_t MakeTrack3d(std::uint32_t seed, std::int64_t id, std::int8_t state, in
     }
   }
   track.num_bones = static_cast<std::int16_t>(track.bone_lengths.size());
+  track.num_zones = 0;  // MakeTracks3d sets them in a stitched site's message
   return track;
 }
 
@@ -260,6 +268,9 @@ tracks3d_t MakeTracks3d(std::uint32_t seed, int num_tracks, bool with_joints) {
   msg.latency_us = gen.UniformInt64(1'000, 60'000);
   msg.layer = seed % 2 == 0 ? tracks3d_t::LAYER_FINAL : tracks3d_t::LAYER_PROVISIONAL;
   msg.keypoint_layout = with_joints ? "coco17" : "";
+  // Every third message is a stitched site's (issue 43): its zones, and which saw each track.
+  if (seed % 3 == 0) msg.zones = {"zone1", "zone2", "west_hall"};
+  msg.num_zones = static_cast<std::int16_t>(msg.zones.size());
   msg.num_tracks = num_tracks;
   constexpr std::int8_t kStates[] = {
       track3d_t::STATE_CONFIRMED, track3d_t::STATE_LOST, track3d_t::STATE_TENTATIVE};
@@ -268,6 +279,11 @@ tracks3d_t MakeTracks3d(std::uint32_t seed, int num_tracks, bool with_joints) {
                                      /*id=*/i + 1,
                                      kStates[i % 3],
                                      with_joints ? 17 : 0));
+    if (!msg.zones.empty()) {
+      track3d_t& t = msg.tracks.back();
+      t.zones = i % 2 == 0 ? std::vector<std::int16_t>{0, 1} : std::vector<std::int16_t>{2};
+      t.num_zones = static_cast<std::int16_t>(t.zones.size());
+    }
   }
   return msg;
 }
@@ -325,6 +341,55 @@ tracker_status_t MakeTrackerStatus(std::uint32_t seed, int num_cameras) {
     status.cameras.push_back(MakeCameraStatus(seed * 7u + static_cast<std::uint32_t>(c), c + 1));
   }
   return status;
+}
+
+zone_status_t MakeZoneStatus(std::uint32_t seed, const std::string& name, bool stale) {
+  Gen gen(seed);
+  zone_status_t z;
+  z.name = name;
+  z.channel = "MVTRACK_TRACKS_" + name;
+  z.flags = stale ? zone_status_t::FLAG_STALE : 0;
+  z.frames = gen.UniformInt64(100, 100'000);
+  z.late = gen.UniformInt64(0, 5);
+  z.decode_errors = gen.UniformInt64(0, 3);
+  z.other_layer = gen.UniformInt64(0, 3);
+  z.last_utime = kBaseUtime + gen.UniformInt64(0, 60'000'000);
+  z.last_receive_utime = z.last_utime + gen.UniformInt64(100'000, 900'000);
+  z.latency_us = gen.UniformInt64(100'000, 900'000);
+  z.tracks = gen.UniformInt(0, 50);
+  z.daemon_health = stale ? zone_status_t::HEALTH_UNKNOWN : zone_status_t::HEALTH_WARNING;
+  z.daemon_reasons = stale ? "" : "WARNING: camera 2 STALE";
+  z.daemon_instance_id = stale ? "" : "0123456789abcdef";
+  return z;
+}
+
+site_status_t MakeSiteStatus(std::uint32_t seed, int num_zones) {
+  Gen gen(seed);
+  site_status_t s;
+  s.utime = kBaseUtime + gen.UniformInt64(0, 60'000'000);
+  s.period_us = 1'000'000;
+  s.uptime_us = gen.UniformInt64(1'000'000, 100'000'000'000);
+  s.instance_id = "a1b2c3d4e5f60718";
+  s.start_utime = s.utime - s.uptime_us;
+  s.sequence = gen.UniformInt64(0, 100'000);
+  s.version = "0.6.0+g1a2b3c4";
+  s.flags = site_status_t::FLAG_ZONE_MISSING | site_status_t::FLAG_ZONE_DEGRADED;
+  s.last_frame = 1000 + gen.UniformInt(0, 500);
+  s.site_frames = s.last_frame + 1;
+  s.active_tracks = gen.UniformInt(0, 200);
+  s.global_ids = gen.UniformInt64(0, 100'000);
+  s.splits = gen.UniformInt64(0, 100);
+  s.merges = gen.UniformInt64(0, 100);
+  s.num_wait_samples = 30;
+  s.wait_p50_us = gen.UniformInt64(0, 5'000);
+  s.wait_p99_us = s.wait_p50_us + gen.UniformInt64(0, 5'000);
+  s.wait_max_us = s.wait_p99_us + gen.UniformInt64(0, 5'000);
+  s.num_zones = static_cast<std::int16_t>(num_zones);
+  for (int z = 0; z < num_zones; ++z) {
+    s.zones.push_back(MakeZoneStatus(
+        seed * 5u + static_cast<std::uint32_t>(z), "ZONE" + std::to_string(z + 1), z == 1));
+  }
+  return s;
 }
 
 std::string Dump(const keypoint2d_t& msg, const std::string& prefix) {
@@ -385,6 +450,8 @@ std::string Dump(const track3d_t& msg, const std::string& prefix) {
   f.StructArray("joints", msg.joints);
   f.Int("num_bones", msg.num_bones);
   f.RealArray("bone_lengths", msg.bone_lengths.data(), msg.bone_lengths.size());
+  f.Int("num_zones", msg.num_zones);
+  f.IntArray("zones", msg.zones.data(), msg.zones.size());
   return f.Render();
 }
 
@@ -396,6 +463,8 @@ std::string Dump(const tracks3d_t& msg, const std::string& prefix) {
   f.Int("latency_us", msg.latency_us);
   f.Int("layer", msg.layer);
   f.Str("keypoint_layout", msg.keypoint_layout);
+  f.Int("num_zones", msg.num_zones);
+  f.StrArray("zones", msg.zones);
   f.Int("num_tracks", msg.num_tracks);
   f.StructArray("tracks", msg.tracks);
   return f.Render();
@@ -452,6 +521,50 @@ std::string Dump(const tracker_status_t& msg, const std::string& prefix) {
   return f.Render();
 }
 
+std::string Dump(const zone_status_t& msg, const std::string& prefix) {
+  Fields f(prefix);
+  f.Str("name", msg.name);
+  f.Str("channel", msg.channel);
+  f.Int("flags", msg.flags);
+  f.Int("frames", msg.frames);
+  f.Int("late", msg.late);
+  f.Int("decode_errors", msg.decode_errors);
+  f.Int("other_layer", msg.other_layer);
+  f.Int("last_utime", msg.last_utime);
+  f.Int("last_receive_utime", msg.last_receive_utime);
+  f.Int("latency_us", msg.latency_us);
+  f.Int("tracks", msg.tracks);
+  f.Int("daemon_health", msg.daemon_health);
+  f.Str("daemon_reasons", msg.daemon_reasons);
+  f.Str("daemon_instance_id", msg.daemon_instance_id);
+  return f.Render();
+}
+
+std::string Dump(const site_status_t& msg, const std::string& prefix) {
+  Fields f(prefix);
+  f.Int("utime", msg.utime);
+  f.Int("period_us", msg.period_us);
+  f.Int("uptime_us", msg.uptime_us);
+  f.Str("instance_id", msg.instance_id);
+  f.Int("start_utime", msg.start_utime);
+  f.Int("sequence", msg.sequence);
+  f.Str("version", msg.version);
+  f.Int("flags", msg.flags);
+  f.Int("last_frame", msg.last_frame);
+  f.Int("site_frames", msg.site_frames);
+  f.Int("active_tracks", msg.active_tracks);
+  f.Int("global_ids", msg.global_ids);
+  f.Int("splits", msg.splits);
+  f.Int("merges", msg.merges);
+  f.Int("num_wait_samples", msg.num_wait_samples);
+  f.Int("wait_p50_us", msg.wait_p50_us);
+  f.Int("wait_p99_us", msg.wait_p99_us);
+  f.Int("wait_max_us", msg.wait_max_us);
+  f.Int("num_zones", msg.num_zones);
+  f.StructArray("zones", msg.zones);
+  return f.Render();
+}
+
 std::vector<SampleEvent> MakeSampleEvents() {
   std::vector<SampleEvent> events;
   // A tracker that has not published yet: no tracks, last_frame -1, all cameras silent.
@@ -490,6 +603,9 @@ std::vector<SampleEvent> MakeSampleEvents() {
   events.push_back(
       MakeEvent("TEST_TRACK3D", MakeTrack3d(44, 9, track3d_t::STATE_ENDED, /*num_joints=*/17)));
   events.push_back(MakeEvent("TEST_CAMERA_STATUS", MakeCameraStatus(45, 7)));
+  // A site's stitcher status (issue 43), and one zone of it on its own.
+  events.push_back(MakeEvent("TEST_SITE_STATUS", MakeSiteStatus(51, 3)));
+  events.push_back(MakeEvent("TEST_ZONE_STATUS", MakeZoneStatus(52, "ZONE9", false)));
   return events;
 }
 

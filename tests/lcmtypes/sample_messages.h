@@ -17,9 +17,11 @@
 #include <mvtrack/detection_t.hpp>
 #include <mvtrack/joint3d_t.hpp>
 #include <mvtrack/keypoint2d_t.hpp>
+#include <mvtrack/site_status_t.hpp>
 #include <mvtrack/track3d_t.hpp>
 #include <mvtrack/tracker_status_t.hpp>
 #include <mvtrack/tracks3d_t.hpp>
+#include <mvtrack/zone_status_t.hpp>
 #include <string>
 #include <vector>
 
@@ -51,6 +53,8 @@ track3d_t MakeTrack3d(std::uint32_t seed, std::int64_t id, std::int8_t state, in
 tracks3d_t MakeTracks3d(std::uint32_t seed, int num_tracks, bool with_joints);
 camera_status_t MakeCameraStatus(std::uint32_t seed, std::int32_t camera_id);
 tracker_status_t MakeTrackerStatus(std::uint32_t seed, int num_cameras);
+zone_status_t MakeZoneStatus(std::uint32_t seed, const std::string& name, bool stale);
+site_status_t MakeSiteStatus(std::uint32_t seed, int num_zones);
 
 /// Canonical dumps (format in the file comment); `prefix` is prepended to every path.
 std::string Dump(const keypoint2d_t& msg, const std::string& prefix = "");
@@ -61,6 +65,8 @@ std::string Dump(const track3d_t& msg, const std::string& prefix = "");
 std::string Dump(const tracks3d_t& msg, const std::string& prefix = "");
 std::string Dump(const camera_status_t& msg, const std::string& prefix = "");
 std::string Dump(const tracker_status_t& msg, const std::string& prefix = "");
+std::string Dump(const zone_status_t& msg, const std::string& prefix = "");
+std::string Dump(const site_status_t& msg, const std::string& prefix = "");
 
 /// Encodes `msg` (fingerprint included) into exactly getEncodedSize() bytes.
 template <typename Msg>

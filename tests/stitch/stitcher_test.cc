@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <map>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -32,6 +33,13 @@ tracker::Frame3D MakeFrame(FrameIndex f, std::vector<At> tracks, Utime skew_us =
     frame.tracks.push_back(t);
   }
   return frame;
+}
+
+// Zone names "z0", "z1", ... for `n` zones.
+std::vector<std::string> Names(int n) {
+  std::vector<std::string> names;
+  for (int z = 0; z < n; ++z) names.push_back("z" + std::to_string(z));
+  return names;
 }
 
 // The global id of the site track nearest (x, y) in `frame` (0: none within 0.2 m).
@@ -64,7 +72,7 @@ TEST_CASE("stitch/a person crossing from zone to zone keeps one id") {
     zones[0].push_back(MakeFrame(f, z0));
     zones[1].push_back(MakeFrame(f, z1, 2000));  // the zones' capture times differ by 2 ms
   }
-  Stitcher stitcher(2, linking::LinkerOptions{});
+  Stitcher stitcher(Names(2), linking::LinkerOptions{});
   const std::vector<SiteFrame> site = StitchAll(&stitcher, zones);
   REQUIRE(site.size() == 300);
   std::set<TrackId3D> ids;
@@ -72,7 +80,7 @@ TEST_CASE("stitch/a person crossing from zone to zone keeps one id") {
   for (const SiteFrame& s : site) {
     REQUIRE(s.frame.tracks.size() == 1);
     ids.insert(s.frame.tracks[0].id);
-    if (s.zones[0] == std::vector<int>{0, 1}) {
+    if (s.frame.tracks[0].zones == std::vector<int>{0, 1}) {
       both = true;
       // The mean of the two zones' footprints.
       const double x = 1.2 * static_cast<double>(s.frame.frame) / 30.0;
@@ -83,7 +91,8 @@ TEST_CASE("stitch/a person crossing from zone to zone keeps one id") {
   }
   CHECK(ids == std::set<TrackId3D>{1});
   CHECK(both);
-  CHECK(site.back().zones[0] == std::vector<int>{1});
+  CHECK(site.back().frame.tracks[0].zones == std::vector<int>{1});
+  CHECK(site.back().frame.zones == Names(2));
   CHECK(stitcher.stats().global_ids == 1);
   CHECK(stitcher.stats().joined_overlap == 1);
 }
@@ -99,7 +108,7 @@ TEST_CASE("stitch/two people crossing the border side by side keep their ids") {
     zones[0].push_back(MakeFrame(f, z0));
     zones[1].push_back(MakeFrame(f, z1));
   }
-  Stitcher stitcher(2, linking::LinkerOptions{});
+  Stitcher stitcher(Names(2), linking::LinkerOptions{});
   const std::vector<SiteFrame> site = StitchAll(&stitcher, zones);
   for (const SiteFrame& s : site) {
     const double x = 1.2 * static_cast<double>(s.frame.frame) / 30.0;
@@ -119,7 +128,7 @@ TEST_CASE("stitch/a join of two people who go apart is undone after kSplitFrames
     const double y = 2.3 + (f < 5 ? 0.0 : 3.0 * static_cast<double>(f - 5) / 30.0);
     zones[1].push_back(MakeFrame(f, {{9, 5.0, y}}));
   }
-  Stitcher stitcher(2, linking::LinkerOptions{});
+  Stitcher stitcher(Names(2), linking::LinkerOptions{});
   const std::vector<SiteFrame> site = StitchAll(&stitcher, zones);
   CHECK(site[0].frame.tracks.size() == 1);  // one person: within kSamePersonApartM
   // The walker passes 1.0 m from the standing person at frame 5 + 7 = 12; three frames later
@@ -145,10 +154,10 @@ TEST_CASE("stitch/a zone's better track takes the global track from its worse on
     if (f >= 3) z1.push_back({5, 5.0, 2.02});
     zones[1].push_back(MakeFrame(f, z1));
   }
-  Stitcher stitcher(2, linking::LinkerOptions{});
+  Stitcher stitcher(Names(2), linking::LinkerOptions{});
   const std::vector<SiteFrame> site = StitchAll(&stitcher, zones);
   REQUIRE(site[2].frame.tracks.size() == 1);
-  CHECK(site[2].zones[0] == std::vector<int>{0, 1});
+  CHECK(site[2].frame.tracks[0].zones == std::vector<int>{0, 1});
   REQUIRE(site[3].frame.tracks.size() == 2);
   CHECK(IdAt(site[3], 5.0, 2.01) == 1);  // the mean of zone 0's 2.0 and zone 1's 2.02
   CHECK(IdAt(site[3], 5.0, 2.35) == 2);
@@ -161,7 +170,7 @@ TEST_CASE("stitch/a zone's better track takes the global track from its worse on
     if (f >= 3) z1.push_back({5, 5.0, 1.98});
     close[1].push_back(MakeFrame(f, z1));
   }
-  Stitcher again(2, linking::LinkerOptions{});
+  Stitcher again(Names(2), linking::LinkerOptions{});
   const std::vector<SiteFrame> kept = StitchAll(&again, close);
   CHECK(IdAt(kept.back(), 5.0, 2.075) == 1);  // zone 1's id 4 stays with the person
 }
@@ -173,11 +182,11 @@ TEST_CASE("stitch/a person first seen by two zones in the same frame gets one id
     zones[1].push_back(MakeFrame(f, {}));
     zones[2].push_back(MakeFrame(f, {{8, 5.1, 2.0}}));
   }
-  Stitcher stitcher(3, linking::LinkerOptions{});
+  Stitcher stitcher(Names(3), linking::LinkerOptions{});
   for (const SiteFrame& s : StitchAll(&stitcher, zones)) {
     REQUIRE(s.frame.tracks.size() == 1);
     CHECK(s.frame.tracks[0].id == 1);
-    CHECK(s.zones[0] == std::vector<int>{0, 2});
+    CHECK(s.frame.tracks[0].zones == std::vector<int>{0, 2});
     CHECK(s.frame.tracks[0].position.x() == Approx(5.05));
   }
 }
@@ -189,7 +198,7 @@ TEST_CASE("stitch/two ids of one person seen apart at first merge into the older
     zones[0].push_back(MakeFrame(f, {{1, 5.0, 2.0}}));
     zones[1].push_back(MakeFrame(f, {{2, 5.0, f < 4 ? 2.8 : 2.1}}));
   }
-  Stitcher stitcher(2, linking::LinkerOptions{});
+  Stitcher stitcher(Names(2), linking::LinkerOptions{});
   const std::vector<SiteFrame> site = StitchAll(&stitcher, zones);
   CHECK(site[0].frame.tracks.size() == 2);
   // Close from frame 4 on: merged at the third close frame.
@@ -215,7 +224,7 @@ TEST_CASE("stitch/a gap between zones is bridged by motion only with re-identifi
     }
     linking::LinkerOptions options;
     options.reid_gate_chi2 = reid_gate_chi2;
-    Stitcher stitcher(2, options);
+    Stitcher stitcher(Names(2), options);
     std::set<TrackId3D> ids;
     for (const SiteFrame& s : StitchAll(&stitcher, zones)) {
       for (const tracker::Track3D& t : s.frame.tracks) ids.insert(t.id);
@@ -238,7 +247,7 @@ TEST_CASE("stitch/ids are forgotten after max_lost_s and never given out again")
     if (f < 100 || f >= 250) z0.push_back({1, 5.0, 2.0});
     zones[0].push_back(MakeFrame(f, z0));
   }
-  Stitcher stitcher(1, linking::LinkerOptions{});
+  Stitcher stitcher(Names(1), linking::LinkerOptions{});
   const std::vector<SiteFrame> site = StitchAll(&stitcher, zones);
   CHECK(site[99].frame.tracks[0].id == 1);
   CHECK(site[150].frame.tracks.empty());

@@ -76,6 +76,10 @@ tracker::Frame3D MakeTracksFrame(std::uint32_t seed, bool pose) {
                                         linking::TrackState::kLost,
                                         linking::TrackState::kConfirmed};
   const std::vector<CameraId> cameras[] = {{2, 0}, {1}, {4, 1, 4}, {0, 1, 2}};
+  // Odd seeds make a stitched site's frame (issue 43): its zones, and which saw each track
+  // (unsorted, with a duplicate: the encoder sorts them).
+  const std::vector<int> zones[] = {{1, 0}, {2}, {0, 2, 0}, {}};
+  if (seed % 2 == 1) frame.zones = {"zone1", "zone2", "dock"};
   for (std::size_t i = 0; i < 4; ++i) {
     tracker::Track3D t;
     t.id = ids[i];
@@ -84,6 +88,7 @@ tracker::Frame3D MakeTracksFrame(std::uint32_t seed, bool pose) {
     t.confidence = FloatExact(&rng, 0.0, 1.0);
     t.cameras = cameras[i];
     t.age_frames = static_cast<std::int64_t>(i) * 17;
+    if (!frame.zones.empty()) t.zones = zones[i];
     if (pose) {
       const int n = core::GetKeypointLayout(core::KeypointLayoutId::kCoco17).num_joints();
       for (int j = 0; j < n; ++j) {
@@ -162,13 +167,15 @@ CameraDetectionsOffsets OffsetsOf(const mvtrack::camera_detections_t& msg) {
 
 Tracks3dOffsets OffsetsOf(const mvtrack::tracks3d_t& msg) {
   // tracks3d_t: fingerprint(8) utime(8) frame(8) publish_utime(8) latency_us(8) layer(1)
-  // string keypoint_layout, int32 num_tracks, tracks[]. track3d_t: id(8) state(1) position(24)
-  // confidence(4) age_frames(4) missed_frames(4) int16 num_cameras, 4 bytes per camera, int16
-  // num_joints, 29 bytes per joint (3 doubles, float, boolean), int16 num_bones, 4 bytes per
-  // bone length.
+  // string keypoint_layout, int16 num_zones, strings zones[], int32 num_tracks, tracks[].
+  // track3d_t: id(8) state(1) position(24) confidence(4) age_frames(4) missed_frames(4) int16
+  // num_cameras, 4 bytes per camera, int16 num_joints, 29 bytes per joint (3 doubles, float,
+  // boolean), int16 num_bones, 4 bytes per bone length, int16 num_zones, 2 bytes per zone.
   Tracks3dOffsets out;
   out.keypoint_layout = 8 + 4 * 8 + 1;
-  out.num_tracks = out.keypoint_layout + 4 + msg.keypoint_layout.size() + 1;
+  out.num_zones = out.keypoint_layout + 4 + msg.keypoint_layout.size() + 1;
+  out.num_tracks = out.num_zones + 2;
+  for (const std::string& zone : msg.zones) out.num_tracks += 4 + zone.size() + 1;
   std::size_t pos = out.num_tracks + 4;
   for (const mvtrack::track3d_t& t : msg.tracks) {
     TrackOffsets o;
@@ -177,7 +184,8 @@ Tracks3dOffsets OffsetsOf(const mvtrack::tracks3d_t& msg) {
     o.num_cameras = o.state + 1 + 24 + 4 + 4 + 4;
     o.num_joints = o.num_cameras + 2 + 4 * t.camera_ids.size();
     o.num_bones = o.num_joints + 2 + 29 * t.joints.size();
-    pos = o.num_bones + 2 + 4 * t.bone_lengths.size();
+    o.num_zones = o.num_bones + 2 + 4 * t.bone_lengths.size();
+    pos = o.num_zones + 2 + 2 * t.zones.size();
     out.tracks.push_back(o);
   }
   out.total = pos;
@@ -238,6 +246,7 @@ std::string DiffCameraFrames(const core::CameraFrame& a, const core::CameraFrame
 std::string DiffFrames3D(const tracker::Frame3D& a, const tracker::Frame3D& b) {
   if (a.frame != b.frame) return "frame";
   if (a.utime != b.utime) return "utime";
+  if (a.zones != b.zones) return "zones";
   if (a.tracks.size() != b.tracks.size()) return "number of tracks";
   for (std::size_t i = 0; i < a.tracks.size(); ++i) {
     const tracker::Track3D& ta = a.tracks[i];
@@ -254,6 +263,7 @@ std::string DiffFrames3D(const tracker::Frame3D& a, const tracker::Frame3D& b) {
     }
     if (ta.cameras != tb.cameras) return Where("track", i) + ".cameras";
     if (ta.age_frames != tb.age_frames) return Where("track", i) + ".age_frames";
+    if (ta.zones != tb.zones) return Where("track", i) + ".zones";
     if (ta.joints.size() != tb.joints.size()) return Where("track", i) + " number of joints";
     for (std::size_t j = 0; j < ta.joints.size(); ++j) {
       if (ta.joints[j].has_value() != tb.joints[j].has_value()) {

@@ -63,11 +63,13 @@ struct TrackOffsets {
   std::size_t num_cameras = 0;  ///< int16
   std::size_t num_joints = 0;   ///< int16
   std::size_t num_bones = 0;    ///< int16
+  std::size_t num_zones = 0;    ///< int16
 };
 
 /// Offsets in an encoded tracks3d_t.
 struct Tracks3dOffsets {
   std::size_t keypoint_layout = 0;  ///< int32 length
+  std::size_t num_zones = 0;        ///< int16
   std::size_t num_tracks = 0;       ///< int32
   std::vector<TrackOffsets> tracks;
   std::size_t total = 0;

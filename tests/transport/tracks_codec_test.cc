@@ -31,6 +31,8 @@ tracker::Frame3D Canonical(tracker::Frame3D frame) {
   for (tracker::Track3D& t : frame.tracks) {
     std::sort(t.cameras.begin(), t.cameras.end());
     t.cameras.erase(std::unique(t.cameras.begin(), t.cameras.end()), t.cameras.end());
+    std::sort(t.zones.begin(), t.zones.end());
+    t.zones.erase(std::unique(t.zones.begin(), t.zones.end()), t.zones.end());
   }
   return frame;
 }
@@ -47,6 +49,8 @@ mvtrack::tracks3d_t ReferenceMessage(const tracker::Frame3D& canonical,
   msg.latency_us = latency_us;
   msg.layer = mvtrack::tracks3d_t::LAYER_FINAL;
   msg.keypoint_layout = layout;
+  msg.num_zones = static_cast<std::int16_t>(canonical.zones.size());
+  msg.zones = canonical.zones;
   msg.num_tracks = static_cast<std::int32_t>(canonical.tracks.size());
   for (const tracker::Track3D& track : canonical.tracks) {
     mvtrack::track3d_t t;
@@ -70,6 +74,8 @@ mvtrack::tracks3d_t ReferenceMessage(const tracker::Frame3D& canonical,
     }
     t.num_bones = static_cast<std::int16_t>(track.bone_lengths.size());
     for (const double b : track.bone_lengths) t.bone_lengths.push_back(static_cast<float>(b));
+    t.num_zones = static_cast<std::int16_t>(track.zones.size());
+    for (const int z : track.zones) t.zones.push_back(static_cast<std::int16_t>(z));
     msg.tracks.push_back(t);
   }
   return msg;
@@ -118,12 +124,15 @@ TEST_CASE("tracks round trip in pose and box mode", "[unit]") {
 
 TEST_CASE("the tracks encoding is byte-identical to the documented wire form", "[unit]") {
   for (const bool pose : {true, false}) {
-    const tracker::Frame3D frame = MakeTracksFrame(2, pose);
-    const std::vector<std::uint8_t> ours = EncodeTracks(
-        frame, pose ? core::KeypointLayoutId::kCoco17 : core::KeypointLayoutId::kNone, 77, 5);
-    const std::vector<std::uint8_t> reference =
-        EncodeLcm(ReferenceMessage(Canonical(frame), pose ? "coco17" : "", 77, 5));
-    CHECK(ours == reference);
+    // Seed 3: a stitched site's frame, with zones.
+    for (const std::uint32_t seed : {2u, 3u}) {
+      const tracker::Frame3D frame = MakeTracksFrame(seed, pose);
+      const std::vector<std::uint8_t> ours = EncodeTracks(
+          frame, pose ? core::KeypointLayoutId::kCoco17 : core::KeypointLayoutId::kNone, 77, 5);
+      const std::vector<std::uint8_t> reference =
+          EncodeLcm(ReferenceMessage(Canonical(frame), pose ? "coco17" : "", 77, 5));
+      CHECK(ours == reference);
+    }
   }
 }
 
@@ -230,7 +239,45 @@ TEST_CASE("track structure errors name the track and field", "[unit]") {
     PutBigEndian(&bytes, offsets.tracks[i].num_bones, 18, 2);
     RequireRejected(
         bytes, DecodeStatus::kMalformed, prefix + "num_bones 18 is neither 0 nor the 19 bones");
+    bytes = good;
+    PutBigEndian(&bytes, offsets.tracks[i].num_zones, 0xFFFF, 2);
+    RequireRejected(bytes, DecodeStatus::kMalformed, prefix + "num_zones -1 is negative");
+    PutBigEndian(&bytes, offsets.tracks[i].num_zones, 300, 2);
+    RequireRejected(bytes, DecodeStatus::kLimitExceeded, prefix + "num_zones 300 exceeds");
+    if (!frame.tracks[i].zones.empty()) {
+      bytes = good;
+      PutBigEndian(&bytes, offsets.tracks[i].num_zones + 2, 3, 2);
+      RequireRejected(bytes,
+                      DecodeStatus::kMalformed,
+                      prefix + "zones[0] = 3 is not an index of the message's 3 zones");
+    }
+    if (frame.tracks[i].zones.size() >= 2) {
+      bytes = good;
+      PutBigEndian(&bytes,
+                   offsets.tracks[i].num_zones + 4,
+                   static_cast<std::uint64_t>(frame.tracks[i].zones[0]),
+                   2);
+      RequireRejected(bytes,
+                      DecodeStatus::kMalformed,
+                      prefix + "zones[1] = " + std::to_string(frame.tracks[i].zones[0]) +
+                          " is not ascending without duplicates");
+    }
   }
+  // The site's zones (seed 5 makes a stitched frame: 3 zones, tracks seen by 0 to 2 of them).
+  REQUIRE(msg.zones.size() == 3);
+  bytes = good;
+  PutBigEndian(&bytes, offsets.num_zones, 0xFFFF, 2);
+  RequireRejected(bytes, DecodeStatus::kMalformed, "num_zones -1 is negative");
+  PutBigEndian(&bytes, offsets.num_zones, 257, 2);
+  RequireRejected(bytes, DecodeStatus::kLimitExceeded, "num_zones 257 exceeds");
+  mvtrack::tracks3d_t unnamed = msg;
+  unnamed.zones[1] = "";
+  bytes = EncodeLcm(unnamed);
+  RequireRejected(bytes, DecodeStatus::kMalformed, "zones[1] is an empty zone name");
+  const TracksDecodeResult zoned = DecodeTracks(good.data(), good.size());
+  REQUIRE(zoned.ok());
+  CHECK(zoned.message.frame.zones == msg.zones);
+  CHECK(DiffFrames3D(zoned.message.frame, frame).empty());
 
   // A joint count that does not match the layout: 17 joints in a box-mode message.
   mvtrack::tracks3d_t box = msg;

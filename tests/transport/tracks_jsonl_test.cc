@@ -89,6 +89,30 @@ TEST_CASE("the canonical line in box mode and of an empty frame", "[unit]") {
         "{\"frame\": 3, \"layout\": \"none\", \"tracks\": [], \"utime\": 4}\n");
 }
 
+TEST_CASE("a stitched site's line names its zones and which saw each track", "[unit]") {
+  tracker::Frame3D frame;
+  frame.frame = 7;
+  frame.utime = 8;
+  frame.zones = {"zone1", "west_hall"};
+  frame.tracks.push_back(MakeTrack(2, Vec3(1.0, 2.0, 0.0)));
+  frame.tracks.push_back(MakeTrack(1, Vec3(3.0, 4.0, 0.0)));
+  frame.tracks[0].zones = {0, 1};
+  frame.tracks[1].zones = {1};
+  const std::string line = TracksJsonLine(frame, core::KeypointLayoutId::kNone);
+  CHECK(line ==
+        "{\"frame\": 7, \"layout\": \"none\", \"tracks\": [{\"id\": 1, \"joints\": [], "
+        "\"position\": [3.0000, 4.0000, 0.0000], \"zones\": [1]}, {\"id\": 2, \"joints\": [], "
+        "\"position\": [1.0000, 2.0000, 0.0000], \"zones\": [0, 1]}], \"utime\": 8, "
+        "\"zones\": [\"zone1\", \"west_hall\"]}\n");
+  std::string why;
+  const std::optional<tracker::Frame3D> back = ParseTracksJsonLine(line, nullptr, &why);
+  REQUIRE(back.has_value());
+  CHECK(back->zones == frame.zones);
+  CHECK(back->tracks[0].zones == std::vector<int>{1});
+  CHECK(back->tracks[1].zones == std::vector<int>{0, 1});
+  CHECK(TracksJsonLine(*back, core::KeypointLayoutId::kNone) == line);
+}
+
 TEST_CASE("tracks are sorted by id", "[unit]") {
   tracker::Frame3D frame;
   for (TrackId3D id : {5, 2, 9, 100, 11}) frame.tracks.push_back(MakeTrack(id, Vec3::Zero()));
@@ -270,7 +294,7 @@ TEST_CASE("the parser rejects malformed lines with a reason", "[unit]") {
       {"{\"frame\": 1, \"frame\": 2, \"layout\": \"none\", \"tracks\": [], \"utime\": 2}",
        "column 14: duplicate key \"frame\""},
       {head + tail.substr(0, tail.size() - 1) + ", \"extra\": 1}",
-       "extra: unknown key \"extra\" (allowed: frame, layout, tracks, utime)"},
+       "extra: unknown key \"extra\" (allowed: frame, layout, tracks, utime, zones)"},
       {head + tail + " x", "column 58: syntax error while parsing value - invalid literal"},
       {head + tail + "\n{}",
        "column 58: syntax error while parsing value - unexpected '{'; expected "
@@ -319,7 +343,20 @@ TEST_CASE("the parser rejects malformed lines with a reason", "[unit]") {
       {head + "{\"id\": 1, \"joints\": 3, \"position\": [1, 2, 3]}" + tail,
        "tracks[0].joints: expected an array, found a number"},
       {head + "{\"id\": 1, \"joints\": [], \"position\": [1, 2, 3], \"cameras\": []}" + tail,
-       "tracks[0].cameras: unknown key \"cameras\" (allowed: bone_lengths, id, joints, position)"},
+       "tracks[0].cameras: unknown key \"cameras\" (allowed: bone_lengths, id, joints, position, "
+       "zones)"},
+      {head + track + "], \"utime\": 2, \"zones\": [\"a\", 3]}",
+       "zones[1]: expected a string, found a number"},
+      {head + track + "], \"utime\": 2, \"zones\": [\"\"]}", "zones[0] is an empty zone name"},
+      {head + track + "], \"utime\": 2, \"zones\": \"a\"}", "zones: expected an array"},
+      {head + "{\"id\": 4, \"joints\": [], \"position\": [1, 2, 3], \"zones\": [1]}" +
+           "], \"utime\": 2, \"zones\": [\"a\"]}",
+       "track id 4: zones must be ascending indices of the line's 1 zones"},
+      {head + "{\"id\": 4, \"joints\": [], \"position\": [1, 2, 3], \"zones\": [1, 0]}" +
+           "], \"utime\": 2, \"zones\": [\"a\", \"b\"]}",
+       "track id 4: zones must be ascending indices of the line's 2 zones"},
+      {head + "{\"id\": 4, \"joints\": [], \"position\": [1, 2, 3], \"zones\": [-1]}" + tail,
+       "tracks[0].zones[0]: "},
       {std::string(head) + "[[[[[[1]]]]]]" + tail, "nesting deeper than 5"},
   };
   for (const auto& [line, needle] : cases) {

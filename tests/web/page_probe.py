@@ -5,7 +5,7 @@ for a phase written @FILE, until FILE exists, e.g. when the daemon stopped a whi
 prints one JSON line with what the page's DOM shows (frame, tracks as id/x/y from the track
 table's data attributes with each track's colour, the floor canvas's pixel where it is drawn
 and its time in view, the floor's scale bar, messages, the page's latency figures, health, connection, camera rows,
-the site's region rows with their counts)
+the site's region rows with their counts, a site's zone rows and which zones see each track)
 and creates the file PHASE_PREFIX.i (so a test can act between phases, e.g. restart the daemon
 while the same page stays open). A PNG screenshot is saved after the first phase.
 
@@ -67,7 +67,10 @@ return JSON.stringify({
   tracks: [...document.querySelectorAll('#tracks tbody tr')].map(r => ({
     id: Number(r.dataset.id), x: Number(r.dataset.x), y: Number(r.dataset.y),
     state: r.cells[1].textContent, color: r.dataset.color, rgb: rgbOf(r.dataset.color), drawn: drawnAt(Number(r.dataset.x), Number(r.dataset.y)),
-    age_s: r.dataset.ageS === '' ? null : Number(r.dataset.ageS)})),
+    age_s: r.dataset.ageS === '' ? null : Number(r.dataset.ageS), zones: r.dataset.zones})),
+  zones: [...document.querySelectorAll('#zones tbody tr')].map(r => ({
+    name: r.dataset.zone, state: r.dataset.state, daemon: r.dataset.daemon})),
+  zones_shown: !document.getElementById('zones-section').hidden,
   scale: {m: Number(floor.dataset.scaleM), px: Number(floor.dataset.scalePx), px_per_m: Number(floor.dataset.pxPerM)},
   latency_p50_ms: Number(document.getElementById('web-latency-p50-ms').textContent),
   latency_max_ms: Number(document.getElementById('web-latency-max-ms').textContent),

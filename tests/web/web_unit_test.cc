@@ -206,6 +206,16 @@ TEST_CASE("tracks event: the documented fields, states, joints as null or [x,y,z
   CHECK(e["tracks"][1]["bone_lengths"] == json::array());
   CHECK(e["tracks"][1]["state"] == "lost");
   CHECK(e["tracks"][1]["position"][0].is_null());  // not finite -> null, still valid JSON
+  CHECK(e["zones"] == json::array());
+  CHECK(a["zones"] == json::array());
+  // A site's stitched output: the site's zones, and per track the zones that saw it, by name.
+  m.frame.zones = {"east", "west"};
+  m.frame.tracks[0].zones = {0, 1};
+  m.frame.tracks[1].zones = {1};
+  const json site = json::parse(TracksEventJson(m));
+  CHECK(site["zones"] == json::array({"east", "west"}));
+  CHECK(site["tracks"][0]["zones"] == json::array({"east", "west"}));
+  CHECK(site["tracks"][1]["zones"] == json::array({"west"}));
 }
 
 TEST_CASE("status event: health, flag names and every camera field", "[unit]") {
@@ -332,6 +342,61 @@ TEST_CASE("metrics: Prometheus text of the status, per camera, and the web count
       CHECK(line.rfind(family, 0) == 0);
     }
   }
+}
+
+TEST_CASE("a site's stitcher status: event, verdict and metrics per zone", "[unit]") {
+  transport::SiteStatus s;
+  s.utime = 1'700'000'010'000'000;
+  s.instance_id = "00aa11bb22cc33dd";
+  s.last_frame = 300;
+  s.active_tracks = 9;
+  s.wait_p99_us = 2'500;
+  transport::ZoneStatus a, b;
+  a.name = "zone1";
+  a.frames = 300;
+  a.latency_us = 170'000;
+  a.daemon_health = 0;
+  b = a;
+  b.name = "zo\"ne2";  // a hostile name is escaped in labels and JSON
+  b.flags = 16;        // DEGRADED
+  b.daemon_health = 1;
+  b.daemon_reasons = "WARNING: camera 4 STALE";
+  s.zones = {a, b};
+  s.flags = 4;  // ZONE_DEGRADED
+  const service::HealthReport h = service::AssessSiteStatus(s);
+  CHECK(h.health == service::Health::kWarning);
+  CHECK(h.reasons == std::vector<std::string>{"zone zo\"ne2 DEGRADED (WARNING: camera 4 STALE)"});
+  const json e = json::parse(SiteStatusEventJson(s));
+  CHECK(e["type"] == "site_status");
+  CHECK(e["health"] == "WARNING");
+  CHECK(e["flags"] == json::array({"ZONE_DEGRADED"}));
+  CHECK(e["last_frame"] == 300);
+  CHECK(e["zones"][1]["name"] == "zo\"ne2");
+  CHECK(e["zones"][1]["daemon_health"] == "WARNING");
+  CHECK(e["zones"][1]["daemon_reasons"] == "WARNING: camera 4 STALE");
+  CHECK(e["zones"][1]["flags"] == json::array({"DEGRADED"}));
+  CHECK(e["zones"][0]["latency_us"] == 170'000);
+
+  const std::string text =
+      PrometheusText(std::nullopt, 0.4, 5.0, WebCounters{}, {service::Health::kOk, {}}, s);
+  CHECK_THAT(text, Catch::Contains("mvtrack_up 1\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_health 1\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_active_tracks 9\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_site_wait_seconds{quantile=\"0.99\"} 0.0025\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_zone_live{zone=\"zone1\"} 1\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_zone_daemon_health{zone=\"zo\\\"ne2\"} 1\n"));
+  CHECK_THAT(text, Catch::Contains("mvtrack_zone_flag{zone=\"zo\\\"ne2\",flag=\"DEGRADED\"} 1\n"));
+  CHECK_THAT(text, !Catch::Contains("mvtrack_camera_"));
+  // Every zone missing: CRITICAL.
+  s.zones[0].flags = 2;
+  s.zones[1].flags = 1;
+  CHECK(service::AssessSiteStatus(s).health == service::Health::kCritical);
+  CHECK(service::AssessSiteStatus(s).reasons.at(0) == "0 of 2 zones live");
+  // Stale like a tracker's: down, UNKNOWN, no zone values.
+  const std::string stale =
+      PrometheusText(std::nullopt, 6.0, 5.0, WebCounters{}, {service::Health::kOk, {}}, s);
+  CHECK_THAT(stale, Catch::Contains("mvtrack_health 3\n"));
+  CHECK_THAT(stale, !Catch::Contains("mvtrack_zone_"));
 }
 
 }  // namespace

@@ -762,7 +762,7 @@ int RunReplay(int argc, char** argv) {
         tolerance = tolerance == 0 ? *half : std::min(tolerance, *half);
       }
     }
-    stitch::Stitcher stitcher(static_cast<int>(zones.size()), options.linking);
+    stitch::Stitcher stitcher(config::ZoneNames(zones), options.linking);
     const auto stitch_start = Clock::now();
     for (const stitch::ZoneFrames& group :
          stitch::AlignZoneFrames(zone_frames, tolerance > 0 ? tolerance : 1)) {

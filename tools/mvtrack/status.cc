@@ -24,7 +24,9 @@ double SteadySeconds() {
 
 struct Received {
   explicit Received(double window_s) : source(window_s) {}
-  std::optional<transport::TrackerStatus> status;  // the latest
+  // The latest status: a tracker's, or a site stitcher's (issue 43).
+  std::optional<transport::TrackerStatus> status;
+  std::optional<transport::SiteStatus> site;
   int count = 0;
   std::string error;  // the last decode error
   service::StatusSourceWatch source;
@@ -35,11 +37,27 @@ void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&, Received* out)
       transport::DecodeTrackerStatus(rbuf->data, rbuf->data_size);
   if (d.ok()) {
     out->status = d.message;
+    out->site.reset();
     ++out->count;
     out->source.Add(d.message, SteadySeconds());
-  } else {
-    out->error = d.reason;
+    return;
   }
+  if (d.status == transport::DecodeStatus::kBadFingerprint) {
+    const transport::SiteStatusDecodeResult site =
+        transport::DecodeSiteStatus(rbuf->data, rbuf->data_size);
+    if (site.ok()) {
+      out->site = site.message;
+      out->status.reset();
+      ++out->count;
+      out->source.Add({site.message.instance_id, site.message.sequence}, SteadySeconds());
+      return;
+    }
+    if (site.status != transport::DecodeStatus::kBadFingerprint) {
+      out->error = site.reason;
+      return;
+    }
+  }
+  out->error = d.reason;
 }
 
 std::string Seconds(double s) {
@@ -147,6 +165,62 @@ void Print(const transport::TrackerStatus& s, const service::HealthReport& h) {
   }
 }
 
+void PrintSite(const transport::SiteStatus& s, const service::HealthReport& h) {
+  std::printf("mvtrack status: %s\n", service::HealthLine(h).c_str());
+  std::printf("site stitcher %s, up %s, instance %s, status #%lld\n",
+              s.version.c_str(),
+              Seconds(static_cast<double>(s.uptime_us) / 1e6).c_str(),
+              s.instance_id.empty() ? "-" : s.instance_id.c_str(),
+              static_cast<long long>(s.sequence));
+  std::printf(
+      "site frame %lld, %d global tracks, %lld global ids given out, joins undone %lld, ids "
+      "merged %lld\n",
+      static_cast<long long>(s.last_frame),
+      s.active_tracks,
+      static_cast<long long>(s.global_ids),
+      static_cast<long long>(s.splits),
+      static_cast<long long>(s.merges));
+  std::printf("site flags: %s; stitching waited p50 %s ms, p99 %s ms, max %s ms (%d frames)\n",
+              Join(transport::SiteFlagNames(s.flags)).c_str(),
+              Ms(s.wait_p50_us).c_str(),
+              Ms(s.wait_p99_us).c_str(),
+              Ms(s.wait_max_us).c_str(),
+              s.num_wait_samples);
+  int live = 0;
+  for (const transport::ZoneStatus& z : s.zones) live += (z.flags & 3) == 0 ? 1 : 0;
+  std::printf("zones: %d of %zu live\n", live, s.zones.size());
+  std::printf("  %-12s %-24s %8s %6s %7s %10s %9s %6s %-8s  %s\n",
+              "zone",
+              "channel",
+              "frames",
+              "late",
+              "decode",
+              "latency ms",
+              "last msg",
+              "tracks",
+              "daemon",
+              "flags");
+  for (const transport::ZoneStatus& z : s.zones) {
+    const std::string age =
+        z.last_receive_utime > 0
+            ? Seconds((static_cast<double>(s.utime) - static_cast<double>(z.last_receive_utime)) /
+                      1e6)
+            : "never";
+    std::printf("  %-12s %-24s %8lld %6lld %7lld %10s %9s %6d %-8s  %s\n",
+                z.name.c_str(),
+                z.channel.c_str(),
+                static_cast<long long>(z.frames),
+                static_cast<long long>(z.late),
+                static_cast<long long>(z.decode_errors),
+                Ms(z.latency_us).c_str(),
+                age.c_str(),
+                z.tracks,
+                service::ToString(static_cast<service::Health>(z.daemon_health)),
+                Join(transport::ZoneFlagNames(z.flags)).c_str());
+    if (!z.daemon_reasons.empty()) std::printf("    %s\n", z.daemon_reasons.c_str());
+  }
+}
+
 }  // namespace
 
 int RunStatus(int argc, char** argv) {
@@ -165,6 +239,9 @@ int RunStatus(int argc, char** argv) {
                   "listens one and a half status periods more, to see the next status: a second\n"
                   "daemon on the channel, or a status sequence going backwards (replayed or\n"
                   "forged statuses), is CRITICAL; a restart seen meanwhile is a WARNING.\n"
+                  "On a site split into zones (SCALING.md) the stitcher's status comes on the\n"
+                  "same channel: the site's health, and per zone whether it is live or stale,\n"
+                  "its frames, latency and flags, and its zone daemon's own health.\n"
                   "Exit status (the monitoring-plugin convention): 0 OK, 1 WARNING, 2 CRITICAL,\n"
                   "3 UNKNOWN (no status within the timeout, or LCM failed).")) {
     return 0;
@@ -192,10 +269,11 @@ int RunStatus(int argc, char** argv) {
   bool listening_on = false;
   while (true) {
     const auto now = std::chrono::steady_clock::now();
-    if (received.status && !listening_on) {
+    if ((received.status || received.site) && !listening_on) {
       listening_on = true;
-      const double period_s =
-          std::clamp(static_cast<double>(received.status->period_us) / 1e6, 0.2, 5.0);
+      const std::int64_t period_us =
+          received.status ? received.status->period_us : received.site->period_us;
+      const double period_s = std::clamp(static_cast<double>(period_us) / 1e6, 0.2, 5.0);
       until = std::min(
           deadline, now + std::chrono::microseconds(static_cast<std::int64_t>(1.5e6 * period_s)));
     }
@@ -205,6 +283,12 @@ int RunStatus(int argc, char** argv) {
       std::printf("mvtrack status: UNKNOWN: LCM receive failed on %s\n", args.Get("url").c_str());
       return 3;
     }
+  }
+  if (received.site) {
+    const service::HealthReport h = service::Combine(service::AssessSiteStatus(*received.site),
+                                                     received.source.Assess(SteadySeconds()));
+    PrintSite(*received.site, h);
+    return static_cast<int>(h.health);
   }
   if (!received.status) {
     std::printf("mvtrack status: UNKNOWN: no status message on %s within %s (%s)%s\n",

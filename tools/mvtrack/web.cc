@@ -39,7 +39,9 @@ int RunWeb(int argc, char** argv) {
               "channel of the provisional layer (tracks3d_t, LAYER_PROVISIONAL); the page shows "
               "it while it arrives, else the final tracks; '' = not subscribed",
               "MVTRACK_TRACKS_NOW")
-      .Option("status-channel", "channel of the tracker_status_t messages", "MVTRACK_STATUS")
+      .Option("status-channel",
+              "channel of the tracker_status_t (or a site stitcher's site_status_t) messages",
+              "MVTRACK_STATUS")
       .Option(
           "events-channel", "channel of the analytics_event_t messages", "MVTRACK_ANALYTICS_EVENTS")
       .Option("counts-channel", "channel of the site_counts_t messages", "MVTRACK_SITE_COUNTS")
@@ -63,6 +65,9 @@ int RunWeb(int argc, char** argv) {
                   "             and of the site's counts (occupancy, entries, exits, crossings,\n"
                   "             dwell);\n"
                   "  /healthz   200 when tracking (OK or WARNING), 503 with the reason when not.\n"
+                  "On a site split into zones (SCALING.md) it serves the stitcher's output the\n"
+                  "same way: the site's tracks with the zones that see each person, and the\n"
+                  "site's status with a row per zone instead of the cameras.\n"
                   "Runs until SIGINT or SIGTERM. The page needs nothing from the internet.")) {
     return 0;
   }

@@ -32,6 +32,8 @@ inline constexpr std::size_t kInt32Bytes = 4;
 inline constexpr std::size_t kInt64Bytes = 8;
 inline constexpr std::size_t kFloatBytes = 4;
 inline constexpr std::size_t kDoubleBytes = 8;
+/// The smallest LCM string: its int32 length and the NUL.
+inline constexpr std::size_t kMinStringBytes = kInt32Bytes + 1;
 
 /// Walks encoded bytes front to back. Every Read* returns false once a problem was found (and
 /// keeps returning false), so callers can chain reads and check once.
