@@ -28,6 +28,13 @@ void WindowBuilder::FixGeometry() {
   window_step_ = o.window_step;
   min_tracklet_length_ = o.min_tracklet_length;
   geometry_fixed_ = true;
+  // The grid starts at the multiple of δ at or before the stream's first frame, so trackers of
+  // one camera stream that started at different frames (a site's zone daemons, a restarted
+  // daemon) close the same windows at the same time. No window has begun yet.
+  if (grid_origin_) {
+    const FrameIndex r = *grid_origin_ % window_step_;
+    grid_origin_ = *grid_origin_ - (r < 0 ? r + window_step_ : r);
+  }
 }
 
 std::size_t WindowBuilder::num_stored_observations() const {

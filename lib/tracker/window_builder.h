@@ -47,7 +47,9 @@ using BuilderOutput = std::variant<ClosedFrame, WindowJob, StreamEnd>;
 /// with ν, δ (and the minimum tracklet length) of AtFrameRate(options, SecondsPerFrame()) fixed
 /// per stream once three of its frames are closed (or at its end), so a 2 fps stream gets
 /// windows as long in seconds as a 25 fps one; until then no window is emitted;
-/// F0 = the first frame of the stream. A window is emitted once its last frame is closed or, for
+/// F0 = the multiple of δ at or before the first frame of the stream (a tracker of the same
+/// camera stream that started later, e.g. another zone of a site, has the same windows). A
+/// window is emitted once its last frame is closed or, for
 /// frames skipped in the input, once a later frame opens. Window k finalizes
 /// [F0 + kδ + ⌊(ν−δ)/2⌋, F0 + kδ + ⌊(ν−δ)/2⌋ + δ) (window 0 from F0). At the end of a stream
 /// (re-anchor or Flush) every window that begins at or before the last closed frame is emitted,
@@ -122,7 +124,7 @@ class WindowBuilder {
   std::vector<FrameView> open_views_;  // keep_frame_views_: the open frame's observations
 
   // Window grid.
-  std::optional<FrameIndex> grid_origin_;  // F0
+  std::optional<FrameIndex> grid_origin_;  // the stream's first frame, then F0 (FixGeometry)
   std::int64_t window_id_offset_ = 0;      // added to grid window indices (re-anchoring)
   std::int64_t next_window_ = 0;           // grid index of the next window to emit
   std::optional<FrameIndex> last_closed_frame_;

@@ -78,7 +78,9 @@ unshare -n bash -euc '
   LOGGER=$!
   "$MVTRACKD" --config "$OUT/zone1.yaml" --workers 1 > "$OUT/zone1.log" 2>&1 &
   Z1=$!
-  "$MVTRACKD" --config "$OUT/zone2.yaml" --workers 1 > "$OUT/zone2.log" 2>&1 &
+  # zone2 starts 1.1 s after the cameras (frame 33, not a multiple of the window step): its
+  # window grid must still be the one of zone1, or the site frames wait for it (a window step).
+  (sleep 1.1; exec "$MVTRACKD" --config "$OUT/zone2.yaml" --workers 1 > "$OUT/zone2.log" 2>&1) &
   Z2=$!
   "$STITCHER" --zones "$S/zones/zones.yaml" --lcm-url "$URL" --wait-ms 500 --stale-ms 2000 \
     --tracks-jsonl "$OUT/live.jsonl" --status-jsonl "$OUT/live_status.jsonl" > "$OUT/stitcher.log" 2>&1 &
@@ -88,13 +90,14 @@ unshare -n bash -euc '
     chromium --headless --no-sandbox --disable-gpu --remote-debugging-port=19223 \
       --window-size=1400,820 about:blank > "$OUT/chromium.log" 2>&1 &
     for _ in $(seq 100); do grep -q "serving http" "$OUT/web.log" && break; sleep 0.1; done
-    # Phase 1 after 60 site frames (both zones live), phase 2 once zone2 was seen stale.
+    # Phase 1 after 150 site frames (5 s: both zones live, zone2 has caught up after its late
+    # start), phase 2 once zone2 was seen stale.
     /usr/bin/python3 "$SRC/tests/web/page_probe.py" 19223 http://127.0.0.1:18081/ 30 \
-      "$OUT/page.png" "$OUT/phase" 60 "@$OUT/status_stale.code" > "$OUT/probe.jsonl" \
+      "$OUT/page.png" "$OUT/phase" 150 "@$OUT/status_stale.code" > "$OUT/probe.jsonl" \
       2> "$OUT/probe.err" &
   fi
   for _ in $(seq 100); do
-    grep -q "input udpm" "$OUT/zone1.log" && grep -q "input udpm" "$OUT/zone2.log" && break
+    grep -q "input udpm" "$OUT/zone1.log" && break
     sleep 0.1
   done
   sleep 0.3
@@ -182,8 +185,10 @@ assert seen and all(z and z == sorted(set(z)) for z in seen), seen[:5]
 print("track-frames seen by both zones: %d of %d" % (sum(len(z) == 2 for z in seen), len(seen)))
 assert any(len(z) == 2 for z in seen), "no person seen by both zones"
 both = [s["wait_ms"]["p99"] for s in status
-        if s["site_frames"] > 0 and all(z["state"] == "live" for z in s["zones"])]
+        if s["site_frames"] > 0 and s["utime"] < killed_us and s["flags"] == []
+        and all(z["state"] == "live" for z in s["zones"])]
 print("site frames waited for the zones, p99 per status second while both were live: %s ms" % both)
-assert both and max(both) <= 1000.0, "a site frame waited longer than --wait-ms"
+# The first second with both live still holds frames that waited for zone2's first frames.
+assert len(both) >= 4 and max(both[1:]) <= 50.0, "stitching added more than 50 ms at p99"
 PY
 echo "ok"

@@ -230,17 +230,41 @@ TEST_CASE("WindowBuilder: window grid, finalize ranges partition the closed fram
   }
   CHECK(stream_ends == 1);
   CHECK(closed_at.size() == frames.size());
-  // Window k covers [F0 + kδ, F0 + kδ + ν) (cut at the last frame) and finalizes its middle δ.
-  REQUIRE(jobs.size() == 5);  // begins 7, 27, 47, 67, 87 (<= 106)
+  // Window k covers [F0 + kδ, F0 + kδ + ν) (cut at the last frame), F0 the multiple of δ at or
+  // before the first frame, and finalizes its middle δ (window 0 from F0).
+  const FrameIndex origin = 0;  // 7 - 7 % 20
+  REQUIRE(jobs.size() == 6);    // begins 0, 20, 40, 60, 80, 100 (<= 106)
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     const auto ki = static_cast<std::int64_t>(k);
     INFO("window " << k);
     CHECK(jobs[k].window_id == ki);
-    CHECK(jobs[k].begin == first + ki * delta);
-    CHECK(jobs[k].end == std::min(first + ki * delta + nu, last + 1));
-    CHECK(jobs[k].finalize_from == (k == 0 ? first : first + ki * delta + half));
+    CHECK(jobs[k].begin == origin + ki * delta);
+    CHECK(jobs[k].end == std::min(origin + ki * delta + nu, last + 1));
+    CHECK(jobs[k].finalize_from == (k == 0 ? origin : origin + ki * delta + half));
     CHECK(jobs[k].finalize_to ==
-          (k + 1 == jobs.size() ? last + 1 : first + ki * delta + half + delta));
+          (k + 1 == jobs.size() ? last + 1 : origin + ki * delta + half + delta));
+  }
+  // A tracker of the same stream that started later (a site's other zone, a restarted daemon;
+  // frames 33 and 41) has the same windows over the frames both saw.
+  for (const FrameIndex later : {FrameIndex{33}, FrameIndex{41}}) {
+    INFO("stream from frame " << later);
+    std::vector<FrameIndex> tail;
+    for (FrameIndex f = later; f <= last; ++f) tail.push_back(f);
+    std::vector<tracker::WindowJob> again;
+    for (const tracker::BuilderOutput& o : BuildHeadersOnly(rig, options, tail, true)) {
+      if (const auto* j = std::get_if<tracker::WindowJob>(&o)) again.push_back(*j);
+    }
+    REQUIRE(!again.empty());
+    CHECK(again.front().begin == (later == 33 ? 20 : 40));
+    for (const tracker::WindowJob& j : again) {
+      CHECK((j.begin - origin) % delta == 0);
+      for (const tracker::WindowJob& k : jobs) {
+        if (k.begin == j.begin && j.begin > later) {
+          CHECK(k.end == j.end);
+          CHECK(k.finalize_to == j.finalize_to);
+        }
+      }
+    }
   }
   // Every closed frame is finalized by exactly one window.
   for (FrameIndex f : frames) {
