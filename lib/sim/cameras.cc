@@ -61,6 +61,26 @@ std::vector<geometry::CameraModel> GridCameras(const SceneOptions& o) {
   return cameras;
 }
 
+std::vector<geometry::CameraModel> CorridorCameras(const SceneOptions& o) {
+  std::vector<geometry::CameraModel> cameras;
+  const double w = o.room_width_m, d = o.room_depth_m;
+  for (int i = 0; i < o.num_cameras; ++i) {
+    const double x = w * (i + 0.5) / o.num_cameras;
+    const bool far_wall = i % 2 == 1;
+    // Pairs of cameras (one per wall) look ahead, the next pair back.
+    const double along = ((i / 2) % 2 == 0 ? 0.5 : -0.5) * d;
+    const Vec3 center(x, far_wall ? d : 0.0, o.camera_height_m);
+    const double yaw = std::atan2((far_wall ? 0.25 * d : 0.75 * d) - center.y(),
+                                  std::clamp(x + along, 0.0, w) - x);
+    const double pitch = o.grid_pitch_deg * kDeg;
+    const Vec3 forward(
+        std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), -std::sin(pitch));
+    cameras.push_back(
+        MakeCamera(i, o.image_width_px, o.image_height_px, o.horizontal_fov_deg, center, forward));
+  }
+  return cameras;
+}
+
 }  // namespace
 
 geometry::CameraModel MakeCamera(CameraId id,
@@ -98,7 +118,15 @@ geometry::CameraModel MakeCamera(CameraId id,
 std::vector<geometry::CameraModel> MakeCameras(const SceneOptions& options) {
   std::string why;
   MVTRACK_CHECK_MSG(options.Validate(&why), why.c_str());
-  return options.camera_layout == CameraLayout::kRing ? RingCameras(options) : GridCameras(options);
+  switch (options.camera_layout) {
+    case CameraLayout::kRing:
+      return RingCameras(options);
+    case CameraLayout::kCeilingGrid:
+      return GridCameras(options);
+    case CameraLayout::kCorridor:
+      return CorridorCameras(options);
+  }
+  return {};
 }
 
 }  // namespace mvtrack::sim

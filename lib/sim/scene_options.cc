@@ -39,7 +39,8 @@ bool SceneOptions::Validate(std::string* why) const {
     return fail("room_width_m and room_depth_m must be in [2, 1000]");
   }
   if (num_cameras < 1 || num_cameras > 4096) return fail("num_cameras must be in [1, 4096]");
-  if (camera_layout != CameraLayout::kRing && camera_layout != CameraLayout::kCeilingGrid) {
+  if (camera_layout != CameraLayout::kRing && camera_layout != CameraLayout::kCeilingGrid &&
+      camera_layout != CameraLayout::kCorridor) {
     return fail("camera_layout is not a known CameraLayout");
   }
   if (!finite(camera_height_m) || camera_height_m < 0.5 || camera_height_m > 100.0) {

@@ -21,6 +21,12 @@ enum class CameraLayout {
   /// over the width), each pitched `grid_pitch_deg` below the horizontal and yawed diagonally so
   /// neighbouring cameras look in different directions and border cameras look into the room.
   kCeilingGrid,
+  /// Along the two long walls of a corridor (issue 43: a site too long for one tracker): cameras
+  /// alternate between the walls y = 0 and y = D, evenly spaced over the width W, at
+  /// `camera_height_m`, each pitched `grid_pitch_deg` down and turned towards the far half of
+  /// the corridor half a corridor depth ahead or behind (alternating in pairs), so every
+  /// stretch is seen from both walls and both directions and each camera sees local floor.
+  kCorridor,
 };
 
 /// Everything that defines a synthetic scene. The same options always produce the identical
@@ -45,7 +51,7 @@ struct SceneOptions {
   double horizontal_fov_deg = 80.0;
   /// kRing: height of the point at the room centre the cameras look at.
   double look_at_height_m = 1.0;
-  /// kCeilingGrid: pitch of every camera below the horizontal (90 = straight down).
+  /// kCeilingGrid, kCorridor: pitch of every camera below the horizontal (90 = straight down).
   double grid_pitch_deg = 40.0;
 
   // --- People. ----------------------------------------------------------------------------------

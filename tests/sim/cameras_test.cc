@@ -144,5 +144,55 @@ TEST_CASE("ceiling grid cameras are above the room, pitched down, and cover the 
   }
 }
 
+TEST_CASE("corridor cameras are on the long walls and see local floor from both walls",
+          "[unit][sim]") {
+  SceneOptions o;
+  o.camera_layout = CameraLayout::kCorridor;
+  o.num_cameras = 32;
+  o.room_width_m = 48.0;
+  o.room_depth_m = 6.0;
+  o.camera_height_m = 3.0;
+  o.image_width_px = 1280;
+  o.image_height_px = 720;
+  o.horizontal_fov_deg = 80.0;
+  o.num_people = 1;
+  o.grid_pitch_deg = 35.0;  // mvtrack sim --layout corridor's
+  const std::vector<geometry::CameraModel> cams = MakeCameras(o);
+  REQUIRE(cams.size() == 32);
+  for (std::size_t i = 0; i < cams.size(); ++i) {
+    INFO("camera " << i);
+    std::string why;
+    REQUIRE(cams[i].Validate(&why));
+    const Vec3 c = cams[i].CenterInWorld();
+    CHECK(c.z() == Approx(3.0));
+    CHECK(c.x() == Approx(48.0 * (static_cast<double>(i) + 0.5) / 32.0));
+    CHECK(c.y() == Approx(i % 2 == 0 ? 0.0 : 6.0).margin(1e-9));  // alternating walls
+    const Vec3 forward = cams[i].cam_from_world.rotation.row(2).transpose();
+    CHECK(forward.z() == Approx(-std::sin(o.grid_pitch_deg * std::numbers::pi / 180.0)));
+    CHECK((i % 2 == 0 ? forward.y() > 0.0 : forward.y() < 0.0));  // across the corridor
+  }
+  // Every point at chest height of the walkable corridor (but its two far corners) is seen by
+  // at least two cameras, and away from the walls (1 m) and the ends (2 m) by cameras of both
+  // walls; no camera sees chest height farther than 15 m along the corridor.
+  for (double x = 0.5; x <= 47.5 + 1e-9; x += 0.5) {
+    for (double y = 0.5; y <= 5.5 + 1e-9; y += 0.5) {
+      int wall0 = 0, wall1 = 0;
+      for (const auto& cam : cams) {
+        const auto px = cam.Project(Vec3(x, y, 1.2));
+        if (!px || !cam.InImage(*px)) continue;
+        const Vec3 c = cam.CenterInWorld();
+        CHECK(std::abs(c.x() - x) < 15.0);
+        (c.y() < 1.0 ? wall0 : wall1) += 1;
+      }
+      INFO("at " << x << ", " << y);
+      if (x >= 1.0 && x <= 47.0) CHECK(wall0 + wall1 >= 2);
+      if (y >= 1.0 && y <= 5.0 && x >= 2.0 && x <= 46.0) {
+        CHECK(wall0 >= 1);
+        CHECK(wall1 >= 1);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mvtrack::sim

@@ -60,13 +60,18 @@ void DeclareSceneOptions(Args* args) {
       .Option("seed", "simulation seed (everything random derives from it)", "1")
       .Option("layout",
               "camera mounting: 'auto' (ring up to 8 cameras on a floor side <= 10 m, else "
-              "ceiling grid), 'ring' or 'grid'",
+              "ceiling grid), 'ring', 'grid', or 'corridor' (along the two long walls of a "
+              "floor WIDTH long, alternating, each looking across and along; e.g. --room 96x6)",
               "auto")
       .Option("room", "floor size WIDTHxDEPTH in metres (default: 4 m^2 per person, >= 6x6)")
-      .Option("camera-height", "camera height in metres (default: 3 ring, 4 grid)")
-      .Option("image", "image size WIDTHxHEIGHT in pixels (default: 1280x720 ring, 1920x1080 grid)")
-      .Option("fov", "horizontal field of view in degrees (default: 80 ring, 90 grid)")
-      .Option("grid-pitch", "ceiling grid: camera pitch below the horizontal, degrees (default 50)")
+      .Option("camera-height", "camera height in metres (default: 3 ring and corridor, 4 grid)")
+      .Option(
+          "image",
+          "image size WIDTHxHEIGHT in pixels (default: 1280x720 ring and corridor, 1920x1080 grid)")
+      .Option("fov", "horizontal field of view in degrees (default: 80 ring and corridor, 90 grid)")
+      .Option("grid-pitch",
+              "ceiling grid and corridor: camera pitch below the horizontal, degrees (default 50 "
+              "grid, 35 corridor)")
       .Option("fps", "frame rate", "30")
       .Option("noise-px", "pixel noise (Gaussian sigma) on box edges and keypoints", "1.5")
       .Option("miss-rate", "probability that a visible person is not detected in a view", "0.05")
@@ -135,8 +140,19 @@ sim::SceneOptions SceneOptionsFromArgs(const Args& args) {
     o.image_width_px = ref.image_width_px;
     o.image_height_px = ref.image_height_px;
     o.horizontal_fov_deg = ref.horizontal_fov_deg;
+  } else if (layout == "corridor") {
+    // Wall cameras as in the ring (3 m, 1280x720, 80 deg), pitched 35 deg down: each sees
+    // local floor (from 1.7 m off its wall; chest height within 15 m along the corridor), every
+    // point but the far corners seen by two or more (tests/sim/cameras_test.cc).
+    const sim::SceneOptions ref = sim::SizedScene(2, 2, true, 1);
+    o.camera_layout = sim::CameraLayout::kCorridor;
+    o.camera_height_m = ref.camera_height_m;
+    o.image_width_px = ref.image_width_px;
+    o.image_height_px = ref.image_height_px;
+    o.horizontal_fov_deg = ref.horizontal_fov_deg;
+    o.grid_pitch_deg = 35.0;
   } else if (layout != "auto") {
-    throw UsageError("--layout must be 'auto', 'ring' or 'grid'");
+    throw UsageError("--layout must be 'auto', 'ring', 'grid' or 'corridor'");
   }
   if (args.Has("camera-height")) o.camera_height_m = args.GetDouble("camera-height");
   if (args.Has("image")) {
@@ -235,7 +251,9 @@ std::string DescribeScene(const sim::SceneOptions& o) {
                 "%d frames at %.0f fps, %s; noise %.1f px, miss %.2f, false positives %.2f/frame, "
                 "occlusion %s%s, seed %llu",
                 o.num_cameras,
-                o.camera_layout == sim::CameraLayout::kRing ? "ring" : "ceiling grid",
+                o.camera_layout == sim::CameraLayout::kRing          ? "ring"
+                : o.camera_layout == sim::CameraLayout::kCeilingGrid ? "ceiling grid"
+                                                                     : "corridor walls",
                 o.image_width_px,
                 o.image_height_px,
                 o.horizontal_fov_deg,
