@@ -241,6 +241,16 @@ class AllPairs {
         }
       }
       for (std::size_t h = g + 1; h < num_groups; ++h) {
+        if (!rig_.SharesView(group_camera_[g], group_camera_[h])) {
+          // Cameras that never see one place: at a common frame not one person (∞, as two
+          // tracklets of one camera), else ∅.
+          for (std::size_t a = group_begin_[g]; a < group_begin_[g + 1]; ++a) {
+            for (std::size_t b = group_begin_[h]; b < group_begin_[h + 1]; ++b) {
+              if (HaveCommonFrame(a, b)) Set(&matrix, a, b, TrackletDistance::Infinite());
+            }
+          }
+          continue;
+        }
         ComputeLines(g, rig_.fundamental(group_camera_[g], group_camera_[h]), &lines_a_);
         ComputeLines(h, rig_.fundamental(group_camera_[h], group_camera_[g]), &lines_b_);
         if (options_.floor_point >= 0) {
@@ -522,6 +532,13 @@ TrackletDistance ComputeTrackletDistance(const geometry::CameraRig& rig,
   MVTRACK_CHECK_MSG(ia.has_value() && ib.has_value(),
                     "ComputeTrackletDistance: a tracklet's camera is not in the rig");
   if (*ia == *ib) return PairDistance(a, b, Mat3::Zero(), nullptr, options);
+  if (!rig.SharesView(*ia, *ib)) {
+    // Cameras that never see one place: at a common frame not one person, else ∅.
+    const bool common =
+        std::find_first_of(a.frames.begin(), a.frames.end(), b.frames.begin(), b.frames.end()) !=
+        a.frames.end();
+    return common ? TrackletDistance::Infinite() : TrackletDistance::Empty();
+  }
   const FloorPair floor{&rig.camera(*ia), &rig.camera(*ib), options.floor_height_m};
   return PairDistance(
       a, b, rig.fundamental(*ia, *ib), options.floor_point >= 0 ? &floor : nullptr, options);

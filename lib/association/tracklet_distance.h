@@ -95,7 +95,9 @@ TrackletDistance ComputeTrackletDistance(const core::Tracklet2D& a,
 /// point's term is the mean of |T_ab(x_a) - x_b| / |w_b + h_b| and |T_ba(x_b) - x_a| / |w_a +
 /// h_a|, where T carries a pixel over the floor plane into the other camera; a frame's floor
 /// point is not used when either transfer does not exist (a ray that misses the floor in front
-/// of its camera, a floor point behind the other). Both cameras must be in `rig` (checked).
+/// of its camera, a floor point behind the other). Two cameras that the rig says never see one
+/// place (CameraRig::SharesView, computed by the tracker) give ∞ with a common frame (they
+/// cannot see one person at once), else ∅. Both cameras must be in `rig` (checked).
 TrackletDistance ComputeTrackletDistance(const geometry::CameraRig& rig,
                                          const core::Tracklet2D& a,
                                          const core::Tracklet2D& b,

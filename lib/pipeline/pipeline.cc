@@ -63,7 +63,7 @@ Pipeline::Pipeline(geometry::CameraRig rig,
                    const Clock& clock,
                    FrameCallback on_frame,
                    FrameCallback on_provisional)
-    : rig_(std::move(rig)),
+    : rig_(tracker::WithSharedViews(std::move(rig), options)),
       options_(std::move(options)),
       pipeline_options_(pipeline_options),
       clock_(clock),

@@ -107,6 +107,11 @@ TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_fra
   return o;
 }
 
+geometry::CameraRig WithSharedViews(geometry::CameraRig rig, const TrackerOptions& options) {
+  rig.ComputeSharedViews(options.ground_height_m);
+  return rig;
+}
+
 association::AssociationOptions AssociationOptionsInEffect(const TrackerOptions& options) {
   association::AssociationOptions ao = options.association;
   if (options.mode == InputMode::kBoxes && !options.box_ends_in_association) ao.num_points = 1;

@@ -9,6 +9,7 @@
 #include "association/options.h"
 #include "core/appearance.h"
 #include "core/keypoint_layout.h"
+#include "geometry/camera_rig.h"
 #include "linking/window_linker.h"
 #include "tracking2d/sort_tracker.h"
 #include "triangulation/refinement.h"
@@ -131,6 +132,12 @@ TrackerOptions AtFrameRate(const TrackerOptions& options, double seconds_per_fra
 /// points (one point, or the feet compared on the floor at ground_height_m) and the appearance
 /// weights of `options` applied.
 association::AssociationOptions AssociationOptionsInEffect(const TrackerOptions& options);
+
+/// `rig` with the pairs of cameras that can see one place marked
+/// (geometry::CameraRig::ComputeSharedViews for a person on the floor z = ground_height_m):
+/// the rig a tracker associates with, so tracklets of two cameras that never see one place
+/// are never one person (issue 43, docs/DECISIONS.md "Cameras that never see one place").
+geometry::CameraRig WithSharedViews(geometry::CameraRig rig, const TrackerOptions& options);
 
 /// AtFrameRate(options, seconds_per_frame).sort, without copying the rest.
 tracking2d::SortOptions SortOptionsAtFrameRate(const TrackerOptions& options,

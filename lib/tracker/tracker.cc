@@ -21,7 +21,7 @@ std::unique_ptr<Tracker> Tracker::Create(geometry::CameraRig rig,
 }
 
 Tracker::Tracker(geometry::CameraRig rig, TrackerOptions options, bool provisional)
-    : rig_(std::move(rig)),
+    : rig_(WithSharedViews(std::move(rig), options)),
       options_(std::move(options)),
       num_points_(NumPoints(options_)),
       gate_(rig_, options_),

@@ -319,6 +319,31 @@ TEST_CASE("ComputeDistanceMatrix applies Eq. 4 to every pair with the rig's F", 
   CHECK(ComputeDistanceMatrix(rig, {}, AssociationOptions{}).size() == 0);
 }
 
+TEST_CASE("cameras that never see one place: infinite with a common frame, else empty", "[unit]") {
+  // Two cameras 40 m apart looking down at their own floor: the epipolar geometry still pairs
+  // points of their images, but no person can be in both at once.
+  std::vector<geometry::CameraModel> cameras = {
+      LookAtCamera(0, Vec3(0.0, 0.0, 3.0), Vec3(1.0, 3.0, 0.0), 1000.0, 1920, 1080),
+      LookAtCamera(1, Vec3(40.0, 0.0, 3.0), Vec3(41.0, 3.0, 0.0), 1000.0, 1920, 1080)};
+  geometry::CameraRig rig(cameras);
+  REQUIRE(rig.ok());
+  const std::vector<core::Tracklet2D> tracklets = {
+      TrackletAt(0, {1, 2, 3}), TrackletAt(1, {2, 3, 4}), TrackletAt(1, {7, 8})};
+  // Before the rig knows which cameras share a view: Eq. 4 as usual.
+  CHECK(ComputeDistanceMatrix(rig, tracklets, AssociationOptions{}).at(0, 1).is_value());
+  rig.ComputeSharedViews(0.0);
+  REQUIRE_FALSE(rig.SharesView(0, 1));
+  for (const DistanceMatrix& m :
+       {ComputeDistanceMatrix(rig, tracklets, AssociationOptions{}),
+        ComputeDistanceMatrixForClustering(rig, tracklets, AssociationOptions{})}) {
+    CHECK(m.at(0, 1).is_infinite());  // frames 2-3 in common
+    CHECK(m.at(0, 2).is_empty());     // none in common
+  }
+  CHECK(
+      ComputeTrackletDistance(rig, tracklets[0], tracklets[1], AssociationOptions{}).is_infinite());
+  CHECK(ComputeTrackletDistance(rig, tracklets[0], tracklets[2], AssociationOptions{}).is_empty());
+}
+
 // Random pose-mode tracklets (5 joints, random confidences, some observations with fewer
 // joints, random frame sets) of 3 people in 4 cameras.
 std::vector<core::Tracklet2D> RandomPoseTracklets(const std::vector<geometry::CameraModel>& cameras,

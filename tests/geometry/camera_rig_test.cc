@@ -15,6 +15,7 @@
 #include "geometry/camera_model.h"
 #include "geometry/epipolar.h"
 #include "geometry/triangulation.h"
+#include "geometry/view_region.h"
 #include "support/eigen_matchers.h"
 #include "support/synthetic_cameras.h"
 
@@ -256,6 +257,51 @@ TEST_CASE("Realistic 4-camera ring rig: Eq. 2 separates two people in every came
       REQUIRE(different > 0.1);
     }
   }
+}
+
+TEST_CASE("ViewOnPlane: a camera looking straight down sees a square of the floor", "[unit]") {
+  // 3 m above the origin, 90 degree field of view both ways (fx = 500 px on 1000 x 1000): the
+  // floor seen is the 6 x 6 m square; at 1 m height, 4 x 4 m; nothing beyond the range.
+  const CameraModel down =
+      testing::LookAtCamera(1, Vec3(0.0, 0.0, 3.0), Vec3(0.0, 0.001, 0.0), 500.0, 1000, 1000);
+  const std::vector<HalfPlane> floor = ViewOnPlane(down, 0.0, 60.0, 0.0);
+  CHECK(IntersectionArea(floor, floor, 0.0, 0.0, 100.0) == Approx(36.0).epsilon(0.01));
+  const std::vector<HalfPlane> chest = ViewOnPlane(down, 1.0, 60.0, 0.0);
+  CHECK(IntersectionArea(chest, chest, 0.0, 0.0, 100.0) == Approx(16.0).epsilon(0.01));
+  CHECK(IntersectionArea(floor, chest, 0.0, 0.0, 100.0) == Approx(16.0).epsilon(0.01));
+  // The plane of the camera itself and above it: not seen (in front of it means below).
+  CHECK(IntersectionArea(
+            ViewOnPlane(down, 3.5, 60.0), ViewOnPlane(down, 3.5, 60.0), 0.0, 0.0, 100.0) == 0.0);
+  // A range shorter than the height: nothing of the floor.
+  CHECK(IntersectionArea(ViewOnPlane(down, 0.0, 2.0), floor, 0.0, 0.0, 100.0) == 0.0);
+}
+
+TEST_CASE("ComputeSharedViews: cameras far apart along a corridor never see one place", "[unit]") {
+  // Wall cameras every 5 m along a 60 m corridor, looking across and 43 degrees down (the top
+  // of the image 14 degrees below the horizon): neighbours share floor, cameras 30 m apart do
+  // not.
+  std::vector<CameraModel> cameras;
+  for (int i = 0; i < 12; ++i) {
+    const double x = 5.0 * i;
+    const double y = i % 2 == 0 ? 0.0 : 6.0;
+    cameras.push_back(
+        testing::LookAtCamera(i, Vec3(x, y, 3.0), Vec3(x + 1.0, 3.0, 0.0), 640.0, 1280, 720));
+  }
+  CameraRig rig(cameras);
+  REQUIRE(rig.ok());
+  CHECK(rig.SharesView(0, 11));  // not computed yet: every pair
+  CHECK(rig.num_sharing_pairs() == 66);
+  rig.ComputeSharedViews(0.0);
+  CHECK(rig.SharesView(0, 1));
+  CHECK(rig.SharesView(3, 3));
+  CHECK_FALSE(rig.SharesView(0, 6));
+  CHECK_FALSE(rig.SharesView(11, 0));
+  CHECK(rig.SharesView(5, 0) == rig.SharesView(0, 5));
+  CHECK(rig.num_sharing_pairs() < 40);
+  // A ring around one room: every pair sees the room.
+  CameraRig ring(RingCamerasOutOfOrder());
+  ring.ComputeSharedViews(0.0);
+  CHECK(ring.num_sharing_pairs() == 6);
 }
 
 }  // namespace
