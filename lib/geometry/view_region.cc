@@ -47,7 +47,7 @@ std::vector<HalfPlane> ViewOnPlane(const CameraModel& camera,
     if (n.z() < 0.0) n = -n;  // the optical axis (0, 0, 1) is inside
     planes.push_back(half_plane(n, 0.0));
   }
-  planes.push_back(half_plane(Vec3(0.0, 0.0, 1.0), -0.05));          // in front
+  planes.push_back(half_plane(Vec3(0.0, 0.0, 1.0), -0.05));         // in front
   planes.push_back(half_plane(Vec3(0.0, 0.0, -1.0), max_range_m));  // not beyond the range
   return planes;
 }

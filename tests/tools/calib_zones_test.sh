@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # mvtrack calib zones (issue 43): splits a site calibration into zones, prints them, and with
 # --out writes one daemon configuration per zone that `mvtrack check-config` accepts, with the
-# zone's own and border cameras and channels namespaced by the zone; bad arguments are usage
-# errors.
+# zone's own and border cameras and channels namespaced by the zone; --png draws them; bad
+# arguments are usage errors.
 source "$(dirname "$0")/common.sh"
 CAL=$WORK/boxes/calibration.yaml
 expect_exit 0 "$OUT/one.txt" "$MVTRACK" calib zones "$CAL"
@@ -21,6 +21,12 @@ for z in zone1 zone2; do
   expect_grep "^  channels: per_camera$" "$OUT/$z.check.txt"
 done
 expect_grep "^  - name: zone1$" "$OUT/site/zones.yaml"
+# --png draws the zones (the picture's colours: tests/viz/zones_map_test.cc).
+expect_exit 0 "$OUT/png.txt" "$MVTRACK" calib zones "$CAL" --max-cameras 2 --png "$OUT/zones.png"
+expect_grep "^wrote .*zones.png$" "$OUT/png.txt"
+[ -s "$OUT/zones.png" ] || fail "no zones picture"
+[ "$(head -c 8 "$OUT/zones.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] ||
+  fail "$OUT/zones.png is not a PNG"
 expect_grep "^    daemon: \"zone2.yaml\"$" "$OUT/site/zones.yaml"
 # --mode and --lcm-url go into the zone daemons' configurations, which stay valid.
 expect_exit 0 "$OUT/modes.txt" "$MVTRACK" calib zones "$CAL" --max-cameras 2 --out "$OUT/site2" \

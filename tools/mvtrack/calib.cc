@@ -25,6 +25,7 @@
 #include "mvtrack/cli.h"
 #include "viz/coverage_map.h"
 #include "viz/image_io.h"
+#include "viz/zones_map.h"
 
 namespace mvtrack::cli {
 namespace {
@@ -384,12 +385,15 @@ int RunZones(int argc, char** argv) {
               "floor area another zone's camera must see of a zone to be its border camera, m^2",
               "2")
       .Option("out", "write one daemon configuration per zone (ZONE.yaml) and zones.yaml here")
+      .Option("png",
+              "draw the zones here: the floor in each zone's colour, the border floor two zones "
+              "share in grey, the cameras in their zone's colour")
       .Option("mode", "--out: the zone daemons' tracker.mode, boxes or poses (default: theirs)")
       .Option("lcm-url", "--out: the zone daemons' input.lcm_url (default: LCM's default)");
   if (!args.Parse(
           argc,
           argv,
-          "mvtrack calib zones CAL.yaml [--max-cameras N] [--out DIR] [options]",
+          "mvtrack calib zones CAL.yaml [--max-cameras N] [--out DIR] [--png FILE] [options]",
           "Splits a site's cameras into zones for one mvtrackd per zone (issue 43): zones\n"
           "of at most --max-cameras cameras covering compact floor areas, each tracking\n"
           "with its own cameras plus the border cameras (other zones' cameras that see its\n"
@@ -457,6 +461,27 @@ int RunZones(int argc, char** argv) {
                 << " tracks with one camera: it cannot triangulate (give it more cameras, "
                    "or a larger --max-cameras)\n";
     }
+  }
+  if (args.Has("png")) {
+    // The zones' floor with a 1 m margin.
+    config::FloorRegion region = zones.front().bounds;
+    for (const config::Zone& z : zones) {
+      region.x_min_m = std::min(region.x_min_m, z.bounds.x_min_m);
+      region.y_min_m = std::min(region.y_min_m, z.bounds.y_min_m);
+      region.x_max_m = std::max(region.x_max_m, z.bounds.x_max_m);
+      region.y_max_m = std::max(region.y_max_m, z.bounds.y_max_m);
+    }
+    region.x_min_m -= 1.0;
+    region.y_min_m -= 1.0;
+    region.x_max_m += 1.0;
+    region.y_max_m += 1.0;
+    if (!viz::WriteImage(
+            args.Get("png"),
+            viz::RenderZonesMap(cameras, zones, region, options.cell_m, options.sample_height_m),
+            &why)) {
+      throw std::runtime_error(why);
+    }
+    std::cout << "wrote " << args.Get("png") << "\n";
   }
   if (!args.Has("out")) return 0;
   namespace fs = std::filesystem;
