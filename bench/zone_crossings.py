@@ -8,7 +8,9 @@ camera centres) is nearest. A crossing is a person's change of zone that holds f
 on both sides. The id before is the track within 0.5 m of the person 1 s before the crossing
 (the nearest), the id after likewise 1 s after; the crossing keeps its id when both exist and are
 equal. Prints the crossings, those that kept their id, those without a track on one side, and the
-ids that changed. Standard library only.
+ids that changed; of those, the id transfers (the id after had been another person's: the
+nearest track within 0.5 m of another ground-truth person before the crossing), also as a share
+of all predicted ids (the issue's "id transfers at borders"). Standard library only.
 """
 import json
 import math
@@ -71,7 +73,19 @@ def main(argv):
     for f in sorted(gt):
         for pid, p in gt[f]:
             paths.setdefault(pid, []).append((f, p, zone_at(p)))
-    crossings = kept = missing = changed = 0
+    # Which ground-truth people each predicted id was the nearest track (within 0.5 m) of, and
+    # from which frame on.
+    first_of = {}  # (id, person) -> first frame
+    for f, people in gt.items():
+        for tid, q in pred.get(f, []):
+            best = min(((math.dist(p[:2], q[:2]), pid) for pid, p in people), default=(99.0, None))
+            if best[0] <= 0.5:
+                key = (tid, best[1])
+                first_of[key] = min(first_of.get(key, f), f)
+    persons_of = {}
+    for (tid, pid), f in first_of.items():
+        persons_of.setdefault(tid, []).append((f, pid))
+    crossings = kept = missing = changed = transfers = 0
     for pid, path in paths.items():
         i = 0
         while i < len(path):
@@ -96,10 +110,15 @@ def main(argv):
                     kept += 1
                 else:
                     changed += 1
+                    if any(q != pid and f < path[j][0] for f, q in persons_of.get(after, [])):
+                        transfers += 1
             i = j
     share = 100.0 * kept / max(1, kept + changed)
+    ids = {tid for tracks in pred.values() for tid, _ in tracks}
     print("border crossings: %d; id kept %d, changed %d (%.2f %% kept of those tracked on both "
-          "sides), not tracked on one side %d" % (crossings, kept, changed, share, missing))
+          "sides), not tracked on one side %d; id transfers %d (%.2f %% of %d ids)"
+          % (crossings, kept, changed, share, missing, transfers,
+             100.0 * transfers / max(1, len(ids)), len(ids)))
 
 
 if __name__ == "__main__":
