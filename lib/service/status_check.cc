@@ -42,6 +42,18 @@ bool Delivers(const transport::CameraStatus& c) {
   return c.received > 0 && (c.flags & (kCameraNoData | kCameraStale | kCameraClockOffset)) == 0;
 }
 
+// CRITICAL with reasons `critical`, else WARNING with `warning`, else OK; reasons worst first.
+HealthReport Verdict(const std::vector<std::string>& critical,
+                     const std::vector<std::string>& warning) {
+  HealthReport r;
+  r.health = !critical.empty()  ? Health::kCritical
+             : !warning.empty() ? Health::kWarning
+                                : Health::kOk;
+  r.reasons = critical;
+  r.reasons.insert(r.reasons.end(), warning.begin(), warning.end());
+  return r;
+}
+
 }  // namespace
 
 const char* ToString(Health health) {
@@ -71,7 +83,6 @@ double FramesPerSecond(const transport::TrackerStatus& status) {
 }
 
 HealthReport AssessStatus(const transport::TrackerStatus& status) {
-  HealthReport r;
   std::vector<std::string> critical;
   std::vector<std::string> warning;
   const int delivering = CamerasDelivering(status);
@@ -100,12 +111,7 @@ HealthReport AssessStatus(const transport::TrackerStatus& status) {
       warning.push_back("camera " + std::to_string(c.camera_id) + " " + Join(names, ","));
     }
   }
-  r.health = !critical.empty()  ? Health::kCritical
-             : !warning.empty() ? Health::kWarning
-                                : Health::kOk;
-  r.reasons = critical;
-  r.reasons.insert(r.reasons.end(), warning.begin(), warning.end());
-  return r;
+  return Verdict(critical, warning);
 }
 
 HealthReport AssessSiteStatus(const transport::SiteStatus& status) {
@@ -132,13 +138,7 @@ HealthReport AssessSiteStatus(const transport::SiteStatus& status) {
     critical.push_back("NO_OUTPUT: zones deliver but no site frame was published for " +
                        std::to_string(kNoOutputAfterUs / 1000000) + " s");
   }
-  HealthReport r;
-  r.health = !critical.empty()  ? Health::kCritical
-             : !warning.empty() ? Health::kWarning
-                                : Health::kOk;
-  r.reasons = critical;
-  r.reasons.insert(r.reasons.end(), warning.begin(), warning.end());
-  return r;
+  return Verdict(critical, warning);
 }
 
 double FrameRateMeter::Add(const transport::TrackerStatus& status) {

@@ -46,8 +46,8 @@ cv::Mat RenderZonesMap(const std::vector<geometry::CameraModel>& cameras,
       const cv::Scalar color =
           count == 0 ? kBackground
           : count == 1
-              ? ZoneColor(static_cast<int>(std::find(seen.begin(), seen.end(), true) - seen.begin()),
-                          n)
+              ? ZoneColor(
+                    static_cast<int>(std::find(seen.begin(), seen.end(), true) - seen.begin()), n)
               : kBorderFloorColor;
       cv::rectangle(map,
                     cv::Rect(mapping.ToPoint(x0, y0 + cell_m), mapping.ToPoint(x0 + cell_m, y0)),

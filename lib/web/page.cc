@@ -320,13 +320,20 @@ function onTracks(e) {
   scheduleDraw();
 }
 
-function onStatus(s) {
+// A status arrived (a tracker's or a site's): the page is live, with its verdict.
+function showHealth(s) {
   lastStatusMs = performance.now();
   if (statusStale) text("connection", "live");
   checkStale();
   const h = document.getElementById("health");
   h.textContent = s.health; h.className = s.health;
   text("reasons", s.reasons.join("; "));
+}
+
+function onStatus(s) {
+  showHealth(s);
+  document.getElementById("zones-section").hidden = true;
+  document.getElementById("cameras-section").hidden = false;
   text("latency-p99-ms", (s.latency_p99_us / 1000).toFixed(1));
   const rows = [];
   for (const c of s.cameras) {
@@ -345,12 +352,7 @@ function onStatus(s) {
 // A site's stitcher status (issue 43): the site's health, and a row per zone instead of the
 // cameras (each zone daemon's cameras are on its own status channel).
 function onSiteStatus(s) {
-  lastStatusMs = performance.now();
-  if (statusStale) text("connection", "live");
-  checkStale();
-  const h = document.getElementById("health");
-  h.textContent = s.health; h.className = s.health;
-  text("reasons", s.reasons.join("; "));
+  showHealth(s);
   document.getElementById("zones-section").hidden = false;
   document.getElementById("cameras-section").hidden = true;
   document.querySelector("#zones tbody").innerHTML = s.zones.map((z) => {
