@@ -93,14 +93,6 @@ bool WalkCounts(WireWalker* w, const DecodeLimits& limits) {
   return w->ok();
 }
 
-template <typename Message>
-std::vector<std::uint8_t> Encode(const Message& msg) {
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
-  const int written = msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  MVTRACK_CHECK(written == static_cast<int>(bytes.size()));
-  return bytes;
-}
-
 Utime ToUtime(double seconds) { return static_cast<Utime>(std::llround(seconds * 1e6)); }
 
 }  // namespace
@@ -149,7 +141,7 @@ std::vector<std::uint8_t> EncodeAnalyticsEvent(const AnalyticsEventMessage& e) {
                       ? mvtrack::analytics_event_t::DIRECTION_LEFT_TO_RIGHT
                       : mvtrack::analytics_event_t::DIRECTION_RIGHT_TO_LEFT;
   msg.track_ended = e.track_ended;
-  return Encode(msg);
+  return internal::EncodeMessage(msg);
 }
 
 AnalyticsEventMessage ToAnalyticsEventMessage(const analytics::Event& event,
@@ -220,7 +212,7 @@ std::vector<std::uint8_t> EncodeSiteCounts(const SiteCounts& c) {
     msg.left_to_right.push_back(l.left_to_right);
     msg.right_to_left.push_back(l.right_to_left);
   }
-  return Encode(msg);
+  return internal::EncodeMessage(msg);
 }
 
 }  // namespace mvtrack::transport

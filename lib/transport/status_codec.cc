@@ -224,10 +224,8 @@ StatusDecodeResult DecodeTrackerStatus(const void* data,
   StatusDecodeResult result;
   const auto convert = [&](const mvtrack::tracker_status_t& msg) {
     CopyStatusFields(msg, &result.message);
-    result.message.cameras.resize(msg.cameras.size());
-    for (std::size_t i = 0; i < msg.cameras.size(); ++i) {
-      CopyCameraFields(msg.cameras[i], &result.message.cameras[i]);
-    }
+    internal::CopyEach(
+        msg.cameras, &result.message.cameras, CopyCameraFields<camera_status_t, CameraStatus>);
   };
   internal::CheckedDecode<mvtrack::tracker_status_t>(
       data, size, limits, WalkStatus, convert, &result.status, &result.reason);
@@ -238,14 +236,9 @@ std::vector<std::uint8_t> EncodeTrackerStatus(const TrackerStatus& s) {
   MVTRACK_CHECK(s.cameras.size() <= static_cast<std::size_t>(INT16_MAX));
   mvtrack::tracker_status_t msg;
   CopyStatusFields(s, &msg);
-  msg.cameras.resize(s.cameras.size());
-  for (std::size_t i = 0; i < s.cameras.size(); ++i)
-    CopyCameraFields(s.cameras[i], &msg.cameras[i]);
+  internal::CopyEach(s.cameras, &msg.cameras, CopyCameraFields<CameraStatus, camera_status_t>);
   msg.num_cameras = static_cast<std::int16_t>(msg.cameras.size());
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
-  const int written = msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  MVTRACK_CHECK(written == static_cast<int>(bytes.size()));
-  return bytes;
+  return internal::EncodeMessage(msg);
 }
 
 SiteStatusDecodeResult DecodeSiteStatus(const void* data,
@@ -254,10 +247,7 @@ SiteStatusDecodeResult DecodeSiteStatus(const void* data,
   SiteStatusDecodeResult result;
   const auto convert = [&](const mvtrack::site_status_t& msg) {
     CopySiteFields(msg, &result.message);
-    result.message.zones.resize(msg.zones.size());
-    for (std::size_t i = 0; i < msg.zones.size(); ++i) {
-      CopyZoneFields(msg.zones[i], &result.message.zones[i]);
-    }
+    internal::CopyEach(msg.zones, &result.message.zones, CopyZoneFields<zone_status_t, ZoneStatus>);
   };
   internal::CheckedDecode<mvtrack::site_status_t>(
       data, size, limits, WalkSiteStatus, convert, &result.status, &result.reason);
@@ -268,16 +258,10 @@ std::vector<std::uint8_t> EncodeSiteStatus(const SiteStatus& s) {
   MVTRACK_CHECK(s.zones.size() <= static_cast<std::size_t>(INT16_MAX));
   mvtrack::site_status_t msg;
   CopySiteFields(s, &msg);
-  msg.zones.resize(s.zones.size());
-  for (std::size_t i = 0; i < s.zones.size(); ++i) {
-    MVTRACK_CHECK(IsHealth(s.zones[i].daemon_health));
-    CopyZoneFields(s.zones[i], &msg.zones[i]);
-  }
+  for (const ZoneStatus& z : s.zones) MVTRACK_CHECK(IsHealth(z.daemon_health));
+  internal::CopyEach(s.zones, &msg.zones, CopyZoneFields<ZoneStatus, zone_status_t>);
   msg.num_zones = static_cast<std::int16_t>(msg.zones.size());
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
-  const int written = msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  MVTRACK_CHECK(written == static_cast<int>(bytes.size()));
-  return bytes;
+  return internal::EncodeMessage(msg);
 }
 
 std::vector<std::string> SiteFlagNames(std::int64_t flags) {

@@ -12,7 +12,9 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
+#include "core/check.h"
 #include "core/keypoint_layout.h"
 #include "transport/codec.h"
 
@@ -160,5 +162,23 @@ bool CheckedDecode(const void* data,
 /// A double as a float the way IEEE-754 narrowing does it (values beyond the float range
 /// become +-infinity, NaN stays NaN) without the undefined behaviour of an out-of-range cast.
 float NarrowToFloat(double value);
+
+/// The bytes of a generated LCM message (its encoder must write exactly getEncodedSize()
+/// bytes; checked).
+template <typename Message>
+std::vector<std::uint8_t> EncodeMessage(const Message& msg) {
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
+  const int written = msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  MVTRACK_CHECK(written == static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+/// `to` resized to `from` and `copy(from[i], &(*to)[i])` for each element: the nested structs of
+/// a message copied field by field, in either direction.
+template <typename From, typename To, typename Copy>
+void CopyEach(const std::vector<From>& from, std::vector<To>* to, Copy copy) {
+  to->resize(from.size());
+  for (std::size_t i = 0; i < from.size(); ++i) copy(from[i], &(*to)[i]);
+}
 
 }  // namespace mvtrack::transport::internal
