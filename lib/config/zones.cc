@@ -242,6 +242,15 @@ std::vector<Zone> PartitionZones(const std::vector<geometry::CameraModel>& camer
       }
     }
     std::sort(zone.cameras.begin(), zone.cameras.end());
+    // Grows the zone's bounds to hold [x0, x1] x [y0, y1].
+    const auto grow = [&zone, &any](double x0, double y0, double x1, double y1) {
+      if (!any) zone.bounds = FloorRegion{x0, y0, x1, y1};
+      any = true;
+      zone.bounds.x_min_m = std::min(zone.bounds.x_min_m, x0);
+      zone.bounds.y_min_m = std::min(zone.bounds.y_min_m, y0);
+      zone.bounds.x_max_m = std::max(zone.bounds.x_max_m, x1);
+      zone.bounds.y_max_m = std::max(zone.bounds.y_max_m, y1);
+    };
     for (std::size_t cell = 0; cell < covered[z].size(); ++cell) {
       if (covered[z][cell] == 0) continue;
       const double x =
@@ -250,23 +259,14 @@ std::vector<Zone> PartitionZones(const std::vector<geometry::CameraModel>& camer
       const double y =
           region.y_min_m +
           (static_cast<double>(cell / static_cast<std::size_t>(cols)) + 0.5) * options.cell_m;
-      if (!any) zone.bounds = FloorRegion{x, y, x, y};
-      any = true;
-      zone.bounds.x_min_m = std::min(zone.bounds.x_min_m, x - 0.5 * options.cell_m);
-      zone.bounds.y_min_m = std::min(zone.bounds.y_min_m, y - 0.5 * options.cell_m);
-      zone.bounds.x_max_m = std::max(zone.bounds.x_max_m, x + 0.5 * options.cell_m);
-      zone.bounds.y_max_m = std::max(zone.bounds.y_max_m, y + 0.5 * options.cell_m);
+      const double h = 0.5 * options.cell_m;
+      grow(x - h, y - h, x + h, y + h);
       zone.area_m2 += cell_area;
     }
     if (!any) {
       for (const int c : groups[z]) {
         const Vec3 center = cameras[static_cast<std::size_t>(c)].CenterInWorld();
-        if (!any) zone.bounds = FloorRegion{center.x(), center.y(), center.x(), center.y()};
-        any = true;
-        zone.bounds.x_min_m = std::min(zone.bounds.x_min_m, center.x());
-        zone.bounds.y_min_m = std::min(zone.bounds.y_min_m, center.y());
-        zone.bounds.x_max_m = std::max(zone.bounds.x_max_m, center.x());
-        zone.bounds.y_max_m = std::max(zone.bounds.y_max_m, center.y());
+        grow(center.x(), center.y(), center.x(), center.y());
       }
     }
   }

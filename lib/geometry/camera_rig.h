@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// A set of calibrated cameras with precomputed projection and fundamental matrices for every
-/// ordered pair. Immutable after construction; thread-compatible (const methods only).
+/// ordered pair, and (once ComputeSharedViews ran, which its owner does before sharing it) which
+/// pairs can see one place. Thread-compatible: const methods only once shared.
 
 #include <map>
 #include <optional>

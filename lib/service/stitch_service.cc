@@ -102,20 +102,14 @@ std::unique_ptr<StitchService> StitchService::Create(StitchConfig config, std::s
 
 StitchService::StitchService(StitchConfig config, TrackId3D first_id)
     : config_(std::move(config)),
+      zones_(config_.zones.size()),
       aligner_(static_cast<int>(config_.zones.size()), config_.aligner),
-      stitcher_(config::ZoneNames(config_.zones), config_.linker, first_id),
-      decode_errors_(config_.zones.size(), 0),
-      other_layer_(config_.zones.size(), 0),
-      zone_tracks_(config_.zones.size(), 0),
-      zone_latency_(config_.zones.size(), 0) {
+      stitcher_(config::ZoneNames(config_.zones), config_.linker, first_id) {
   instance_id_ = RandomInstanceId();
   for (const config::Zone& z : config_.zones) {
     channels_.push_back(config::ZoneChannel(config_.zone_tracks_channel, z.name));
     status_channels_.push_back(config::ZoneChannel(config_.zone_status_channel, z.name));
   }
-  daemons_.resize(config_.zones.size());
-  period_late_.assign(config_.zones.size(), 0);
-  period_decode_errors_.assign(config_.zones.size(), 0);
 }
 
 void StitchService::Touch(std::int64_t now_us) {
@@ -131,38 +125,37 @@ void StitchService::OnZoneStatus(int zone,
                                  std::int64_t now_us) {
   MVTRACK_CHECK(zone >= 0 && zone < static_cast<int>(status_channels_.size()));
   Touch(now_us);
-  const auto z = static_cast<std::size_t>(zone);
+  ZoneState& zs = zones_[static_cast<std::size_t>(zone)];
   const transport::StatusDecodeResult decoded = transport::DecodeTrackerStatus(data, size);
   if (!decoded.ok()) {
-    ++decode_errors_[z];
+    ++zs.decode_errors;
     return;
   }
-  DaemonStatus& d = daemons_[z];
-  d.received_us = now_us;
-  d.period_us = decoded.message.period_us;
-  d.health = AssessStatus(decoded.message);
-  d.instance_id = decoded.message.instance_id;
+  zs.status_received_us = now_us;
+  zs.status_period_us = decoded.message.period_us;
+  zs.health = AssessStatus(decoded.message);
+  zs.instance_id = decoded.message.instance_id;
 }
 
 void StitchService::OnMessage(int zone, const void* data, std::size_t size, std::int64_t now_us) {
   MVTRACK_CHECK(zone >= 0 && zone < static_cast<int>(channels_.size()));
   Touch(now_us);
-  const auto z = static_cast<std::size_t>(zone);
+  ZoneState& zs = zones_[static_cast<std::size_t>(zone)];
   transport::TracksDecodeResult decoded = transport::DecodeTracks(data, size);
   if (!decoded.ok()) {
-    ++decode_errors_[z];
+    ++zs.decode_errors;
     return;
   }
   if (decoded.message.layer != transport::TracksLayer::kFinal) {
-    ++other_layer_[z];
+    ++zs.other_layer;
     return;
   }
   if (!layout_known_) {
     layout_ = decoded.message.layout;
     layout_known_ = true;
   }
-  zone_tracks_[z] = static_cast<int>(decoded.message.frame.tracks.size());
-  zone_latency_[z] = decoded.message.latency_us + (now_us - decoded.message.publish_utime);
+  zs.tracks = static_cast<int>(decoded.message.frame.tracks.size());
+  zs.latency_us = decoded.message.latency_us + (now_us - decoded.message.publish_utime);
   aligner_.Push(zone, std::move(decoded.message.frame), now_us);
 }
 
@@ -220,33 +213,34 @@ transport::SiteStatus StitchService::Status(std::int64_t now_us, bool end_period
   bool some_live = false;
   for (std::size_t z = 0; z < channels_.size(); ++z) {
     const stitch::ZoneInput& in = aligner_.zones()[z];
+    const ZoneState& state = zones_[z];
     transport::ZoneStatus zs;
     zs.name = config_.zones[z].name;
     zs.channel = channels_[z];
     zs.frames = in.frames;
     zs.late = in.late;
-    zs.decode_errors = decode_errors_[z];
-    zs.other_layer = other_layer_[z];
+    zs.decode_errors = state.decode_errors;
+    zs.other_layer = state.other_layer;
     zs.last_utime = in.last_utime;
     zs.last_receive_utime = in.last_arrival_us;
-    zs.latency_us = zone_latency_[z];
-    zs.tracks = zone_tracks_[z];
+    zs.latency_us = state.latency_us;
+    zs.tracks = state.tracks;
     if (in.frames == 0) zs.flags |= kZoneNoData;
     if (aligner_.Stale(static_cast<int>(z), now_us)) zs.flags |= kZoneStale;
-    if (in.late > period_late_[z]) zs.flags |= kZoneLate;
-    if (decode_errors_[z] > period_decode_errors_[z]) zs.flags |= kZoneDecodeErrors;
-    const DaemonStatus& d = daemons_[z];
-    const std::int64_t fresh_us = std::max(kStatusFreshUs, 3 * d.period_us);
-    if (d.received_us > 0 && now_us - d.received_us <= fresh_us) {
-      zs.daemon_health = static_cast<std::int8_t>(d.health.health);
-      zs.daemon_reasons = Clip(d.health.reasons.empty() ? std::string() : HealthLine(d.health));
-      if (d.health.health == Health::kWarning || d.health.health == Health::kCritical) {
+    if (in.late > state.period_late) zs.flags |= kZoneLate;
+    if (state.decode_errors > state.period_decode_errors) zs.flags |= kZoneDecodeErrors;
+    const std::int64_t fresh_us = std::max(kStatusFreshUs, 3 * state.status_period_us);
+    if (state.status_received_us > 0 && now_us - state.status_received_us <= fresh_us) {
+      zs.daemon_health = static_cast<std::int8_t>(state.health.health);
+      zs.daemon_reasons =
+          Clip(state.health.reasons.empty() ? std::string() : HealthLine(state.health));
+      if (state.health.health == Health::kWarning || state.health.health == Health::kCritical) {
         zs.flags |= kZoneDegraded;
       }
     } else {
       zs.daemon_health = static_cast<std::int8_t>(Health::kUnknown);
     }
-    zs.daemon_instance_id = d.instance_id;
+    zs.daemon_instance_id = state.instance_id;
     if ((zs.flags & (kZoneNoData | kZoneStale)) != 0) {
       s.flags |= kSiteZoneMissing;
     } else {
@@ -261,9 +255,9 @@ transport::SiteStatus StitchService::Status(std::int64_t now_us, bool end_period
   if (end_period) {
     waits_.clear();
     period_start_us_ = now_us;
-    for (std::size_t z = 0; z < channels_.size(); ++z) {
-      period_late_[z] = aligner_.zones()[z].late;
-      period_decode_errors_[z] = decode_errors_[z];
+    for (std::size_t z = 0; z < zones_.size(); ++z) {
+      zones_[z].period_late = aligner_.zones()[z].late;
+      zones_[z].period_decode_errors = zones_[z].decode_errors;
     }
   }
   return s;

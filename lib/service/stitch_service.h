@@ -104,12 +104,20 @@ class StitchService {
  private:
   StitchService(StitchConfig config, TrackId3D first_id);
 
-  // The latest status of a zone daemon.
-  struct DaemonStatus {
-    std::int64_t received_us = 0;  // 0: none yet
-    std::int64_t period_us = 0;
+  // What the service keeps of one zone beside the aligner's counters.
+  struct ZoneState {
+    std::int64_t decode_errors = 0;  // on its tracks or status channel
+    std::int64_t other_layer = 0;    // provisional-layer messages, ignored
+    int tracks = 0;                  // in its latest frame
+    std::int64_t latency_us = 0;     // of its latest frame: daemon latency + transport
+    // Its daemon's latest status.
+    std::int64_t status_received_us = 0;  // 0: none yet
+    std::int64_t status_period_us = 0;
     HealthReport health;
     std::string instance_id;
+    // The counters when the status period started (the period's LATE, DECODE_ERRORS flags).
+    std::int64_t period_late = 0;
+    std::int64_t period_decode_errors = 0;
   };
 
   void Touch(std::int64_t now_us);
@@ -123,16 +131,10 @@ class StitchService {
   std::int64_t last_frame_ = -1;
   std::vector<std::string> channels_;
   std::vector<std::string> status_channels_;
-  std::vector<DaemonStatus> daemons_;
-  std::vector<std::int64_t> period_late_;           // late counts when the period started
-  std::vector<std::int64_t> period_decode_errors_;  // decode errors when the period started
+  std::vector<ZoneState> zones_;  // parallel to config_.zones
   stitch::SiteAligner aligner_;
   stitch::Stitcher stitcher_;
   std::optional<IdReservation> ids_;
-  std::vector<std::int64_t> decode_errors_;
-  std::vector<std::int64_t> other_layer_;
-  std::vector<int> zone_tracks_;
-  std::vector<std::int64_t> zone_latency_;
   core::KeypointLayoutId layout_ = core::KeypointLayoutId::kNone;
   bool layout_known_ = false;
   int global_tracks_ = 0;

@@ -179,12 +179,7 @@ std::vector<std::uint8_t> EncodeCameraDetections(const core::CameraFrame& frame,
     d.embedding = det.embedding;
     msg.detections.push_back(std::move(d));
   }
-  const int size = msg.getEncodedSize();
-  MVTRACK_CHECK_MSG(size > 0, "camera_detections_t too large to encode");
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
-  const int written = msg.encode(bytes.data(), 0, size);
-  MVTRACK_CHECK_MSG(written == size, "camera_detections_t encode failed");
-  return bytes;
+  return internal::EncodeMessage(msg);
 }
 
 }  // namespace mvtrack::transport

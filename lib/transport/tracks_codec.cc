@@ -327,12 +327,7 @@ std::vector<std::uint8_t> EncodeTracks(const tracker::Frame3D& frame,
     t.num_zones = static_cast<std::int16_t>(t.zones.size());
     msg.tracks.push_back(std::move(t));
   }
-  const int size = msg.getEncodedSize();
-  MVTRACK_CHECK_MSG(size > 0, "tracks3d_t too large to encode");
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
-  const int written = msg.encode(bytes.data(), 0, size);
-  MVTRACK_CHECK_MSG(written == size, "tracks3d_t encode failed");
-  return bytes;
+  return internal::EncodeMessage(msg);
 }
 
 }  // namespace mvtrack::transport

@@ -463,18 +463,10 @@ int RunZones(int argc, char** argv) {
     }
   }
   if (args.Has("png")) {
-    // The zones' floor with a 1 m margin.
-    config::FloorRegion region = zones.front().bounds;
-    for (const config::Zone& z : zones) {
-      region.x_min_m = std::min(region.x_min_m, z.bounds.x_min_m);
-      region.y_min_m = std::min(region.y_min_m, z.bounds.y_min_m);
-      region.x_max_m = std::max(region.x_max_m, z.bounds.x_max_m);
-      region.y_max_m = std::max(region.y_max_m, z.bounds.y_max_m);
-    }
-    region.x_min_m -= 1.0;
-    region.y_min_m -= 1.0;
-    region.x_max_m += 1.0;
-    region.y_max_m += 1.0;
+    // The floor the split sampled (PartitionZones' region, 1 m around what the cameras see),
+    // with 1 m more for the cameras' labels.
+    const config::FloorRegion region =
+        config::DefaultFloorRegion(cameras, options.sample_height_m, 2.0);
     if (!viz::WriteImage(
             args.Get("png"),
             viz::RenderZonesMap(cameras, zones, region, options.cell_m, options.sample_height_m),

@@ -163,13 +163,15 @@ bool CheckedDecode(const void* data,
 /// become +-infinity, NaN stays NaN) without the undefined behaviour of an out-of-range cast.
 float NarrowToFloat(double value);
 
-/// The bytes of a generated LCM message (its encoder must write exactly getEncodedSize()
-/// bytes; checked).
+/// The bytes of a generated LCM message. Aborts (checked) when it is too large to encode (an
+/// int32 size overflow) or its encoder does not write exactly getEncodedSize() bytes.
 template <typename Message>
 std::vector<std::uint8_t> EncodeMessage(const Message& msg) {
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
-  const int written = msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  MVTRACK_CHECK(written == static_cast<int>(bytes.size()));
+  const int size = msg.getEncodedSize();
+  MVTRACK_CHECK_MSG(size > 0, "an LCM message too large to encode");
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+  const int written = msg.encode(bytes.data(), 0, size);
+  MVTRACK_CHECK_MSG(written == size, "LCM encode failed");
   return bytes;
 }
 
